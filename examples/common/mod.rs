@@ -1,0 +1,95 @@
+//! Shared command-line plumbing of the example programs: parsing numbers with messages that say
+//! what is allowed, and one-line errors with a non-zero exit status.
+
+#![allow(dead_code)]
+
+use std::fmt::Display;
+use std::process::ExitCode;
+
+/// The largest count the example programs accept (the library itself may go further).
+pub const MAX_CLI_COUNT: u64 = 1 << 26;
+
+/// A command-line failure: a one-line message for stderr.
+#[derive(Debug)]
+pub struct CliError(pub String);
+
+impl<E: std::error::Error> From<E> for CliError {
+    fn from(e: E) -> Self {
+        CliError(e.to_string())
+    }
+}
+
+/// Shorthand for a `CliError` from anything printable.
+pub fn cli_error(msg: impl Display) -> CliError {
+    CliError(msg.to_string())
+}
+
+/// Runs `body`, printing its error as one line on stderr (exit status 2), or `--help` text.
+pub fn run(program: &str, body: impl FnOnce() -> Result<(), CliError>) -> ExitCode {
+    match body() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(CliError(msg)) => {
+            let one_line = msg.replace('\n', " ");
+            eprintln!("{program}: error: {one_line}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// The value of a flag as a UTF-8 string.
+pub fn string_value(flag: &str, value: std::ffi::OsString) -> Result<String, CliError> {
+    value
+        .into_string()
+        .map_err(|v| cli_error(format!("{flag}: {v:?} is not valid UTF-8")))
+}
+
+/// Parses a flag's value as an integer in `[min, max]`.
+pub fn parse_int(flag: &str, value: &str, min: u64, max: u64) -> Result<u64, CliError> {
+    let v: u64 = value.trim().parse().map_err(|_| {
+        cli_error(format!(
+            "{flag} {value:?} is not a whole number; allowed: {min} to {max}"
+        ))
+    })?;
+    if v < min || v > max {
+        return Err(cli_error(format!(
+            "{flag} {v} is out of range; allowed: {min} to {max}"
+        )));
+    }
+    Ok(v)
+}
+
+/// Parses a flag's value as a finite float in the open interval `(lo, hi)`.
+pub fn parse_open_float(flag: &str, value: &str, lo: f64, hi: f64) -> Result<f64, CliError> {
+    let v: f64 = value.trim().parse().map_err(|_| {
+        cli_error(format!(
+            "{flag} {value:?} is not a number; allowed: {lo} < {flag} < {hi}"
+        ))
+    })?;
+    if !(v > lo && v < hi) {
+        return Err(cli_error(format!(
+            "{flag} {v} is out of range; allowed: {lo} < value < {hi}"
+        )));
+    }
+    Ok(v)
+}
+
+/// Parses `X,Y` as two integers in `[0, max]`.
+pub fn parse_pair(flag: &str, value: &str, max: u64) -> Result<(u64, u64), CliError> {
+    let bad = || {
+        cli_error(format!(
+            "{flag} {value:?} is not X,Y; allowed: two whole numbers 0 to {max}, e.g. 3,7"
+        ))
+    };
+    let (a, b) = value.split_once(',').ok_or_else(bad)?;
+    Ok((parse_int(flag, a, 0, max)?, parse_int(flag, b, 0, max)?))
+}
+
+/// Turns lexopt's complaint about an unexpected argument into a message that lists the flags.
+pub fn unexpected(arg: lexopt::Arg<'_>, usage: &str) -> CliError {
+    let what = match arg {
+        lexopt::Arg::Short(c) => format!("unknown flag -{c}"),
+        lexopt::Arg::Long(l) => format!("unknown flag --{l}"),
+        lexopt::Arg::Value(v) => format!("unexpected argument {v:?}"),
+    };
+    cli_error(format!("{what}; usage: {usage}"))
+}

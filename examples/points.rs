@@ -1,0 +1,186 @@
+//! `points`: print a sample set as CSV, or draw it.
+//!
+//! ```text
+//! cargo run --release --example points -- --sampler NAME -n N [--seed S] [--dims D]
+//!         [--pixel X,Y] [--radius RHO] [--iterations K] [--strength T] [--png FILE] [--list]
+//! ```
+//! See the README and `../shared/CLI.md` (the command-line contract).
+
+mod common;
+
+use std::io::Write;
+use std::process::ExitCode;
+
+use common::{
+    CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_open_float, parse_pair, string_value,
+};
+use strata::registry::{self, Params};
+
+const USAGE: &str = "points --sampler NAME -n N [--seed S] [--dims D] [--pixel X,Y] [--radius RHO] \
+[--iterations K] [--strength T] [--candidates K] [--png FILE] [--no-header] [--list]";
+
+const HELP: &str = "\
+points: print a sample set as CSV (header, then one row per sample in sequence order), or draw it.
+
+Usage:
+  cargo run --release --example points -- --sampler NAME -n N [options]
+
+Options:
+  --sampler NAME     the sampler (see --list)
+  -n N               number of samples, 1 to 67108864 (2^26)
+  --seed S           seed of everything (u64, default 1); same arguments, same bytes
+  --dims D           dimensions per sample (default 2)
+  --pixel X,Y        the values the path-tracer adapter gives pixel (X,Y)
+  --radius RHO       relative Poisson-disk radius, 0 < RHO < 1
+  --iterations K     Lloyd / CCVT iterations
+  --strength T       orthogonal-array strength
+  --candidates K     best-candidate count
+  --png FILE         also draw the points (with the strata grid) into FILE
+  --no-header        omit the CSV header line
+  --list             print every registered sampler with a one-line description
+  -h, --help         this text
+
+Fixed-count samplers print their first set of N; progressive samplers the first N points of
+their endless sequence.";
+
+struct Args {
+    sampler: Option<String>,
+    n: Option<u64>,
+    params: Params,
+    dims: u64,
+    pixel: Option<(u64, u64)>,
+    png: Option<std::path::PathBuf>,
+    header: bool,
+}
+
+fn parse() -> Result<Option<Args>, CliError> {
+    use lexopt::prelude::*;
+    let mut args = Args {
+        sampler: None,
+        n: None,
+        params: Params::new(1),
+        dims: 2,
+        pixel: None,
+        png: None,
+        header: true,
+    };
+    let mut parser = lexopt::Parser::from_env();
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Long("sampler") => args.sampler = Some(string_value("--sampler", parser.value()?)?),
+            Short('n') => {
+                let v = string_value("-n", parser.value()?)?;
+                args.n = Some(parse_int("-n", &v, 1, MAX_CLI_COUNT)?);
+            }
+            Long("seed") => {
+                let v = string_value("--seed", parser.value()?)?;
+                args.params.seed = parse_int("--seed", &v, 0, u64::MAX)?;
+            }
+            Long("dims") => {
+                let v = string_value("--dims", parser.value()?)?;
+                args.dims = parse_int("--dims", &v, 1, 1 << 16)?;
+            }
+            Long("pixel") => {
+                let v = string_value("--pixel", parser.value()?)?;
+                args.pixel = Some(parse_pair("--pixel", &v, u32::MAX as u64)?);
+            }
+            Long("radius") => {
+                let v = string_value("--radius", parser.value()?)?;
+                args.params.radius = Some(parse_open_float("--radius", &v, 0.0, 1.0)?);
+            }
+            Long("iterations") => {
+                let v = string_value("--iterations", parser.value()?)?;
+                args.params.iterations = Some(parse_int("--iterations", &v, 0, 100_000)? as u32);
+            }
+            Long("strength") => {
+                let v = string_value("--strength", parser.value()?)?;
+                args.params.strength = Some(parse_int("--strength", &v, 0, 64)? as u32);
+            }
+            Long("candidates") => {
+                let v = string_value("--candidates", parser.value()?)?;
+                args.params.candidates = Some(parse_int("--candidates", &v, 0, 1 << 16)? as u32);
+            }
+            Long("png") => args.png = Some(parser.value()?.into()),
+            Long("no-header") => args.header = false,
+            Long("list") => {
+                for e in registry::entries() {
+                    let kind = if e.progressive {
+                        "progressive"
+                    } else {
+                        "fixed-count"
+                    };
+                    println!(
+                        "{:<16} {:<12} {:<16} {}",
+                        e.name,
+                        kind,
+                        e.counts.to_string(),
+                        e.description
+                    );
+                }
+                return Ok(None);
+            }
+            Short('h') | Long("help") => {
+                println!("{HELP}");
+                return Ok(None);
+            }
+            other => return Err(common::unexpected(other, USAGE)),
+        }
+    }
+    Ok(Some(args))
+}
+
+fn main() -> ExitCode {
+    common::run("points", || {
+        let Some(args) = parse()? else { return Ok(()) };
+        let name = args.sampler.ok_or_else(|| {
+            cli_error(format!(
+                "--sampler NAME is required (see --list); usage: {USAGE}"
+            ))
+        })?;
+        let n = args.n.ok_or_else(|| {
+            cli_error(format!(
+                "-n N is required (1 to {MAX_CLI_COUNT}); usage: {USAGE}"
+            ))
+        })?;
+        let entry = registry::find(&name)?;
+        if args.dims != 2 {
+            return Err(cli_error(format!(
+                "--dims {}: {name} has 2-dimensional points only (--dims 2); no registered sampler has \
+                 D-dimensional points yet",
+                args.dims
+            )));
+        }
+        if args.pixel.is_some() {
+            return Err(cli_error(
+                "--pixel: the path-tracer adapter is not part of this build yet; omit --pixel to print the raw sequence",
+            ));
+        }
+        let mut params = args.params.clone();
+        params.count = n;
+        let mut sampler = entry.build(&params)?;
+        let mut points = vec![glam::Vec2::ZERO; n as usize];
+        sampler.fill(&mut points);
+
+        if let Some(path) = &args.png {
+            let canvas = strata::io::draw_points(&points, &sampler.strata(n), 640);
+            strata::io::write_png(path, &canvas)?;
+        }
+
+        let stdout = std::io::stdout();
+        let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
+        let result = (|| -> std::io::Result<()> {
+            if args.header {
+                writeln!(out, "x,y")?;
+            }
+            for p in &points {
+                writeln!(out, "{},{}", p.x, p.y)?;
+            }
+            out.flush()
+        })();
+        match result {
+            // A closed pipe (`points ... | head`) is not an error of ours.
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+            other => other.map_err(|e| cli_error(format!("writing to stdout: {e}"))),
+        }
+    })
+}

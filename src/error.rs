@@ -1,0 +1,179 @@
+//! The crate's one error type.
+//!
+//! Every constructor and every analysis entry point validates its input and returns
+//! [`Result<T, Error>`](Result). Each message says what was wrong *and* what is allowed, so that a
+//! command-line tool can print it as is: `jittered cannot make 10 samples: the count must be a
+//! perfect square (nearest allowed: 9 or 16)`.
+
+use std::fmt;
+
+/// Shorthand for `Result<T, strata::Error>`.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// What went wrong, with what would have been allowed.
+///
+/// The [`Display`](fmt::Display) form is one line, meant for end users; match on the variants to
+/// react programmatically.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Error {
+    /// No sampler is registered under this name.
+    UnknownSampler {
+        /// The name that was asked for.
+        name: String,
+        /// Every registered name.
+        known: Vec<&'static str>,
+    },
+    /// The sampler cannot produce this many samples (zero, not a square, too large, ...).
+    InvalidCount {
+        /// The sampler (or tool) that refused.
+        sampler: &'static str,
+        /// The count that was asked for.
+        count: u64,
+        /// What counts are allowed, with the nearest allowed ones where that helps.
+        allowed: String,
+    },
+    /// A parameter is outside its allowed range or is not taken by this sampler.
+    InvalidParameter {
+        /// Who refused (a sampler name, or a module such as `spectrum`).
+        context: &'static str,
+        /// The parameter's name, as on the command line (`radius`, `iterations`, ...).
+        parameter: &'static str,
+        /// The value that was given, formatted.
+        value: String,
+        /// What is allowed.
+        allowed: String,
+    },
+    /// Input data (a point set, a frequency grid, ...) is unusable.
+    InvalidInput {
+        /// Who refused.
+        context: &'static str,
+        /// What was wrong and what is allowed.
+        message: String,
+    },
+    /// The request is valid in itself but cannot be met (for example a Poisson-disk radius that
+    /// leaves no room for the requested number of points).
+    Unreachable {
+        /// Who gave up.
+        context: &'static str,
+        /// What could not be done, how far it got, and what would work.
+        message: String,
+    },
+    /// Writing or reading a file failed.
+    Io {
+        /// The file involved.
+        path: String,
+        /// The operating system's or encoder's message.
+        message: String,
+    },
+}
+
+impl Error {
+    /// Shorthand for [`Error::InvalidCount`].
+    pub fn count(sampler: &'static str, count: u64, allowed: impl Into<String>) -> Self {
+        Error::InvalidCount {
+            sampler,
+            count,
+            allowed: allowed.into(),
+        }
+    }
+
+    /// Shorthand for [`Error::InvalidParameter`].
+    pub fn parameter(
+        context: &'static str,
+        parameter: &'static str,
+        value: impl fmt::Display,
+        allowed: impl Into<String>,
+    ) -> Self {
+        Error::InvalidParameter {
+            context,
+            parameter,
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+
+    /// Shorthand for [`Error::InvalidInput`].
+    pub fn input(context: &'static str, message: impl Into<String>) -> Self {
+        Error::InvalidInput {
+            context,
+            message: message.into(),
+        }
+    }
+
+    /// Shorthand for [`Error::Io`].
+    pub fn io(path: impl AsRef<std::path::Path>, message: impl fmt::Display) -> Self {
+        Error::Io {
+            path: path.as_ref().display().to_string(),
+            message: message.to_string(),
+        }
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::UnknownSampler { name, known } => {
+                write!(
+                    f,
+                    "unknown sampler '{name}'; known samplers: {}",
+                    known.join(", ")
+                )
+            }
+            Error::InvalidCount {
+                sampler,
+                count,
+                allowed,
+            } => write!(f, "{sampler} cannot make {count} samples: {allowed}"),
+            Error::InvalidParameter {
+                context,
+                parameter,
+                value,
+                allowed,
+            } => write!(
+                f,
+                "{context}: {parameter} = {value} is not allowed: {allowed}"
+            ),
+            Error::InvalidInput { context, message } => write!(f, "{context}: {message}"),
+            Error::Unreachable { context, message } => write!(f, "{context}: {message}"),
+            Error::Io { path, message } => write!(f, "{path}: {message}"),
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+/// The perfect squares nearest to `n` (one if `n` is a square, else the one below and the one
+/// above), for error messages.
+pub(crate) fn nearest_squares(n: u64) -> String {
+    let r = n.isqrt();
+    if n == 0 {
+        return "1".to_string();
+    }
+    if r * r == n {
+        return format!("{n}");
+    }
+    format!("{} or {}", r * r, (r + 1) * (r + 1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nearest_squares_brackets_the_count() {
+        assert_eq!(nearest_squares(10), "9 or 16");
+        assert_eq!(nearest_squares(16), "16");
+        assert_eq!(nearest_squares(0), "1");
+        assert_eq!(nearest_squares(2), "1 or 4");
+    }
+
+    #[test]
+    fn messages_say_what_is_allowed() {
+        let e = Error::count("jittered", 10, "the count must be a perfect square");
+        assert_eq!(
+            e.to_string(),
+            "jittered cannot make 10 samples: the count must be a perfect square"
+        );
+    }
+}

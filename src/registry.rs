@@ -1,0 +1,303 @@
+//! Samplers by name, for the example programs, the benches and users' own tools.
+//!
+//! ```
+//! use strata::registry::{self, Params};
+//! let mut s = registry::build("cmj", &Params::new(100).seed(7)).unwrap();
+//! let p = s.next_sample();
+//! assert!(p.x < 1.0 && p.y < 1.0);
+//!
+//! let err = registry::build("jitter", &Params::new(16)).unwrap_err();
+//! assert!(err.to_string().contains("jittered")); // the error lists the known names
+//! ```
+
+use std::fmt;
+
+use crate::error::{Error, Result};
+use crate::sampler::Sampler;
+use crate::samplers;
+
+/// An optional parameter a sampler may take (beyond the count and the seed).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Parameter {
+    /// Relative Poisson-disk radius (`--radius`).
+    Radius,
+    /// Relaxation iterations (`--iterations`).
+    Iterations,
+    /// Orthogonal-array strength (`--strength`).
+    Strength,
+    /// Best-candidate count (`--candidates`).
+    Candidates,
+}
+
+impl Parameter {
+    /// The name used on the command line and in error messages.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Parameter::Radius => "radius",
+            Parameter::Iterations => "iterations",
+            Parameter::Strength => "strength",
+            Parameter::Candidates => "candidates",
+        }
+    }
+}
+
+/// Which sample counts a sampler accepts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum CountRule {
+    /// Any count `>= 1`.
+    Any,
+    /// Perfect squares `s^2`.
+    Square,
+}
+
+impl CountRule {
+    /// Whether `n` is allowed.
+    pub fn allows(&self, n: u64) -> bool {
+        match self {
+            CountRule::Any => n >= 1,
+            CountRule::Square => n >= 1 && n.isqrt().pow(2) == n,
+        }
+    }
+
+    /// The allowed counts in `[min, max]`, in increasing order.
+    pub fn counts_between(&self, min: u64, max: u64) -> Vec<u64> {
+        let min = min.max(1);
+        match self {
+            CountRule::Any => (min..=max).collect(),
+            CountRule::Square => {
+                let lo = {
+                    let r = min.isqrt();
+                    if r * r == min { r } else { r + 1 }
+                };
+                (lo..=max.isqrt()).map(|s| s * s).collect()
+            }
+        }
+    }
+}
+
+impl fmt::Display for CountRule {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CountRule::Any => f.write_str("any N >= 1"),
+            CountRule::Square => f.write_str("perfect squares"),
+        }
+    }
+}
+
+/// What a sampler is built from: the count, the seed, and optional parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Params {
+    /// Samples per set for fixed-count samplers; the intended count for progressive ones.
+    pub count: u64,
+    /// Seed of all randomness (default 1, as in the example programs).
+    pub seed: u64,
+    /// Relative Poisson-disk radius.
+    pub radius: Option<f64>,
+    /// Relaxation iterations.
+    pub iterations: Option<u32>,
+    /// Orthogonal-array strength.
+    pub strength: Option<u32>,
+    /// Best-candidate count.
+    pub candidates: Option<u32>,
+}
+
+impl Params {
+    /// `count` samples, seed 1, no optional parameters.
+    pub fn new(count: u64) -> Self {
+        Params {
+            count,
+            seed: 1,
+            radius: None,
+            iterations: None,
+            strength: None,
+            candidates: None,
+        }
+    }
+
+    /// The same with another seed.
+    pub fn seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+
+    /// The optional parameters that are set, with their values formatted.
+    pub fn given(&self) -> Vec<(Parameter, String)> {
+        let mut v = Vec::new();
+        if let Some(x) = self.radius {
+            v.push((Parameter::Radius, x.to_string()));
+        }
+        if let Some(x) = self.iterations {
+            v.push((Parameter::Iterations, x.to_string()));
+        }
+        if let Some(x) = self.strength {
+            v.push((Parameter::Strength, x.to_string()));
+        }
+        if let Some(x) = self.candidates {
+            v.push((Parameter::Candidates, x.to_string()));
+        }
+        v
+    }
+}
+
+/// A registered sampler: its name, what it is, and how to build it.
+pub struct Entry {
+    /// The name (`--sampler NAME`).
+    pub name: &'static str,
+    /// One line: what it is and where it comes from.
+    pub description: &'static str,
+    /// True for progressive sequences, false for fixed-count sets.
+    pub progressive: bool,
+    /// The counts it accepts.
+    pub counts: CountRule,
+    /// The optional parameters it takes.
+    pub parameters: &'static [Parameter],
+    build: fn(&Params) -> Result<Box<dyn Sampler>>,
+}
+
+impl fmt::Debug for Entry {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Entry")
+            .field("name", &self.name)
+            .field("progressive", &self.progressive)
+            .field("counts", &self.counts)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Entry {
+    /// Builds the sampler, after checking that every optional parameter given is one it takes.
+    pub fn build(&self, params: &Params) -> Result<Box<dyn Sampler>> {
+        for (p, value) in params.given() {
+            if !self.parameters.contains(&p) {
+                let takers: Vec<&str> = ENTRIES
+                    .iter()
+                    .filter(|e| e.parameters.contains(&p))
+                    .map(|e| e.name)
+                    .collect();
+                let allowed = if takers.is_empty() {
+                    format!(
+                        "{} takes no {}, and no registered sampler does",
+                        self.name,
+                        p.name()
+                    )
+                } else {
+                    format!(
+                        "{} takes no {}; samplers that do: {}",
+                        self.name,
+                        p.name(),
+                        takers.join(", ")
+                    )
+                };
+                return Err(Error::parameter(self.name, p.name(), value, allowed));
+            }
+        }
+        if params.count == 0 {
+            return Err(Error::count(
+                self.name,
+                0,
+                format!("allowed counts: {}", self.counts),
+            ));
+        }
+        (self.build)(params)
+    }
+}
+
+static ENTRIES: &[Entry] = &[
+    Entry {
+        name: "random",
+        description: "independent uniform points (PCG32); progressive",
+        progressive: true,
+        counts: CountRule::Any,
+        parameters: &[],
+        build: |p| Ok(Box::new(samplers::Random::new(p.seed))),
+    },
+    Entry {
+        name: "regular",
+        description: "cell centres of an s x s grid (N = s^2); deterministic",
+        progressive: false,
+        counts: CountRule::Square,
+        parameters: &[],
+        build: |p| Ok(Box::new(samplers::Regular::new(p.count)?)),
+    },
+    Entry {
+        name: "jittered",
+        description: "one uniform point per cell of an s x s grid (N = s^2), Cook 1986",
+        progressive: false,
+        counts: CountRule::Square,
+        parameters: &[],
+        build: |p| Ok(Box::new(samplers::Jittered::new(p.count, p.seed)?)),
+    },
+    Entry {
+        name: "nrooks",
+        description: "N-rooks / 2D Latin hypercube, one point per row and column, Shirley 1991",
+        progressive: false,
+        counts: CountRule::Any,
+        parameters: &[],
+        build: |p| Ok(Box::new(samplers::NRooks::new(p.count, p.seed)?)),
+    },
+    Entry {
+        name: "multijittered",
+        description: "jittered and N-rooks at once (N = n^2), Chiu, Shirley, Wang 1994",
+        progressive: false,
+        counts: CountRule::Square,
+        parameters: &[],
+        build: |p| Ok(Box::new(samplers::MultiJittered::new(p.count, p.seed)?)),
+    },
+    Entry {
+        name: "cmj",
+        description: "correlated multi-jittered, any N, Kensler 2013",
+        progressive: false,
+        counts: CountRule::Any,
+        parameters: &[],
+        build: |p| Ok(Box::new(samplers::Cmj::new(p.count, p.seed)?)),
+    },
+];
+
+/// Every registered sampler, in a stable order (simplest first).
+pub fn entries() -> &'static [Entry] {
+    ENTRIES
+}
+
+/// Every registered name, in the order of [`entries`].
+pub fn names() -> Vec<&'static str> {
+    ENTRIES.iter().map(|e| e.name).collect()
+}
+
+/// The entry registered under `name`; the error lists the known names.
+pub fn find(name: &str) -> Result<&'static Entry> {
+    ENTRIES
+        .iter()
+        .find(|e| e.name == name)
+        .ok_or_else(|| Error::UnknownSampler {
+            name: name.to_string(),
+            known: names(),
+        })
+}
+
+/// Builds the sampler registered under `name` (see [`Entry::build`]).
+pub fn build(name: &str, params: &Params) -> Result<Box<dyn Sampler>> {
+    find(name)?.build(params)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn count_rules_list_allowed_counts() {
+        assert_eq!(CountRule::Square.counts_between(2, 30), vec![4, 9, 16, 25]);
+        assert_eq!(CountRule::Square.counts_between(16, 16), vec![16]);
+        assert_eq!(CountRule::Any.counts_between(0, 3), vec![1, 2, 3]);
+        assert!(CountRule::Square.counts_between(17, 24).is_empty());
+    }
+
+    #[test]
+    fn names_are_unique() {
+        let mut n = names();
+        n.sort();
+        n.dedup();
+        assert_eq!(n.len(), ENTRIES.len());
+    }
+}

@@ -1,0 +1,187 @@
+//! The sampler families, one per file.
+//!
+//! | name | type | kind | guarantee | source |
+//! |---|---|---|---|---|
+//! | `random` | [`Random`] | progressive | independent uniform points | - |
+//! | `regular` | [`Regular`] | fixed `N = s^2` | cell centres of an `s x s` grid | - |
+//! | `jittered` | [`Jittered`] | fixed `N = s^2` | one uniform point per cell of an `s x s` grid | Cook 1986 |
+//! | `nrooks` | [`NRooks`] | fixed, any `N` | one point per row and per column of `N x N` (Latin hypercube) | Shirley 1991 |
+//! | `multijittered` | [`MultiJittered`] | fixed `N = n^2` | jittered on `n x n` *and* N-rooks | Chiu, Shirley, Wang 1994 |
+//! | `cmj` | [`Cmj`] | fixed, any `N` | multi-jittered on `m x n` (`m n >= N`), correlated shuffles | Kensler 2013 |
+//!
+//! Fixed-count samplers share one piece of machinery: a cursor that walks through blocks of
+//! `N` samples and gives each block its own key, `stream_seed(seed, block)`. Every point is a
+//! function of (block key, index in block), computed on demand with hashing and
+//! [`Permutation`](crate::hash::Permutation)s: no tables, no allocation, O(1) per point.
+
+mod jittered;
+mod latin;
+mod multijitter;
+mod random;
+mod regular;
+
+pub use jittered::Jittered;
+pub use latin::NRooks;
+pub use multijitter::{Cmj, MultiJittered};
+pub use random::Random;
+pub use regular::Regular;
+
+use crate::error::{Error, Result};
+use crate::hash::stream_seed;
+
+/// The largest count a fixed-count sampler accepts (`2^31`: indices within a block, and the
+/// `m n` fine strata of a multi-jittered grid, stay 32-bit). Far beyond what a set built in
+/// advance is useful for; progressive samplers go further.
+pub const MAX_FIXED_COUNT: u64 = 1 << 31;
+
+/// Where a fixed-count sampler is in its stream: which block, which sample inside it.
+#[derive(Clone, Debug)]
+pub(crate) struct BlockCursor {
+    seed: u64,
+    count: u32,
+    block: u64,
+    index: u32,
+}
+
+impl BlockCursor {
+    pub(crate) fn new(seed: u64, count: u32) -> Self {
+        BlockCursor {
+            seed,
+            count,
+            block: 0,
+            index: 0,
+        }
+    }
+
+    /// The key of the current block.
+    pub(crate) fn block_key(&self) -> u64 {
+        stream_seed(self.seed, self.block)
+    }
+
+    /// True when the next sample is the first of a block (its per-block state must be set up).
+    pub(crate) fn at_block_start(&self) -> bool {
+        self.index == 0
+    }
+
+    /// The index of the next sample inside its block, and how many remain in the block.
+    pub(crate) fn position(&self) -> (u32, u32) {
+        (self.index, self.count - self.index)
+    }
+
+    /// Moves `k` samples on (`k` at most the number remaining in the block).
+    pub(crate) fn advance(&mut self, k: u32) {
+        self.index += k;
+        if self.index == self.count {
+            self.index = 0;
+            self.block = self.block.wrapping_add(1);
+        }
+    }
+}
+
+/// Validates a fixed-count sampler's count: at least 1, at most [`MAX_FIXED_COUNT`].
+pub(crate) fn check_count(sampler: &'static str, count: u64) -> Result<u32> {
+    if count == 0 || count > MAX_FIXED_COUNT {
+        return Err(Error::count(
+            sampler,
+            count,
+            format!("the count must be between 1 and {MAX_FIXED_COUNT}"),
+        ));
+    }
+    Ok(count as u32)
+}
+
+/// Validates a count that must be a perfect square `s^2`, returning `s`.
+pub(crate) fn check_square(sampler: &'static str, count: u64) -> Result<u32> {
+    check_count(sampler, count)?;
+    let s = count.isqrt();
+    if s * s != count {
+        return Err(Error::count(
+            sampler,
+            count,
+            format!(
+                "the count must be a perfect square (nearest allowed: {})",
+                crate::error::nearest_squares(count)
+            ),
+        ));
+    }
+    Ok(s as u32)
+}
+
+/// Implements [`Sampler`](crate::Sampler) for a fixed-count sampler struct that has a `cursor:
+/// BlockCursor` field and the inherent methods `begin_block(&mut self, key: u64)`,
+/// `point(&self, i: u32) -> Point2` and `grids(&self) -> Vec<StrataGrid>`.
+///
+/// With `paired`, the struct also has `point2(&self, i: u32) -> [Point2; 2]` (points `i` and
+/// `i + 1`, identical to two calls of `point`), which `fill` uses so that the two points'
+/// dependency chains overlap.
+macro_rules! fixed_count_sampler {
+    ($ty:ty, $name:literal) => {
+        $crate::samplers::fixed_count_sampler!(@impl $ty, $name, |s: &$ty, out: &mut [$crate::Point2], start: u32| {
+            for (p, i) in out.iter_mut().zip(start..) {
+                *p = s.point(i);
+            }
+        });
+    };
+    ($ty:ty, $name:literal, paired) => {
+        $crate::samplers::fixed_count_sampler!(@impl $ty, $name, |s: &$ty, out: &mut [$crate::Point2], start: u32| {
+            let mut pairs = out.chunks_exact_mut(2);
+            let mut i = start;
+            for pair in &mut pairs {
+                pair.copy_from_slice(&s.point2(i));
+                i += 2;
+            }
+            if let [last] = pairs.into_remainder() {
+                *last = s.point(i);
+            }
+        });
+    };
+    (@impl $ty:ty, $name:literal, $fill_run:expr) => {
+        impl $crate::Sampler for $ty {
+            fn name(&self) -> &'static str {
+                $name
+            }
+
+            fn progression(&self) -> $crate::Progression {
+                $crate::Progression::FixedCount {
+                    count: self.count() as u64,
+                }
+            }
+
+            #[inline]
+            fn next_sample(&mut self) -> $crate::Point2 {
+                if self.cursor.at_block_start() {
+                    let key = self.cursor.block_key();
+                    self.begin_block(key);
+                }
+                let p = self.point(self.cursor.position().0);
+                self.cursor.advance(1);
+                p
+            }
+
+            fn fill(&mut self, mut out: &mut [$crate::Point2]) {
+                let fill_run = $fill_run;
+                while !out.is_empty() {
+                    if self.cursor.at_block_start() {
+                        let key = self.cursor.block_key();
+                        self.begin_block(key);
+                    }
+                    let (start, remaining) = self.cursor.position();
+                    let k = remaining.min(u32::try_from(out.len()).unwrap_or(u32::MAX));
+                    let (head, tail) = out.split_at_mut(k as usize);
+                    fill_run(self, head, start);
+                    self.cursor.advance(k);
+                    out = tail;
+                }
+            }
+
+            fn strata(&self, n: u64) -> Vec<$crate::StrataGrid> {
+                if n == self.count() as u64 {
+                    self.grids()
+                } else {
+                    Vec::new()
+                }
+            }
+        }
+    };
+}
+pub(crate) use fixed_count_sampler;

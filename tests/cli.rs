@@ -1,0 +1,102 @@
+//! The `points` program's command-line contract (`../shared/CLI.md`): CSV that parses back to
+//! the library's values, `--list`, and one-line errors with a non-zero exit status.
+
+#![cfg(feature = "io")]
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use strata::registry::{self, Params};
+
+/// The `points` example binary that `cargo test` builds next to the test executables.
+fn points_bin() -> Option<PathBuf> {
+    let exe = std::env::current_exe().ok()?;
+    let dir = exe.parent()?.parent()?; // target/<profile>/deps -> target/<profile>
+    let bin = dir
+        .join("examples")
+        .join(format!("points{}", std::env::consts::EXE_SUFFIX));
+    bin.exists().then_some(bin)
+}
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let bin = points_bin().expect("the points example is built by `cargo test`");
+    let out = Command::new(bin).args(args).output().expect("points runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+#[test]
+fn csv_round_trips_to_the_library_values() {
+    for (name, n) in [("cmj", 37u64), ("jittered", 25), ("random", 10)] {
+        let (code, out, err) = run(&["--sampler", name, "-n", &n.to_string(), "--seed", "42"]);
+        assert_eq!(code, 0, "{err}");
+        let mut lines = out.lines();
+        assert_eq!(lines.next(), Some("x,y"));
+        let mut s = registry::build(name, &Params::new(n).seed(42)).unwrap();
+        let mut rows = 0;
+        for line in lines {
+            let (x, y) = line.split_once(',').unwrap();
+            let p = s.next_sample();
+            assert_eq!(x.parse::<f32>().unwrap().to_bits(), p.x.to_bits());
+            assert_eq!(y.parse::<f32>().unwrap().to_bits(), p.y.to_bits());
+            rows += 1;
+        }
+        assert_eq!(rows, n);
+    }
+}
+
+#[test]
+fn list_names_every_sampler() {
+    let (code, out, _) = run(&["--list"]);
+    assert_eq!(code, 0);
+    for name in registry::names() {
+        assert!(
+            out.lines().any(|l| l.starts_with(name)),
+            "{name} missing from --list"
+        );
+    }
+}
+
+#[test]
+fn bad_input_is_a_one_line_error() {
+    let cases: &[(&[&str], &str)] = &[
+        (&["--sampler", "jittered", "-n", "0"], "allowed"),
+        (&["--sampler", "nosuch", "-n", "4"], "known samplers"),
+        (&["--sampler", "jittered", "-n", "10"], "9 or 16"),
+        (&["--sampler", "regular", "-n", "99"], "81 or 100"),
+        (&["--sampler", "multijittered", "-n", "2"], "1 or 4"),
+        (&["--sampler", "cmj", "-n", "67108865"], "67108864"),
+        (&["--sampler", "cmj", "-n", "abc"], "whole number"),
+        (&["--sampler", "cmj"], "-n N is required"),
+        (&["--bogus"], "unknown flag"),
+    ];
+    for (args, needle) in cases {
+        let (code, out, err) = run(args);
+        assert_ne!(code, 0, "{args:?} should fail");
+        assert!(out.is_empty(), "{args:?} printed {out}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn png_is_written_and_directories_are_created() {
+    let dir = std::env::temp_dir().join(format!("strata-cli-{}", std::process::id()));
+    let file = dir.join("nested").join("cmj.png");
+    let (code, _, err) = run(&[
+        "--sampler",
+        "cmj",
+        "-n",
+        "16",
+        "--png",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let bytes = std::fs::read(&file).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+    std::fs::remove_dir_all(dir).ok();
+}

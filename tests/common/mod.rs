@@ -1,0 +1,52 @@
+//! Counting helpers shared by the integration tests.
+
+#![allow(dead_code)]
+
+use glam::Vec2;
+use strata::Sampler;
+
+/// The next `n` points of `s`.
+pub fn take(s: &mut dyn Sampler, n: usize) -> Vec<Vec2> {
+    let mut v = vec![Vec2::ZERO; n];
+    s.fill(&mut v);
+    v
+}
+
+/// The cell of `x` among `cells` equal strata of [0,1), computed exactly in f64.
+pub fn cell(x: f32, cells: u32) -> usize {
+    assert!((0.0..1.0).contains(&x), "coordinate {x} outside [0,1)");
+    ((x as f64) * cells as f64).floor() as usize
+}
+
+/// Points per cell of a `columns x rows` grid, row-major.
+pub fn counts(points: &[Vec2], columns: u32, rows: u32) -> Vec<u32> {
+    let mut c = vec![0u32; columns as usize * rows as usize];
+    for p in points {
+        c[cell(p.y, rows) * columns as usize + cell(p.x, columns)] += 1;
+    }
+    c
+}
+
+/// Asserts exactly one point in every cell of the grid.
+pub fn assert_one_per_cell(points: &[Vec2], columns: u32, rows: u32, what: &str) {
+    let c = counts(points, columns, rows);
+    if let Some(bad) = c.iter().position(|&k| k != 1) {
+        panic!(
+            "{what}: cell ({}, {}) of {columns}x{rows} holds {} points",
+            bad % columns as usize,
+            bad / columns as usize,
+            c[bad]
+        );
+    }
+}
+
+/// Asserts at most one point in every cell of the grid.
+pub fn assert_at_most_one_per_cell(points: &[Vec2], columns: u32, rows: u32, what: &str) {
+    let c = counts(points, columns, rows);
+    if let Some(bad) = c.iter().position(|&k| k > 1) {
+        panic!(
+            "{what}: cell {bad} of {columns}x{rows} holds {} points",
+            c[bad]
+        );
+    }
+}
