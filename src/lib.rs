@@ -60,12 +60,15 @@
 #![warn(missing_docs)]
 
 pub mod error;
+pub mod grid;
 pub mod hash;
 #[cfg(feature = "io")]
 pub mod io;
 pub mod registry;
 pub mod sampler;
 pub mod samplers;
+#[cfg(feature = "spectrum")]
+pub mod spectrum;
 
 pub use error::{Error, Result};
 

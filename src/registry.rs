@@ -61,6 +61,19 @@ impl CountRule {
         }
     }
 
+    /// The allowed count nearest to `n` (the smaller one on a tie), at least 1.
+    pub fn nearest(&self, n: u64) -> u64 {
+        let n = n.max(1);
+        match self {
+            CountRule::Any => n,
+            CountRule::Square => {
+                let r = n.isqrt();
+                let (lo, hi) = (r * r, (r + 1) * (r + 1));
+                if lo >= 1 && n - lo <= hi - n { lo } else { hi }
+            }
+        }
+    }
+
     /// The allowed counts in `[min, max]`, in increasing order.
     pub fn counts_between(&self, min: u64, max: u64) -> Vec<u64> {
         let min = min.max(1);
@@ -153,6 +166,9 @@ pub struct Entry {
     pub counts: CountRule,
     /// The optional parameters it takes.
     pub parameters: &'static [Parameter],
+    /// True when generating a set takes long (relaxation, optimisation): tools use fewer
+    /// realizations by default.
+    pub expensive: bool,
     build: fn(&Params) -> Result<Box<dyn Sampler>>,
 }
 
@@ -211,6 +227,7 @@ static ENTRIES: &[Entry] = &[
         progressive: true,
         counts: CountRule::Any,
         parameters: &[],
+        expensive: false,
         build: |p| Ok(Box::new(samplers::Random::new(p.seed))),
     },
     Entry {
@@ -219,6 +236,7 @@ static ENTRIES: &[Entry] = &[
         progressive: false,
         counts: CountRule::Square,
         parameters: &[],
+        expensive: false,
         build: |p| Ok(Box::new(samplers::Regular::new(p.count)?)),
     },
     Entry {
@@ -227,6 +245,7 @@ static ENTRIES: &[Entry] = &[
         progressive: false,
         counts: CountRule::Square,
         parameters: &[],
+        expensive: false,
         build: |p| Ok(Box::new(samplers::Jittered::new(p.count, p.seed)?)),
     },
     Entry {
@@ -235,6 +254,7 @@ static ENTRIES: &[Entry] = &[
         progressive: false,
         counts: CountRule::Any,
         parameters: &[],
+        expensive: false,
         build: |p| Ok(Box::new(samplers::NRooks::new(p.count, p.seed)?)),
     },
     Entry {
@@ -243,6 +263,7 @@ static ENTRIES: &[Entry] = &[
         progressive: false,
         counts: CountRule::Square,
         parameters: &[],
+        expensive: false,
         build: |p| Ok(Box::new(samplers::MultiJittered::new(p.count, p.seed)?)),
     },
     Entry {
@@ -251,6 +272,7 @@ static ENTRIES: &[Entry] = &[
         progressive: false,
         counts: CountRule::Any,
         parameters: &[],
+        expensive: false,
         build: |p| Ok(Box::new(samplers::Cmj::new(p.count, p.seed)?)),
     },
 ];
@@ -291,6 +313,10 @@ mod tests {
         assert_eq!(CountRule::Square.counts_between(16, 16), vec![16]);
         assert_eq!(CountRule::Any.counts_between(0, 3), vec![1, 2, 3]);
         assert!(CountRule::Square.counts_between(17, 24).is_empty());
+        assert_eq!(CountRule::Square.nearest(1000), 1024);
+        assert_eq!(CountRule::Square.nearest(12), 9);
+        assert_eq!(CountRule::Square.nearest(0), 1);
+        assert_eq!(CountRule::Any.nearest(7), 7);
     }
 
     #[test]

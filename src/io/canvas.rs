@@ -69,6 +69,11 @@ impl Canvas {
         &self.data
     }
 
+    /// The pixels, mutable (for drawing libraries that render into an RGB8 buffer).
+    pub fn data_mut(&mut self) -> &mut [u8] {
+        &mut self.data
+    }
+
     /// The colour at `(x, y)` (`None` outside).
     pub fn get(&self, x: u32, y: u32) -> Option<Rgb> {
         if x >= self.width || y >= self.height {

@@ -1,22 +1,31 @@
-//! Pictures and files: PNG canvases, point drawings (behind the `io` feature).
+//! Pictures and files (behind the `io` feature): PNG drawings of point sets and spectra, EXR and
+//! CSV files, and plots with axes and labels.
 //!
-//! The drawing code is a small software rasterizer on an RGB8 [`Canvas`]: it needs no system
-//! library, and its output is byte-for-byte reproducible.
+//! Raster pictures come from a small software rasterizer on an RGB8 [`Canvas`]; plots are drawn
+//! by `plotters` into the same kind of buffer with a bundled font (DejaVu Sans), so nothing here
+//! needs a system library and the output is reproducible byte for byte.
 
 mod canvas;
+#[cfg(feature = "spectrum")]
+mod plot;
 
 pub use canvas::{Canvas, Rgb};
+#[cfg(feature = "spectrum")]
+pub use plot::{LinePlot, PALETTE, Series, label, overview_row_label, radial_plot};
 
+use std::io::Write;
 use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::sampler::{Point2, StrataGrid};
+#[cfg(feature = "spectrum")]
+use crate::spectrum::{RadialBin, Spectrum};
 
 /// Writes `canvas` as an 8-bit RGB PNG, creating the parent directory when missing.
 pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
     let path = path.as_ref();
     create_parent(path)?;
-    let file = std::fs::File::create(path).map_err(|e| Error::io(path, e))?;
+    let file = std::fs::File::create(path).map_err(|e| crate::Error::io(path, e))?;
     let mut encoder = png::Encoder::new(
         std::io::BufWriter::new(file),
         canvas.width(),
@@ -24,11 +33,13 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
     );
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header().map_err(|e| Error::io(path, e))?;
+    let mut writer = encoder
+        .write_header()
+        .map_err(|e| crate::Error::io(path, e))?;
     writer
         .write_image_data(canvas.data())
-        .map_err(|e| Error::io(path, e))?;
-    writer.finish().map_err(|e| Error::io(path, e))
+        .map_err(|e| crate::Error::io(path, e))?;
+    writer.finish().map_err(|e| crate::Error::io(path, e))
 }
 
 /// Creates the directory `path` will be written into, if it has one and it is missing.
@@ -41,16 +52,15 @@ pub fn create_parent(path: &Path) -> Result<()> {
     }
 }
 
-/// Draws a point set on a white square of `size` pixels: strata grids as light lines (finest
-/// first, each only when its cells are at least 3 pixels wide), then the points as dark dots
-/// whose radius shrinks with the number of points. `y` points up, as in the papers' figures.
+/// Draws a point set on a white square of `size` pixels: strata grids as light lines (each
+/// only when its cells are at least 3 pixels wide; the first, coarsest, grid darker), then the
+/// points as dark dots whose radius shrinks with the number of points. `y` points up, as in the
+/// papers' figures.
 pub fn draw_points(points: &[Point2], grids: &[StrataGrid], size: u32) -> Canvas {
     let mut canvas = Canvas::new(size, size, Rgb::WHITE);
     let s = size as f32;
-    // Finest grid lightest, coarsest darkest and drawn last.
     for (level, grid) in grids.iter().enumerate().rev() {
-        let shade = if level == 0 { 190 } else { 225 };
-        let colour = Rgb::grey(shade);
+        let colour = Rgb::grey(if level == 0 { 190 } else { 225 });
         for (cells, vertical) in [(grid.columns, true), (grid.rows, false)] {
             if cells < 2 || s / cells as f32 <= 3.0 {
                 continue;
@@ -71,4 +81,115 @@ pub fn draw_points(points: &[Point2], grids: &[StrataGrid], size: u32) -> Canvas
     }
     canvas.frame(Rgb::grey(120));
     canvas
+}
+
+#[cfg(feature = "spectrum")]
+/// The log-scale range of [`draw_spectrum`]: `P` from `10^LOW` (black) to `10^HIGH` (white), so
+/// white noise (`P = 1`) is a mid grey and every picture shares one scale.
+pub const SPECTRUM_LOG_RANGE: (f64, f64) = (-2.0, 1.0);
+
+#[cfg(feature = "spectrum")]
+/// Draws a spectrum as a grey-scale image, log-scaled over [`SPECTRUM_LOG_RANGE`], DC in the
+/// centre (drawn white), `v` pointing up, each frequency a square of `scale` pixels.
+pub fn draw_spectrum(spectrum: &Spectrum, scale: u32) -> Canvas {
+    let side = spectrum.side() as u32;
+    let scale = scale.max(1);
+    let mut canvas = Canvas::new(side * scale, side * scale, Rgb::BLACK);
+    let h = (side / 2) as i32;
+    let (lo, hi) = SPECTRUM_LOG_RANGE;
+    for v in -h..=h {
+        for u in -h..=h {
+            let p = spectrum.get(u, v).expect("inside");
+            let t = if u == 0 && v == 0 {
+                1.0
+            } else if p > 0.0 {
+                ((p.log10() - lo) / (hi - lo)).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let c = Rgb::grey((t * 255.0).round() as u8);
+            let (x0, y0) = ((u + h) as u32 * scale, (h - v) as u32 * scale);
+            for y in y0..y0 + scale {
+                for x in x0..x0 + scale {
+                    canvas.set(x as i64, y as i64, c);
+                }
+            }
+        }
+    }
+    canvas
+}
+
+#[cfg(feature = "spectrum")]
+/// Writes a spectrum as a single-channel (`Y`), 32-bit float OpenEXR image, unscaled, in the
+/// orientation of [`draw_spectrum`] (row 0 is `v = +K/2`, column 0 is `u = -K/2`).
+pub fn write_spectrum_exr(path: impl AsRef<Path>, spectrum: &Spectrum) -> Result<()> {
+    use exr::prelude::*;
+    let path = path.as_ref();
+    create_parent(path)?;
+    let side = spectrum.side();
+    let mut values = Vec::with_capacity(side * side);
+    for row in (0..side).rev() {
+        values.extend(
+            spectrum.values()[row * side..(row + 1) * side]
+                .iter()
+                .map(|&v| v as f32),
+        );
+    }
+    let channel = AnyChannel::new("Y", FlatSamples::F32(values));
+    let layer = Layer::new(
+        (side, side),
+        LayerAttributes::named("power spectrum"),
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(vec![channel].into()),
+    );
+    Image::from_layer(layer)
+        .write()
+        .to_file(path)
+        .map_err(|e| crate::Error::io(path, e))
+}
+
+/// Reads a single-channel `Y` f32 EXR written by [`write_spectrum_exr`]: `(width, height,
+/// values row-major from the top row)`.
+pub fn read_exr_y(path: impl AsRef<Path>) -> Result<(usize, usize, Vec<f32>)> {
+    use exr::prelude::*;
+    let path = path.as_ref();
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| crate::Error::io(path, e))?;
+    let layer = &image.layer_data;
+    let size = layer.size;
+    let channel = layer
+        .channel_data
+        .list
+        .iter()
+        .find(|c| c.name.eq("Y"))
+        .ok_or_else(|| crate::Error::io(path, "no channel named Y"))?;
+    let values = channel.sample_data.values_as_f32().collect();
+    Ok((size.width(), size.height(), values))
+}
+
+#[cfg(feature = "spectrum")]
+/// Writes the radial mean as CSV: `frequency,power,anisotropy`, one row per bin.
+pub fn write_radial_csv(path: impl AsRef<Path>, bins: &[RadialBin]) -> Result<()> {
+    let path = path.as_ref();
+    create_parent(path)?;
+    let mut text = String::from("frequency,power,anisotropy\n");
+    for b in bins {
+        text.push_str(&format!("{},{},{}\n", b.frequency, b.power, b.anisotropy));
+    }
+    write_text(path, &text)
+}
+
+/// Writes `text` to `path`, creating the parent directory when missing.
+pub fn write_text(path: impl AsRef<Path>, text: &str) -> Result<()> {
+    let path = path.as_ref();
+    create_parent(path)?;
+    let mut f = std::fs::File::create(path).map_err(|e| crate::Error::io(path, e))?;
+    f.write_all(text.as_bytes())
+        .map_err(|e| crate::Error::io(path, e))
 }

@@ -1,0 +1,342 @@
+//! `spectrum`: expected power spectra, radial means, anisotropy and PSA measures of the
+//! registered samplers; the crate's main job.
+//!
+//! ```text
+//! cargo run --release --example spectrum -- [--sampler NAME|all] [-n N] [--realizations R]
+//!         [--seed S] [--resolution K] [--out DIR]
+//! ```
+//! See the README and `../shared/CLI.md`.
+
+mod common;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_open_float, string_value};
+use glam::Vec2;
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use strata::io::{self, Canvas, Rgb};
+use strata::registry::{self, Entry, Params};
+use strata::spectrum::{self, PointSetMeasures, RadialBin, Spectrum};
+
+const USAGE: &str = "spectrum [--sampler NAME|all] [-n N] [--realizations R] [--seed S] [--resolution K] [--out DIR]";
+
+const HELP: &str = "\
+spectrum: expected power spectra of sample patterns, their radial means, anisotropy and PSA
+measures, written as pictures and files.
+
+Usage:
+  cargo run --release --example spectrum -- [options]
+
+Options:
+  --sampler NAME|all  one sampler, or every registered one (default all)
+  -n N                points per realization (default 1024; with 'all', each sampler uses its
+                      allowed count nearest to N)
+  --realizations R    realizations averaged (default 64; 16 for slow samplers)
+  --seed S            realization r uses seed S + r (default 1), exactly the points that
+                      `points --sampler NAME -n N --seed S+r` prints
+  --resolution K      frequencies |u|, |v| <= K/2 (even, default 256)
+  --out DIR           output directory (default out), created when missing
+  --radius, --iterations, --strength, --candidates   passed to the samplers that take them
+  --no-overview       skip out/overview.png
+  -h, --help          this text
+
+For each sampler NAME it writes DIR/NAME-spectrum.png (log scale, DC centred), NAME-spectrum.exr
+(the values, channel Y, f32), NAME-radial.csv (frequency,power,anisotropy), NAME-radial.png and
+NAME-points.png, then DIR/overview.png and a table on stdout.";
+
+struct Args {
+    sampler: String,
+    n: Option<u64>,
+    realizations: Option<u32>,
+    seed: u64,
+    resolution: u32,
+    out: PathBuf,
+    params: Params,
+    overview: bool,
+}
+
+fn parse() -> Result<Option<Args>, CliError> {
+    use lexopt::prelude::*;
+    let mut a = Args {
+        sampler: "all".into(),
+        n: None,
+        realizations: None,
+        seed: 1,
+        resolution: 256,
+        out: PathBuf::from("out"),
+        params: Params::new(1),
+        overview: true,
+    };
+    let mut p = lexopt::Parser::from_env();
+    while let Some(arg) = p.next()? {
+        match arg {
+            Long("sampler") => a.sampler = string_value("--sampler", p.value()?)?,
+            Short('n') => {
+                a.n = Some(parse_int(
+                    "-n",
+                    &string_value("-n", p.value()?)?,
+                    1,
+                    MAX_CLI_COUNT,
+                )?)
+            }
+            Long("realizations") => {
+                let v = string_value("--realizations", p.value()?)?;
+                a.realizations = Some(parse_int("--realizations", &v, 1, 100_000)? as u32);
+            }
+            Long("seed") => {
+                a.seed = parse_int("--seed", &string_value("--seed", p.value()?)?, 0, u64::MAX)?
+            }
+            Long("resolution") => {
+                let v = string_value("--resolution", p.value()?)?;
+                let k = parse_int("--resolution", &v, 2, spectrum::MAX_RESOLUTION as u64)? as u32;
+                spectrum::check_resolution(k)?;
+                a.resolution = k;
+            }
+            Long("out") => a.out = p.value()?.into(),
+            Long("radius") => {
+                let v = string_value("--radius", p.value()?)?;
+                a.params.radius = Some(parse_open_float("--radius", &v, 0.0, 1.0)?);
+            }
+            Long("iterations") => {
+                let v = string_value("--iterations", p.value()?)?;
+                a.params.iterations = Some(parse_int("--iterations", &v, 0, 100_000)? as u32);
+            }
+            Long("strength") => {
+                let v = string_value("--strength", p.value()?)?;
+                a.params.strength = Some(parse_int("--strength", &v, 0, 64)? as u32);
+            }
+            Long("candidates") => {
+                let v = string_value("--candidates", p.value()?)?;
+                a.params.candidates = Some(parse_int("--candidates", &v, 0, 1 << 16)? as u32);
+            }
+            Long("no-overview") => a.overview = false,
+            Short('h') | Long("help") => {
+                println!("{HELP}");
+                return Ok(None);
+            }
+            other => return Err(common::unexpected(other, USAGE)),
+        }
+    }
+    Ok(Some(a))
+}
+
+/// One sampler's results, for the table and the overview.
+struct Outcome {
+    name: &'static str,
+    count: u64,
+    realizations: u32,
+    ms_per_set: f64,
+    low_power: f64,
+    measures: PointSetMeasures,
+    points: Vec<Vec2>,
+    grids: Vec<strata::StrataGrid>,
+    spectrum: Spectrum,
+    radial: Vec<RadialBin>,
+}
+
+fn run_one(
+    entry: &Entry,
+    count: u64,
+    realizations: u32,
+    args: &Args,
+    bar: &ProgressBar,
+) -> Result<Outcome, CliError> {
+    let mut params = args.params.clone();
+    params.count = count;
+    // Only pass the optional parameters this sampler takes (with 'all', the others are for
+    // other samplers).
+    let takes = |p| entry.parameters.contains(&p);
+    if !takes(registry::Parameter::Radius) {
+        params.radius = None;
+    }
+    if !takes(registry::Parameter::Iterations) {
+        params.iterations = None;
+    }
+    if !takes(registry::Parameter::Strength) {
+        params.strength = None;
+    }
+    if !takes(registry::Parameter::Candidates) {
+        params.candidates = None;
+    }
+    let start = Instant::now();
+    let sets: Vec<Vec<Vec2>> = (0..realizations)
+        .into_par_iter()
+        .map(|r| {
+            let mut s = entry.build(&params.clone().seed(args.seed.wrapping_add(r as u64)))?;
+            let mut v = vec![Vec2::ZERO; count as usize];
+            s.fill(&mut v);
+            bar.inc(1);
+            Ok(v)
+        })
+        .collect::<Result<_, strata::Error>>()?;
+    let ms_per_set = start.elapsed().as_secs_f64() * 1e3 / realizations as f64
+        * rayon::current_num_threads() as f64;
+    let spectrum = spectrum::expected_spectrum_of_sets(&sets, args.resolution)?;
+    let radial = spectrum.radial();
+    let measures = spectrum::point_set_measures(&sets)?;
+    bar.inc(realizations as u64);
+
+    let name = entry.name;
+    let dir = &args.out;
+    let grids = entry.build(&params.clone().seed(args.seed))?.strata(count);
+    let scale = 512u32.div_ceil(spectrum.side() as u32).max(1);
+    io::write_png(
+        dir.join(format!("{name}-spectrum.png")),
+        &io::draw_spectrum(&spectrum, scale),
+    )?;
+    io::write_spectrum_exr(dir.join(format!("{name}-spectrum.exr")), &spectrum)?;
+    io::write_radial_csv(dir.join(format!("{name}-radial.csv")), &radial)?;
+    let title = format!("{name}: radial mean, N = {count}, {realizations} realizations");
+    io::write_png(
+        dir.join(format!("{name}-radial.png")),
+        &io::radial_plot(&radial, &title, count as usize, 640, 400),
+    )?;
+    io::write_png(
+        dir.join(format!("{name}-points.png")),
+        &io::draw_points(&sets[0], &grids, 512),
+    )?;
+
+    // Mean power over the low band 0 < |w| < sqrt(N)/2: what smooth integrands see.
+    let band = ((count as f64).sqrt() / 2.0).max(1.0);
+    let low: Vec<f64> = radial
+        .iter()
+        .filter(|b| (b.frequency as f64) < band)
+        .map(|b| b.power)
+        .collect();
+    let low_power = if low.is_empty() {
+        f64::NAN
+    } else {
+        low.iter().sum::<f64>() / low.len() as f64
+    };
+    Ok(Outcome {
+        name,
+        count,
+        realizations,
+        ms_per_set,
+        low_power,
+        measures,
+        points: sets.into_iter().next().expect("at least one realization"),
+        grids,
+        spectrum,
+        radial,
+    })
+}
+
+fn fmt_opt(v: Option<f64>) -> String {
+    v.map_or("-".into(), |x| format!("{x:.3}"))
+}
+
+fn overview(outcomes: &[Outcome]) -> Canvas {
+    const TILE: u32 = 256;
+    const LABEL: u32 = 230;
+    const PLOT: u32 = 400;
+    let width = LABEL + TILE + TILE + PLOT + 4 * 8;
+    let height = TILE * outcomes.len() as u32 + 8 * (outcomes.len() as u32 + 1);
+    let mut c = Canvas::new(width, height, Rgb::WHITE);
+    for (i, o) in outcomes.iter().enumerate() {
+        let y = 8 + i as i64 * (TILE as i64 + 8);
+        let m = &o.measures;
+        let lines = vec![
+            format!("N = {}, {} sets", o.count, o.realizations),
+            format!("min dist {:.3}", m.global_min_distance),
+            format!("avg min dist {:.3}", m.average_min_distance),
+            format!("nu_eff {}", fmt_opt(m.effective_nyquist)),
+            format!("oscillations {}", fmt_opt(m.oscillations)),
+            format!("low-band power {:.3}", o.low_power),
+        ];
+        c.paste(&io::overview_row_label(o.name, &lines, LABEL, TILE), 8, y);
+        c.paste(
+            &io::draw_points(&o.points, &o.grids, TILE),
+            8 + LABEL as i64 + 8,
+            y,
+        );
+        let spec = io::draw_spectrum(&o.spectrum, 1);
+        // Centre the (K+1)-pixel spectrum in its tile, cropping if larger.
+        let off = (TILE as i64 - spec.width() as i64) / 2;
+        let mut tile = Canvas::new(TILE, TILE, Rgb::BLACK);
+        tile.paste(&spec, off, off);
+        c.paste(&tile, 16 + LABEL as i64 + TILE as i64 + 8, y);
+        let plot = io::radial_plot(&o.radial, "", o.count as usize, PLOT, TILE);
+        c.paste(&plot, 24 + LABEL as i64 + 2 * TILE as i64 + 8, y);
+    }
+    c
+}
+
+fn main() -> ExitCode {
+    common::run("spectrum", || {
+        let Some(args) = parse()? else { return Ok(()) };
+        let all = args.sampler == "all";
+        let entries: Vec<&Entry> = if all {
+            registry::entries().iter().collect()
+        } else {
+            vec![registry::find(&args.sampler)?]
+        };
+        let n = args.n.unwrap_or(1024);
+        let mut plan = Vec::new();
+        for e in &entries {
+            let count = if all {
+                e.counts.nearest(n)
+            } else {
+                if !e.counts.allows(n) {
+                    return Err(cli_error(format!(
+                        "{} cannot make {n} samples: allowed counts are {} (nearest: {})",
+                        e.name,
+                        e.counts,
+                        e.counts.nearest(n)
+                    )));
+                }
+                n
+            };
+            let r = args
+                .realizations
+                .unwrap_or(if e.expensive { 16 } else { 64 });
+            plan.push((*e, count, r));
+        }
+        let total: u64 = plan.iter().map(|&(_, _, r)| 2 * r as u64).sum();
+        let bar = ProgressBar::new(total);
+        bar.set_style(
+            ProgressStyle::with_template("{msg:>16} [{bar:40}] {pos}/{len} {elapsed_precise}")
+                .expect("valid template")
+                .progress_chars("=> "),
+        );
+        let started = Instant::now();
+        let mut outcomes = Vec::new();
+        for (e, count, r) in plan {
+            bar.set_message(e.name);
+            outcomes.push(run_one(e, count, r, &args, &bar)?);
+        }
+        bar.finish_and_clear();
+        if args.overview && outcomes.len() > 1 {
+            io::write_png(args.out.join("overview.png"), &overview(&outcomes))?;
+        }
+        println!(
+            "| sampler | N | sets | ms/set | low-band power | min dist | avg min dist | nu_eff | oscillations |"
+        );
+        println!("|---|---|---|---|---|---|---|---|---|");
+        for o in &outcomes {
+            let m = &o.measures;
+            println!(
+                "| {} | {} | {} | {:.3} | {:.4} | {:.3} | {:.3} | {} | {} |",
+                o.name,
+                o.count,
+                o.realizations,
+                o.ms_per_set,
+                o.low_power,
+                m.global_min_distance,
+                m.average_min_distance,
+                fmt_opt(m.effective_nyquist),
+                fmt_opt(m.oscillations)
+            );
+        }
+        println!(
+            "\nwrote {} sampler(s) into {} in {:.1} s",
+            outcomes.len(),
+            args.out.display(),
+            started.elapsed().as_secs_f64()
+        );
+        Ok(())
+    })
+}
