@@ -31,6 +31,11 @@
 //! | `nrooks` | fixed, any `N` | one point per row and column (Latin hypercube) | Shirley 1991 |
 //! | `multijittered` | fixed `n^2` | jittered on `n x n` and N-rooks | Chiu, Shirley, Wang 1994 |
 //! | `cmj` | fixed, any `N` | multi-jittered on `m x n`, correlated shuffles | Kensler 2013 |
+//! | `pmj` | progressive | 1D strata and squarest grid at every `2^m` prefix | Christensen, Kensler, Kilpatrick 2018 |
+//! | `pmjbn` | progressive | `pmj` + best-candidate blue noise | same; Mitchell 1991 |
+//! | `pmj02` | progressive | (0,m,2)-net at every `2^m` prefix and aligned block | same; Pharr 2019 |
+//! | `pmj02bn` | progressive | `pmj02` + best candidate in the valid strata | same |
+//! | `pmj02-stochastic` | progressive | as `pmj02`, O(1) per sample, stratified classes | Helmer, Christensen, Kensler 2021 |
 //!
 //! Every sampler implements [`Sampler`]; [`registry`] builds them by name.
 //!
@@ -64,6 +69,7 @@ pub mod grid;
 pub mod hash;
 #[cfg(feature = "io")]
 pub mod io;
+pub mod occupancy;
 pub mod registry;
 pub mod sampler;
 pub mod samplers;

@@ -275,6 +275,57 @@ static ENTRIES: &[Entry] = &[
         expensive: false,
         build: |p| Ok(Box::new(samplers::Cmj::new(p.count, p.seed)?)),
     },
+    Entry {
+        name: "pmj",
+        description: "progressive multi-jittered: 1D strata and squarest grid at every power of two, Christensen et al. 2018",
+        progressive: true,
+        counts: CountRule::Any,
+        parameters: &[],
+        expensive: false,
+        build: |p| Ok(Box::new(samplers::Pmj::new(p.seed))),
+    },
+    Entry {
+        name: "pmjbn",
+        description: "pmj with best-candidate blue noise (--candidates K, default 100)",
+        progressive: true,
+        counts: CountRule::Any,
+        parameters: &[Parameter::Candidates],
+        expensive: false,
+        build: |p| {
+            let k = p.candidates.unwrap_or(samplers::pmj::DEFAULT_CANDIDATES);
+            Ok(Box::new(samplers::Pmj::pmjbn(p.seed, k)?))
+        },
+    },
+    Entry {
+        name: "pmj02",
+        description: "progressive (0,m,2)-nets at every power of two (Pharr's strata enumeration), Christensen et al. 2018",
+        progressive: true,
+        counts: CountRule::Any,
+        parameters: &[],
+        expensive: false,
+        build: |p| Ok(Box::new(samplers::Pmj::pmj02(p.seed))),
+    },
+    Entry {
+        name: "pmj02bn",
+        description: "pmj02 with best-candidate placement (--candidates K, default 100)",
+        progressive: true,
+        counts: CountRule::Any,
+        parameters: &[Parameter::Candidates],
+        expensive: false,
+        build: |p| {
+            let k = p.candidates.unwrap_or(samplers::pmj::DEFAULT_CANDIDATES);
+            Ok(Box::new(samplers::Pmj::pmj02bn(p.seed, k)?))
+        },
+    },
+    Entry {
+        name: "pmj02-stochastic",
+        description: "pmj02 by stochastic generation, O(1) per sample, Helmer, Christensen, Kensler 2021",
+        progressive: true,
+        counts: CountRule::Any,
+        parameters: &[],
+        expensive: false,
+        build: |p| Ok(Box::new(samplers::Pmj02Stochastic::new(p.seed))),
+    },
 ];
 
 /// Every registered sampler, in a stable order (simplest first).

@@ -8,6 +8,8 @@
 //! | `nrooks` | [`NRooks`] | fixed, any `N` | one point per row and per column of `N x N` (Latin hypercube) | Shirley 1991 |
 //! | `multijittered` | [`MultiJittered`] | fixed `N = n^2` | jittered on `n x n` *and* N-rooks | Chiu, Shirley, Wang 1994 |
 //! | `cmj` | [`Cmj`] | fixed, any `N` | multi-jittered on `m x n` (`m n >= N`), correlated shuffles | Kensler 2013 |
+//! | `pmj`, `pmjbn`, `pmj02`, `pmj02bn` | [`Pmj`] | progressive | see [`pmj`] | Christensen et al. 2018, Pharr 2019 |
+//! | `pmj02-stochastic` | [`Pmj02Stochastic`] | progressive | see [`pmj`] | Helmer et al. 2021 |
 //!
 //! Fixed-count samplers share one piece of machinery: a cursor that walks through blocks of
 //! `N` samples and gives each block its own key, `stream_seed(seed, block)`. Every point is a
@@ -17,12 +19,14 @@
 mod jittered;
 mod latin;
 mod multijitter;
+pub mod pmj;
 mod random;
 mod regular;
 
 pub use jittered::Jittered;
 pub use latin::NRooks;
 pub use multijitter::{Cmj, MultiJittered};
+pub use pmj::{Pmj, Pmj02Stochastic};
 pub use random::Random;
 pub use regular::Regular;
 

@@ -1,0 +1,281 @@
+//! Progressive multi-jittered sequences: well stratified at every power-of-two prefix, so a
+//! renderer can stop at any sample count.
+//!
+//! * `pmj`: Christensen, Kensler, Kilpatrick, "Progressive Multi-Jittered Sample Sequences"
+//!   (EGSR 2018). Each doubling puts a new point in the sub-quadrant diagonally opposite each
+//!   old point; the next doubling fills one of the two remaining sub-quadrants of each cell
+//!   (chosen by the paper's "ox-plowing" balance of rows and columns), then the last. Every new
+//!   point takes a free 1D stratum at the new resolution. Guarantee: every prefix of `2^m` points
+//!   has one point in each of the `2^m` x strata and y strata, and in each cell of the squarest
+//!   grid (`2^k x 2^k` at `4^k` points, both `2^(k+1) x 2^k` and `2^k x 2^(k+1)` at `2 4^k`).
+//! * `pmj02`: the same skeleton with every base-2 elementary interval (`2^a x 2^(m-a)`, all `a`)
+//!   enforced at every power of two: each prefix of `2^m` points is a (0,m,2)-net. The valid
+//!   strata are enumerated with Pharr's method (JCGT 2019; see [`crate::occupancy`]). In the
+//!   odd step one coin decides, for the whole pass, whether the third points flip the x half or
+//!   the y half of the sub-quadrant (Simon Brown's rule): with it every *aligned block*
+//!   `[k 2^m, (k+1) 2^m)` is a (0,m,2)-net too, so XOR-shuffling indices keeps the guarantees.
+//! * `pmjbn`, `pmj02bn`: best candidate (Mitchell 1991) on top: each new point is the candidate,
+//!   among `K` drawn in the valid strata, farthest (toroidally) from the points so far. `pmjbn`
+//!   has real freedom (about `sqrt(N)/4` free strata per axis) and gains clear blue noise; in
+//!   `pmj02` the elementary intervals leave exactly one stratum pair per point, so `pmj02bn` can
+//!   only move each point inside a `2^-m` square: slightly better spacing, same spectrum.
+//! * `pmj02-stochastic`: Helmer, Christensen, Kensler, "Stochastic Generation of (t, s) Sample
+//!   Sequences" (EGSR 2021). Sample `2^k + i` copies the top `k` digits of sample
+//!   `i ^ XOR[k]`, flips digit `k + 1` and draws the rest at random: O(1) per sample, and its
+//!   distribution is that of an Owen-scrambled (0,2)-sequence. The XOR values are computed
+//!   from the generator matrices' definition (see [`stochastic`]), not copied.
+//!
+//! All of them store points as 32-bit fixed point (8 bytes per generated point; the occupancy
+//! structures of the constructive ones add about `(m + 3) / 8` bytes per point at level `m`),
+//! extend themselves by doubling when a sample past the end is asked for, and accept indices up
+//! to `2^32 - 1`; after `2^32` samples the stream starts a new, independently seeded sequence.
+//!
+//! **Classes.** [`class4`] splits the indices into 4 interleaved classes by the XOR of their
+//! base-4 digits; for `pmj02-stochastic` each class of a prefix of `2^m` points is itself a
+//! (0, m-2, 2)-net (`m >= 2`), so 4 independent effects (e.g. lights) can each take a well
+//! stratified quarter. [`class2`] (the high bit of `class4`) halves the sequence into two
+//! classes stratified in about two thirds of the elementary shapes; no split by index makes
+//! both halves full nets.
+
+mod construct;
+pub mod stochastic;
+
+use construct::{Construction, Variant};
+pub use stochastic::Pmj02Stochastic;
+
+use crate::error::{Error, Result};
+use crate::hash::stream_seed;
+use crate::sampler::{Point2, Progression, Sampler, StrataGrid, unit_f32_from_u32};
+
+/// The most samples a progressive PMJ sequence holds before it starts over with a new seed.
+pub const MAX_SEQUENCE_LEN: u64 = 1 << 32;
+
+/// The default number of best-candidate candidates (as in pmj-cpp and Helmer's code).
+pub const DEFAULT_CANDIDATES: u32 = 100;
+
+/// The largest candidate count accepted.
+pub const MAX_CANDIDATES: u32 = 1 << 16;
+
+/// The 4-class label of sample `index`: the XOR of its base-4 digits.
+pub fn class4(index: u64) -> u8 {
+    let lo = (index & 0x5555_5555_5555_5555).count_ones() & 1;
+    let hi = (index & 0xaaaa_aaaa_aaaa_aaaa).count_ones() & 1;
+    ((hi << 1) | lo) as u8
+}
+
+/// The 2-class label of sample `index` (the high bit of [`class4`]).
+pub fn class2(index: u64) -> u8 {
+    class4(index) >> 1
+}
+
+/// The stratification grids of a prefix of `n` points of a PMJ-family sequence: for a power of
+/// two `2^m`, the squarest grid(s) first, then the 1D strata; for pmj02 every elementary shape.
+pub(crate) fn pmj_grids(n: u64, all_shapes: bool) -> Vec<StrataGrid> {
+    if n == 0 || !n.is_power_of_two() || n > 1 << 31 {
+        return Vec::new();
+    }
+    let m = n.trailing_zeros();
+    let g = |a: u32| StrataGrid {
+        columns: 1 << a,
+        rows: 1 << (m - a),
+    };
+    let mut grids = vec![g(m / 2)];
+    if m % 2 == 1 {
+        grids.push(g(m / 2 + 1));
+    }
+    if all_shapes {
+        grids.extend(
+            (0..=m)
+                .filter(|&a| a != m / 2 && !(m % 2 == 1 && a == m / 2 + 1))
+                .map(g),
+        );
+    } else if m > 0 {
+        grids.push(g(m));
+        grids.push(g(0));
+    }
+    grids
+}
+
+/// A PMJ-family sequence built by construction (pmj, pmjbn, pmj02, pmj02bn).
+///
+/// ```
+/// use strata::{Sampler, samplers::Pmj};
+/// let mut s = Pmj::pmj02(7);
+/// let pts: Vec<_> = (0..16).map(|_| s.next_sample()).collect();
+/// // a (0,4,2)-net: one point in each 4 x 4 cell, and in each 16 x 1 and 1 x 16 stratum
+/// let mut cells = vec![0; 16];
+/// for p in &pts {
+///     cells[(p.y * 4.0) as usize * 4 + (p.x * 4.0) as usize] += 1;
+/// }
+/// assert!(cells.iter().all(|&c| c == 1));
+/// ```
+#[derive(Clone, Debug)]
+pub struct Pmj {
+    seed: u64,
+    epoch: u64,
+    variant: Variant,
+    construction: Construction,
+    points: Vec<[u32; 2]>,
+    next: u64,
+}
+
+impl Pmj {
+    fn with_variant(variant: Variant, seed: u64) -> Self {
+        Pmj {
+            seed,
+            epoch: 0,
+            variant,
+            construction: Construction::new(variant, stream_seed(seed, 0)),
+            points: Vec::new(),
+            next: 0,
+        }
+    }
+
+    /// `pmj`: progressive multi-jittered (1D strata and the squarest 2D grid at every power of
+    /// two).
+    pub fn new(seed: u64) -> Self {
+        Self::with_variant(Variant::Pmj { candidates: 1 }, seed)
+    }
+
+    /// pmj02: a (0,m,2)-net at every power-of-two prefix and every aligned power-of-two block.
+    pub fn pmj02(seed: u64) -> Self {
+        Self::with_variant(Variant::Pmj02 { candidates: 1 }, seed)
+    }
+
+    /// pmj with best-candidate placement among `candidates` (>= 1) per point.
+    pub fn pmjbn(seed: u64, candidates: u32) -> Result<Self> {
+        Ok(Self::with_variant(
+            Variant::Pmj {
+                candidates: check_candidates("pmjbn", candidates)?,
+            },
+            seed,
+        ))
+    }
+
+    /// pmj02 with best-candidate placement among `candidates` (>= 1) per point.
+    pub fn pmj02bn(seed: u64, candidates: u32) -> Result<Self> {
+        Ok(Self::with_variant(
+            Variant::Pmj02 {
+                candidates: check_candidates("pmj02bn", candidates)?,
+            },
+            seed,
+        ))
+    }
+
+    /// Makes sure the first `count` samples exist (`count <= 2^32`), generating whole
+    /// power-of-two passes.
+    pub fn reserve(&mut self, count: u64) -> Result<()> {
+        if count > MAX_SEQUENCE_LEN {
+            return Err(Error::count(
+                self.name(),
+                count,
+                format!("at most {MAX_SEQUENCE_LEN} per sequence"),
+            ));
+        }
+        while (self.points.len() as u64) < count {
+            self.construction.extend(&mut self.points);
+        }
+        Ok(())
+    }
+
+    /// Sample `index` (`< 2^32`) as 32-bit fixed point, generating the sequence up to it.
+    pub fn sample_fixed(&mut self, index: u32) -> [u32; 2] {
+        while self.points.len() <= index as usize {
+            self.construction.extend(&mut self.points);
+        }
+        self.points[index as usize]
+    }
+
+    /// Sample `index` (`< 2^32`), generating the sequence up to it.
+    pub fn sample(&mut self, index: u32) -> Point2 {
+        let p = self.sample_fixed(index);
+        Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]))
+    }
+
+    /// The samples generated so far, as 32-bit fixed point.
+    pub fn generated(&self) -> &[[u32; 2]] {
+        &self.points
+    }
+}
+
+fn check_candidates(name: &'static str, candidates: u32) -> Result<u32> {
+    if candidates == 0 || candidates > MAX_CANDIDATES {
+        return Err(Error::parameter(
+            name,
+            "candidates",
+            candidates,
+            format!("1 to {MAX_CANDIDATES} (1 means no best-candidate search)"),
+        ));
+    }
+    Ok(candidates)
+}
+
+impl Sampler for Pmj {
+    fn name(&self) -> &'static str {
+        match self.variant {
+            Variant::Pmj { candidates: 1 } => "pmj",
+            Variant::Pmj { .. } => "pmjbn",
+            Variant::Pmj02 { candidates: 1 } => "pmj02",
+            Variant::Pmj02 { .. } => "pmj02bn",
+        }
+    }
+
+    fn progression(&self) -> Progression {
+        Progression::Progressive
+    }
+
+    fn next_sample(&mut self) -> Point2 {
+        if self.next == MAX_SEQUENCE_LEN {
+            // A new, independent sequence: never run out.
+            self.epoch += 1;
+            self.construction = Construction::new(self.variant, stream_seed(self.seed, self.epoch));
+            self.points = Vec::new();
+            self.next = 0;
+        }
+        let p = self.sample(self.next as u32);
+        self.next += 1;
+        p
+    }
+
+    fn strata(&self, n: u64) -> Vec<StrataGrid> {
+        pmj_grids(n, matches!(self.variant, Variant::Pmj02 { .. }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn classes_are_the_xor_of_base4_digits() {
+        assert_eq!(class4(0), 0);
+        assert_eq!(class4(1), 1);
+        assert_eq!(class4(2), 2);
+        assert_eq!(class4(3), 3);
+        assert_eq!(class4(4), 1);
+        assert_eq!(class4(5), 0);
+        assert_eq!(class4(0b1110), 3 ^ 2);
+        assert_eq!(class2(6), 1);
+    }
+
+    #[test]
+    fn grids_list_the_squarest_first() {
+        let g = pmj_grids(32, false);
+        assert_eq!(
+            g[0],
+            StrataGrid {
+                columns: 4,
+                rows: 8
+            }
+        );
+        assert_eq!(
+            g[1],
+            StrataGrid {
+                columns: 8,
+                rows: 4
+            }
+        );
+        assert_eq!(pmj_grids(32, true).len(), 6);
+        assert!(pmj_grids(33, true).is_empty());
+    }
+}
