@@ -12,6 +12,13 @@
 /// No point / end of a cell's list.
 const NONE: u32 = u32::MAX;
 
+/// `r_max(N) = sqrt(2 / (sqrt(3) N))`: the distance between neighbours when `N` points are
+/// packed hexagonally on the unit torus (Lagae and Dutré 2008). Poisson-disk radii and the PSA
+/// distance measures are relative to it.
+pub fn relative_radius_max(n: usize) -> f64 {
+    (2.0 / (3f64.sqrt() * n.max(1) as f64)).sqrt()
+}
+
 /// The squared toroidal distance between two points of the unit torus.
 #[inline]
 pub fn torus_distance_squared(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -24,6 +31,19 @@ pub fn torus_distance_squared(a: [f64; 2], b: [f64; 2]) -> f64 {
         dy = 1.0 - dy;
     }
     dx * dx + dy * dy
+}
+
+/// A cell index wrapped into `[0, res)`, for indices within one period of the range (no
+/// division: this is on every query's path).
+#[inline]
+fn wrap_cell(i: isize, res: isize) -> isize {
+    if i < 0 {
+        i + res
+    } else if i >= res {
+        i - res
+    } else {
+        i
+    }
 }
 
 /// A dynamic set of points on the unit torus with fast neighbour queries.
@@ -94,7 +114,12 @@ impl TorusGrid {
     /// The cell of a coordinate in `[0, 1)` (values outside are wrapped).
     #[inline]
     fn cell_of(&self, c: f64) -> usize {
-        let c = c - c.floor();
+        // `floor` is a library call on baseline x86_64; truncation is exact for c >= 0.
+        let c = if (0.0..1.0).contains(&c) {
+            c
+        } else {
+            c - c.floor()
+        };
         ((c * self.res as f64) as usize).min(self.res - 1)
     }
 
@@ -117,15 +142,16 @@ impl TorusGrid {
         mut f: impl FnMut(usize, f64) -> bool,
     ) -> bool {
         let r2 = r * r;
-        let reach = ((r * self.res as f64).ceil() as isize).min(self.res as isize / 2 + 1);
+        // ceil(r res) without the library call: truncation + 1 is never smaller
+        let reach = ((r * self.res as f64) as isize + 1).min(self.res as isize / 2 + 1);
         let (cx, cy) = (self.cell_of(p[0]) as isize, self.cell_of(p[1]) as isize);
         let res = self.res as isize;
         let span = (2 * reach + 1).min(res);
-        let (x0, y0) = (cx - reach, cy - reach);
+        let (x0, y0) = (wrap_cell(cx - reach, res), wrap_cell(cy - reach, res));
         for dy in 0..span {
-            let row = (y0 + dy).rem_euclid(res) as usize;
+            let row = wrap_cell(y0 + dy, res) as usize;
             for dx in 0..span {
-                let col = (x0 + dx).rem_euclid(res) as usize;
+                let col = wrap_cell(x0 + dx, res) as usize;
                 let mut i = self.heads[row * self.res + col];
                 while i != NONE {
                     let d2 = torus_distance_squared(p, self.points[i as usize]);
@@ -148,6 +174,16 @@ impl TorusGrid {
     /// The nearest point to `p` other than point `exclude` (if given): its index and squared
     /// toroidal distance, or `None` when there is no other point.
     pub fn nearest(&self, p: [f64; 2], exclude: Option<usize>) -> Option<(usize, f64)> {
+        self.nearest_where(p, |i| Some(i) != exclude)
+    }
+
+    /// The nearest point to `p` among those for which `keep(index)` holds: its index and
+    /// squared toroidal distance, or `None` when no point qualifies.
+    pub fn nearest_where(
+        &self,
+        p: [f64; 2],
+        mut keep: impl FnMut(usize) -> bool,
+    ) -> Option<(usize, f64)> {
         let res = self.res as isize;
         let (cx, cy) = (self.cell_of(p[0]) as isize, self.cell_of(p[1]) as isize);
         let cell = 1.0 / self.res as f64;
@@ -162,10 +198,10 @@ impl TorusGrid {
                 }
             }
             let mut visit = |col: isize, row: isize| {
-                let (col, row) = (col.rem_euclid(res) as usize, row.rem_euclid(res) as usize);
+                let (col, row) = (wrap_cell(col, res) as usize, wrap_cell(row, res) as usize);
                 let mut i = self.heads[row * self.res + col];
                 while i != NONE {
-                    if Some(i as usize) != exclude {
+                    if keep(i as usize) {
                         let d2 = torus_distance_squared(p, self.points[i as usize]);
                         if best.is_none_or(|(_, b)| d2 < b) {
                             best = Some((i as usize, d2));
@@ -272,5 +308,90 @@ mod tests {
                 assert_eq!(found, brute, "r={r}");
             }
         }
+    }
+}
+
+/// A grid with at most one point per cell, for Poisson-disk sets of radius `r`: cells have side
+/// at most `r / sqrt(2)`, so two points of the set can never share a cell, and every point
+/// closer than `r` to a query lies in the `5 x 5` cells around it. Storage is one slot per cell,
+/// contiguous, so a query is 25 loads (Bridson 2007's accelerator, on the torus).
+#[derive(Clone, Debug)]
+pub struct DiskGrid {
+    res: usize,
+    r2: f64,
+    /// The point in each cell (NaN when empty).
+    cells: Vec<[f64; 2]>,
+}
+
+impl DiskGrid {
+    /// An empty grid for minimum distance `r` (`0 < r`); `None` when the grid would need more
+    /// than `max_cells` cells.
+    pub fn new(r: f64, max_cells: usize) -> Option<Self> {
+        if r.is_nan() || r <= 0.0 {
+            return None;
+        }
+        let res = (std::f64::consts::SQRT_2 / r).ceil().max(1.0);
+        if res * res > max_cells as f64 {
+            return None;
+        }
+        let res = res as usize;
+        Some(DiskGrid {
+            res,
+            r2: r * r,
+            cells: vec![[f64::NAN; 2]; res * res],
+        })
+    }
+
+    /// Cells per axis.
+    pub fn resolution(&self) -> usize {
+        self.res
+    }
+
+    #[inline]
+    fn cell_of(&self, c: f64) -> usize {
+        ((c * self.res as f64) as usize).min(self.res - 1)
+    }
+
+    /// The point stored in cell `(x, y)`, if any.
+    #[inline]
+    pub fn cell(&self, x: usize, y: usize) -> Option<[f64; 2]> {
+        let p = self.cells[y * self.res + x];
+        (!p[0].is_nan()).then_some(p)
+    }
+
+    /// Stores a point (coordinates in `[0, 1)`); the caller guarantees its cell is empty, which
+    /// holds for any point that does not [`conflict`](DiskGrid::conflicts).
+    pub fn insert(&mut self, p: [f64; 2]) {
+        let i = self.cell_of(p[1]) * self.res + self.cell_of(p[0]);
+        self.cells[i] = p;
+    }
+
+    /// Calls `f` with every stored point in the `5 x 5` cells around `p` (all points within `r`
+    /// among them); stops when `f` returns true, and returns whether it did.
+    #[inline]
+    pub fn any_near(&self, p: [f64; 2], mut f: impl FnMut([f64; 2]) -> bool) -> bool {
+        let res = self.res as isize;
+        let (cx, cy) = (self.cell_of(p[0]) as isize, self.cell_of(p[1]) as isize);
+        let mut cols = [0usize; 5];
+        for (k, c) in cols.iter_mut().enumerate() {
+            *c = wrap_cell(wrap_cell(cx + k as isize - 2, res), res) as usize;
+        }
+        for dy in -2..=2 {
+            let row = wrap_cell(wrap_cell(cy + dy, res), res) as usize * self.res;
+            for &col in &cols {
+                let q = self.cells[row + col];
+                if !q[0].is_nan() && f(q) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
+    /// True when a stored point lies closer than `r` to `p` (toroidally).
+    #[inline]
+    pub fn conflicts(&self, p: [f64; 2]) -> bool {
+        let r2 = self.r2;
+        self.any_near(p, |q| torus_distance_squared(p, q) < r2)
     }
 }

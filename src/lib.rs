@@ -36,6 +36,11 @@
 //! | `pmj02` | progressive | (0,m,2)-net at every `2^m` prefix and aligned block | same; Pharr 2019 |
 //! | `pmj02bn` | progressive | `pmj02` + best candidate in the valid strata | same |
 //! | `pmj02-stochastic` | progressive | as `pmj02`, O(1) per sample, stratified classes | Helmer, Christensen, Kensler 2021 |
+//! | `poisson` | fixed, any `N` | exactly `N` points at least `rho r_max(N)` apart | Cook 1986; Ebeida et al. 2011 |
+//! | `bridson` | fixed, any `N` | Poisson disk by Bridson's algorithm, exactly `N` | Bridson 2007 |
+//! | `best-candidate` | progressive | farthest of `k n` candidates | Mitchell 1991 |
+//! | `lloyd` | fixed, any `N` | Lloyd relaxation to a centroidal Voronoi tessellation | Lloyd 1982 |
+//! | `ccvt` | fixed, any `N` | capacity-constrained Voronoi tessellation | Balzer, Schlömer, Deussen 2009 |
 //!
 //! Every sampler implements [`Sampler`]; [`registry`] builds them by name.
 //!
@@ -58,7 +63,9 @@
 //!
 //! ## Features
 //!
-//! * `io` (default): PNG drawing of point sets ([`io`]).
+//! * `spectrum` (default): power spectra and point-set measures ([`spectrum`]).
+//! * `io` (default): PNG, EXR and CSV output and plots ([`io`]).
+//! * `lloyd` (default): Lloyd relaxation on the periodic Voronoi diagram (`spade`).
 //!
 //! With `default-features = false` the crate depends only on `rand`, `rand_pcg` and `glam`.
 

@@ -326,6 +326,81 @@ static ENTRIES: &[Entry] = &[
         expensive: false,
         build: |p| Ok(Box::new(samplers::Pmj02Stochastic::new(p.seed))),
     },
+    Entry {
+        name: "poisson",
+        description: "Poisson disk by dart throwing to exactly N points (--radius RHO, default 0.7), Cook 1986",
+        progressive: false,
+        counts: CountRule::Any,
+        parameters: &[Parameter::Radius],
+        expensive: false,
+        build: |p| {
+            let rho = p.radius.unwrap_or(samplers::poisson::DEFAULT_RHO);
+            Ok(Box::new(samplers::PoissonDisk::new(
+                samplers::DartThrowing::new(p.count, rho)?,
+                p.seed,
+            )?))
+        },
+    },
+    Entry {
+        name: "bridson",
+        description: "Poisson disk by Bridson's algorithm, periodic, N points (--radius RHO, default 0.7), Bridson 2007",
+        progressive: false,
+        counts: CountRule::Any,
+        parameters: &[Parameter::Radius],
+        expensive: false,
+        build: |p| {
+            let rho = p.radius.unwrap_or(samplers::poisson::DEFAULT_RHO);
+            Ok(Box::new(samplers::BridsonDisk::new(
+                samplers::Bridson::new(p.count, rho)?,
+                p.seed,
+            )?))
+        },
+    },
+    Entry {
+        name: "best-candidate",
+        description: "Mitchell's best candidate, progressive (--candidates K per existing point, default 1), Mitchell 1991",
+        progressive: true,
+        counts: CountRule::Any,
+        parameters: &[Parameter::Candidates],
+        expensive: true,
+        build: |p| {
+            let k = p
+                .candidates
+                .unwrap_or(samplers::best_candidate::DEFAULT_FACTOR);
+            Ok(Box::new(samplers::BestCandidate::new(p.seed, k)?))
+        },
+    },
+    #[cfg(feature = "lloyd")]
+    Entry {
+        name: "lloyd",
+        description: "Lloyd relaxation on the periodic Voronoi diagram from random points (--iterations K, default 64), Lloyd 1982",
+        progressive: false,
+        counts: CountRule::Any,
+        parameters: &[Parameter::Iterations],
+        expensive: true,
+        build: |p| {
+            let k = p.iterations.unwrap_or(samplers::lloyd::DEFAULT_ITERATIONS);
+            Ok(Box::new(samplers::LloydSets::new(
+                samplers::Lloyd::new(p.count, k)?,
+                p.seed,
+            )?))
+        },
+    },
+    Entry {
+        name: "ccvt",
+        description: "capacity-constrained Voronoi tessellation, 256 points per site (--iterations K, default 200), Balzer et al. 2009",
+        progressive: false,
+        counts: CountRule::Any,
+        parameters: &[Parameter::Iterations],
+        expensive: true,
+        build: |p| {
+            let k = p.iterations.unwrap_or(samplers::ccvt::DEFAULT_ITERATIONS);
+            Ok(Box::new(samplers::CcvtSets::new(
+                samplers::Ccvt::new(p.count, k)?,
+                p.seed,
+            )?))
+        },
+    },
 ];
 
 /// Every registered sampler, in a stable order (simplest first).

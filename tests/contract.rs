@@ -13,7 +13,8 @@ use strata::{Error, Sampler};
 fn every_sampler_stays_in_the_unit_square() {
     for entry in registry::entries() {
         for n in [1u64, 4, 9, 10, 256, 1000, 4096] {
-            if !entry.counts.allows(n) {
+            // relaxation and best candidate are slow in unoptimised test builds
+            if !entry.counts.allows(n) || (entry.expensive && n > 256) {
                 continue;
             }
             for seed in [0, 1, u64::MAX] {

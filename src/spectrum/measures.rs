@@ -24,14 +24,8 @@ use std::f64::consts::PI;
 
 use super::check_points;
 use crate::error::{Error, Result};
-use crate::grid::TorusGrid;
+use crate::grid::{TorusGrid, relative_radius_max};
 use crate::sampler::Point2;
-
-/// `r_max(N) = sqrt(2 / (sqrt(3) N))`: the distance between neighbours when `N` points are
-/// packed hexagonally on the unit torus. Poisson-disk radii are given relative to it.
-pub fn relative_radius_max(n: usize) -> f64 {
-    (2.0 / (3f64.sqrt() * n.max(1) as f64)).sqrt()
-}
 
 /// The largest point count per set for which [`point_set_measures`] computes the spectral
 /// measures (the pair counting is quadratic).

@@ -36,9 +36,10 @@ mod direct;
 mod measures;
 mod nufft;
 
+pub use crate::grid::relative_radius_max;
 pub use measures::{
     MAX_SPECTRAL_MEASURE_POINTS, PointSetMeasures, bessel_j0, nearest_neighbour_distances,
-    point_set_measures, relative_radius_max,
+    point_set_measures,
 };
 
 use rayon::prelude::*;

@@ -1,0 +1,278 @@
+//! Capacity-constrained Voronoi tessellation: Balzer, Schlömer, Deussen, "Capacity-Constrained
+//! Point Distributions: A Variant of Lloyd's Method" (SIGGRAPH 2009).
+//!
+//! The density is represented by `M = N m` discrete points, uniform on the unit torus; each of
+//! the `N` sites owns exactly `m` of them (its *capacity*). The energy
+//! `E = sum_i sum_{x in A_i} |x - s_i|^2` is lowered by exchanging points between pairs of sites
+//! and by moving each site to the centroid of its points, until no exchange helps. Unlike
+//! Lloyd's method, every site keeps the same share of the domain, which prevents the drift
+//! toward regular hexagonal patches: CCVT sets are blue noise without peaks.
+//!
+//! The exchange between two sites `i` and `j` follows Balzer's swap condition (swap `a in A_i`
+//! with `b in A_j` while `h(a) > h(b)`, `h(x) = |x - s_i|^2 - |x - s_j|^2`); done to the end it
+//! leaves `A_i` holding the `m` points of `A_i u A_j` with the smallest `h`, so each pair is
+//! solved at once by a selection (`select_nth_unstable`) instead of two heaps. Pairs whose
+//! bounding circles (centre `s_i`, radius the farthest point of `A_i`) do not overlap cannot
+//! gain and are skipped, as are pairs of sites that did not change in the last pass. Sites are
+//! re-centred after each pass; the optimisation stops when a pass exchanges nothing or after
+//! the given number of passes.
+
+use rand_pcg::Pcg32;
+
+use super::poisson::{below, uniform};
+use super::{SetGenerator, Sets};
+use crate::error::{Error, Result};
+use crate::grid::{TorusGrid, torus_distance_squared};
+use crate::hash::stream_seed;
+
+/// Discrete points per site.
+pub const DEFAULT_CAPACITY: u32 = 256;
+
+/// The default (maximum) number of passes; the optimisation usually stops earlier.
+pub const DEFAULT_ITERATIONS: u32 = 200;
+
+/// The most passes accepted.
+pub const MAX_ITERATIONS: u32 = 100_000;
+
+/// The most sites per set (memory: `16 m` bytes per site).
+pub const MAX_CCVT_COUNT: u64 = 1 << 16;
+
+/// CCVT sets of `count` sites.
+#[derive(Clone, Debug)]
+pub struct Ccvt {
+    count: u32,
+    capacity: u32,
+    iterations: u32,
+}
+
+/// What [`Ccvt::optimize`] did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CcvtResult {
+    /// The sites.
+    pub sites: Vec<[f64; 2]>,
+    /// The discrete points, site `i` owning `points[i m..(i + 1) m]`.
+    pub points: Vec<[f64; 2]>,
+    /// Points per site.
+    pub capacity: usize,
+    /// The energy after each pass.
+    pub energy: Vec<f64>,
+    /// Passes run.
+    pub passes: u32,
+    /// True when the last pass exchanged nothing (a stable configuration).
+    pub converged: bool,
+}
+
+impl Ccvt {
+    /// `count` sites (1 to [`MAX_CCVT_COUNT`]), [`DEFAULT_CAPACITY`] points each, at most
+    /// `iterations` passes (1 to [`MAX_ITERATIONS`]).
+    pub fn new(count: u64, iterations: u32) -> Result<Self> {
+        Self::with_capacity(count, iterations, DEFAULT_CAPACITY)
+    }
+
+    /// As [`new`](Ccvt::new) with `capacity` points per site (1 to 4096).
+    pub fn with_capacity(count: u64, iterations: u32, capacity: u32) -> Result<Self> {
+        if count == 0 || count > MAX_CCVT_COUNT {
+            return Err(Error::count(
+                "ccvt",
+                count,
+                format!("the count must be between 1 and {MAX_CCVT_COUNT}"),
+            ));
+        }
+        if iterations == 0 || iterations > MAX_ITERATIONS {
+            return Err(Error::parameter(
+                "ccvt",
+                "iterations",
+                iterations,
+                format!("1 to {MAX_ITERATIONS}"),
+            ));
+        }
+        if capacity == 0 || capacity > 4096 {
+            return Err(Error::parameter(
+                "ccvt",
+                "capacity",
+                capacity,
+                "1 to 4096 points per site",
+            ));
+        }
+        Ok(Ccvt {
+            count: count as u32,
+            capacity,
+            iterations,
+        })
+    }
+
+    /// The full optimisation for `key`: sites, their points, and the energy after each pass.
+    pub fn optimize(&self, key: u64) -> CcvtResult {
+        let (n, m) = (self.count as usize, self.capacity as usize);
+        let mut rng = Pcg32::new(stream_seed(key, 7), stream_seed(key, 8));
+        let mut sites: Vec<[f64; 2]> = (0..n)
+            .map(|_| [uniform(&mut rng), uniform(&mut rng)])
+            .collect();
+        let mut points = initial_assignment(&sites, m, &mut rng);
+        let mut energy = Vec::new();
+        let mut stable = vec![false; n];
+        let mut changed = vec![false; n];
+        let mut radius = vec![0.0f64; n];
+        let mut scratch: Vec<(f64, [f64; 2])> = Vec::with_capacity(2 * m);
+        let (mut passes, mut converged) = (0, false);
+        for _ in 0..self.iterations {
+            passes += 1;
+            for i in 0..n {
+                radius[i] = points[i * m..(i + 1) * m]
+                    .iter()
+                    .map(|&x| torus_distance_squared(x, sites[i]))
+                    .fold(0.0, f64::max)
+                    .sqrt();
+            }
+            let r_max = radius.iter().copied().fold(0.0, f64::max);
+            let grid = TorusGrid::from_points(sites.iter().copied());
+            changed.iter_mut().for_each(|c| *c = false);
+            let mut partners = Vec::new();
+            for i in 0..n {
+                partners.clear();
+                grid.for_each_within(sites[i], (radius[i] + r_max).min(0.5), |j, d2| {
+                    if j > i && d2.sqrt() < radius[i] + radius[j] && !(stable[i] && stable[j]) {
+                        partners.push(j);
+                    }
+                    true
+                });
+                partners.sort_unstable();
+                for &j in &partners {
+                    if exchange(&mut points, m, i, j, sites[i], sites[j], &mut scratch) {
+                        changed[i] = true;
+                        changed[j] = true;
+                    }
+                }
+            }
+            for i in 0..n {
+                if changed[i] {
+                    sites[i] = torus_centroid(&points[i * m..(i + 1) * m], sites[i]);
+                }
+                stable[i] = !changed[i];
+            }
+            energy.push(total_energy(&sites, &points, m));
+            if !changed.iter().any(|&c| c) {
+                converged = true;
+                break;
+            }
+        }
+        CcvtResult {
+            sites,
+            points,
+            capacity: m,
+            energy,
+            passes,
+            converged,
+        }
+    }
+}
+
+/// Assigns `m` uniform points to each site: points in random order go to the nearest site that
+/// still has room (Balzer's initialisation). Returns the points grouped by site.
+fn initial_assignment(sites: &[[f64; 2]], m: usize, rng: &mut Pcg32) -> Vec<[f64; 2]> {
+    let n = sites.len();
+    let grid = TorusGrid::from_points(sites.iter().copied());
+    let mut count = vec![0usize; n];
+    let mut grouped = vec![[0.0f64; 2]; n * m];
+    for _ in 0..n * m {
+        let x = [uniform(rng), uniform(rng)];
+        let (s, _) = grid
+            .nearest_where(x, |i| count[i] < m)
+            .expect("room remains while points remain");
+        grouped[s * m + count[s]] = x;
+        count[s] += 1;
+    }
+    // A random order inside each site (the order carries no information).
+    for chunk in grouped.chunks_mut(m) {
+        for k in (1..chunk.len()).rev() {
+            chunk.swap(k, below(rng, k + 1));
+        }
+    }
+    grouped
+}
+
+/// The optimal exchange between sites `i` and `j` (fixed positions): afterwards `A_i` holds the
+/// `m` points of `A_i u A_j` with the smallest `|x - s_i|^2 - |x - s_j|^2`. Returns whether any
+/// point moved.
+fn exchange(
+    points: &mut [[f64; 2]],
+    m: usize,
+    i: usize,
+    j: usize,
+    si: [f64; 2],
+    sj: [f64; 2],
+    scratch: &mut Vec<(f64, [f64; 2])>,
+) -> bool {
+    let h = |x: [f64; 2]| torus_distance_squared(x, si) - torus_distance_squared(x, sj);
+    let max_i = points[i * m..(i + 1) * m]
+        .iter()
+        .map(|&x| h(x))
+        .fold(f64::NEG_INFINITY, f64::max);
+    let min_j = points[j * m..(j + 1) * m]
+        .iter()
+        .map(|&x| h(x))
+        .fold(f64::INFINITY, f64::min);
+    if max_i <= min_j {
+        return false;
+    }
+    scratch.clear();
+    scratch.extend(
+        points[i * m..(i + 1) * m]
+            .iter()
+            .chain(&points[j * m..(j + 1) * m])
+            .map(|&x| (h(x), x)),
+    );
+    scratch.select_nth_unstable_by(m - 1, |a, b| a.0.total_cmp(&b.0));
+    for (k, &(_, x)) in scratch.iter().enumerate() {
+        let slot = if k < m { i * m + k } else { j * m + (k - m) };
+        points[slot] = x;
+    }
+    true
+}
+
+/// The centroid of points on the torus, unwrapped around `around`.
+fn torus_centroid(points: &[[f64; 2]], around: [f64; 2]) -> [f64; 2] {
+    let (mut sx, mut sy) = (0.0, 0.0);
+    for p in points {
+        let (dx, dy) = (p[0] - around[0], p[1] - around[1]);
+        sx += dx - dx.round();
+        sy += dy - dy.round();
+    }
+    let k = points.len() as f64;
+    let w = |v: f64| {
+        let y = v - v.floor();
+        if y < 1.0 { y } else { 0.0 }
+    };
+    [w(around[0] + sx / k), w(around[1] + sy / k)]
+}
+
+/// `sum_i sum_{x in A_i} |x - s_i|^2`.
+fn total_energy(sites: &[[f64; 2]], points: &[[f64; 2]], m: usize) -> f64 {
+    sites
+        .iter()
+        .enumerate()
+        .map(|(i, &s)| {
+            points[i * m..(i + 1) * m]
+                .iter()
+                .map(|&x| torus_distance_squared(x, s))
+                .sum::<f64>()
+        })
+        .sum()
+}
+
+impl SetGenerator for Ccvt {
+    fn name(&self) -> &'static str {
+        "ccvt"
+    }
+
+    fn count(&self) -> u32 {
+        self.count
+    }
+
+    fn generate(&self, key: u64) -> Result<Vec<[f64; 2]>> {
+        Ok(self.optimize(key).sites)
+    }
+}
+
+/// CCVT sets (fixed count).
+pub type CcvtSets = Sets<Ccvt>;

@@ -1,0 +1,418 @@
+//! Poisson-disk sampling on the unit torus: dart throwing (Cook 1986) to an exact count, and
+//! Bridson's fast algorithm (Bridson 2007).
+//!
+//! Radii are relative: `r = rho * r_max(N)`, `r_max(N) = sqrt(2 / (sqrt(3) N))` the neighbour
+//! distance of `N` points packed hexagonally (Lagae and Dutré 2008, "A Comparison of Methods for
+//! Generating Poisson Disk Distributions"). Every pair of points is at least `r` apart
+//! (toroidally, and still after the conversion to `f32`).
+//!
+//! **Dart throwing** ([`DartThrowing`]) places uniform darts and keeps those farther than `r`
+//! from every point so far, until exactly `N` are placed. Near saturation most darts miss, so it
+//! throws only into cells that still have room, refined as it goes (after Ebeida et al. 2011,
+//! "Efficient Maximal Poisson-Disk Sampling"): a round throws one dart per active cell, then
+//! every active cell is split into four and the quarters covered by a single disk are dropped.
+//! Darts stay uniform over the uncovered area (cells of a round have equal size; misses are
+//! rejected), so the result is unbiased dart throwing, and the work is bounded (at most
+//! [`MAX_LEVELS`] refinements): a radius the set cannot reach stops with
+//! [`Error::Unreachable`](crate::Error::Unreachable) after bounded work. Random sequential
+//! adsorption jams at `rho` about 0.77; above [`MAX_DART_RHO`] the request is refused at once.
+//!
+//! **Bridson** ([`Bridson`]) grows the set from a random seed point: each active point tries 30
+//! candidates in the annulus `[r, 2r)` and retires when all fail. Its sets are not maximal and
+//! their size is not chosen; to give exactly `N` points, a larger set loses its most crowded
+//! points (weighted sample elimination, Yuksel 2015; a random subset would add white noise at
+//! low frequencies) and a smaller one is completed by dart throwing. Both keep the radius.
+
+use rand::Rng;
+use rand_pcg::Pcg32;
+
+use super::{SetGenerator, Sets};
+use crate::error::{Error, Result};
+use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared};
+use crate::hash::stream_seed;
+
+/// The default relative radius.
+pub const DEFAULT_RHO: f64 = 0.7;
+
+/// The largest relative radius dart throwing accepts (random sequential adsorption jams near
+/// 0.77, so larger radii cannot be reached at the requested count).
+pub const MAX_DART_RHO: f64 = 0.78;
+
+/// The largest number of points per Poisson-disk set (memory: about 60 bytes per point).
+pub const MAX_POISSON_COUNT: u64 = 1 << 22;
+
+/// How many times dart throwing refines its active cells before giving up.
+pub const MAX_LEVELS: u32 = 12;
+
+/// Bridson's candidates per active point.
+pub const BRIDSON_CANDIDATES: u32 = 30;
+
+/// Slack added to the radius so that the guarantee survives rounding coordinates to `f32`
+/// (each coordinate moves by less than `2^-24`).
+const F32_SLACK: f64 = 1.0 / (1u64 << 22) as f64;
+
+/// A uniform `f64` in `[0, 1)` from the generator.
+pub(crate) fn uniform(rng: &mut Pcg32) -> f64 {
+    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+/// A uniform index in `[0, len)`.
+pub(crate) fn below(rng: &mut Pcg32, len: usize) -> usize {
+    ((rng.next_u32() as u64 * len as u64) >> 32) as usize
+}
+
+/// `x` wrapped into `[0, 1)` (for `x` within one period of it).
+pub(crate) fn wrap(x: f64) -> f64 {
+    let y = if x < 0.0 {
+        x + 1.0
+    } else if x >= 1.0 {
+        x - 1.0
+    } else {
+        x
+    };
+    if (0.0..1.0).contains(&y) { y } else { 0.0 }
+}
+
+/// Validates the count and the relative radius shared by the Poisson-disk samplers.
+fn check(name: &'static str, count: u64, rho: f64, max_rho: f64) -> Result<u32> {
+    if count == 0 || count > MAX_POISSON_COUNT {
+        return Err(Error::count(
+            name,
+            count,
+            format!("the count must be between 1 and {MAX_POISSON_COUNT}"),
+        ));
+    }
+    if !(rho > 0.0 && rho < 1.0) {
+        return Err(Error::parameter(
+            name,
+            "radius",
+            rho,
+            "a relative radius 0 < rho < 1 (r = rho * r_max(N))",
+        ));
+    }
+    if rho > max_rho {
+        return Err(Error::parameter(
+            name,
+            "radius",
+            rho,
+            format!(
+                "at most {max_rho}: random dart throwing jams near rho = 0.77 (random sequential \
+                 adsorption), so {count} points at this radius cannot be placed"
+            ),
+        ));
+    }
+    Ok(count as u32)
+}
+
+/// Dart throwing to exactly `count` points at relative radius `rho`.
+#[derive(Clone, Debug)]
+pub struct DartThrowing {
+    count: u32,
+    rho: f64,
+}
+
+impl DartThrowing {
+    /// `count` points (1 to [`MAX_POISSON_COUNT`]) at relative radius `0 < rho <= MAX_DART_RHO`.
+    pub fn new(count: u64, rho: f64) -> Result<Self> {
+        let count = check("poisson", count, rho, MAX_DART_RHO)?;
+        Ok(DartThrowing { count, rho })
+    }
+
+    /// The absolute radius `rho * r_max(N)`.
+    pub fn radius(&self) -> f64 {
+        self.rho * relative_radius_max(self.count as usize)
+    }
+}
+
+impl SetGenerator for DartThrowing {
+    fn name(&self) -> &'static str {
+        "poisson"
+    }
+
+    fn count(&self) -> u32 {
+        self.count
+    }
+
+    fn generate(&self, key: u64) -> Result<Vec<[f64; 2]>> {
+        let r = self.radius() + F32_SLACK;
+        let mut rng = Pcg32::new(stream_seed(key, 1), stream_seed(key, 2));
+        let mut grid = disk_grid("poisson", r)?;
+        let mut points = Vec::with_capacity(self.count as usize);
+        throw_darts(&mut points, &mut grid, self.count as usize, r, &mut rng);
+        if points.len() < self.count as usize {
+            return Err(saturated("poisson", points.len(), self.count, self.rho));
+        }
+        Ok(points)
+    }
+}
+
+fn saturated(name: &'static str, got: usize, count: u32, rho: f64) -> Error {
+    // The relative radius at which `got` points would have been asked for.
+    let reachable = rho * (got as f64 / count as f64).sqrt();
+    Error::Unreachable {
+        context: name,
+        message: format!(
+            "the set saturated after {got} of {count} points at rho = {rho} (no room is left for \
+             another disk); this seed reaches about rho = {reachable:.3} at {count} points, so \
+             ask for a smaller radius"
+        ),
+    }
+}
+
+/// Adds uniform darts farther than `r` from every point until `points` holds `target` points or
+/// no room is left (after [`MAX_LEVELS`] refinements). `grid` holds the same points.
+pub(crate) fn throw_darts(
+    points: &mut Vec<[f64; 2]>,
+    grid: &mut DiskGrid,
+    target: usize,
+    r: f64,
+    rng: &mut Pcg32,
+) {
+    if points.len() >= target {
+        return;
+    }
+    // Start from the grid's cells (side <= r / sqrt(2): a point anywhere in a cell covers it).
+    let base = grid.resolution() as u64;
+    let mut size = 1.0 / base as f64;
+    let mut active: Vec<(u64, u64)> = Vec::new();
+    for y in 0..base {
+        for x in 0..base {
+            if grid.cell(x as usize, y as usize).is_none()
+                && !covered(grid, x as f64 * size, y as f64 * size, size, r)
+            {
+                active.push((x, y));
+            }
+        }
+    }
+    for level in 0..=MAX_LEVELS {
+        // One round: as many darts as active cells, each into a random active cell.
+        let throws = active.len();
+        for _ in 0..throws {
+            if points.len() >= target || active.is_empty() {
+                return;
+            }
+            let i = below(rng, active.len());
+            let (cx, cy) = active[i];
+            let p = [
+                wrap((cx as f64 + uniform(rng)) * size),
+                wrap((cy as f64 + uniform(rng)) * size),
+            ];
+            if !grid.conflicts(p) {
+                grid.insert(p);
+                points.push(p);
+                active.swap_remove(i);
+            }
+        }
+        if level == MAX_LEVELS || active.is_empty() {
+            return;
+        }
+        // Refine: split every active cell, drop the quarters covered by a single disk.
+        size *= 0.5;
+        let mut next = Vec::with_capacity(active.len() * 2);
+        for &(cx, cy) in &active {
+            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let (x, y) = (2 * cx + dx, 2 * cy + dy);
+                if !covered(grid, x as f64 * size, y as f64 * size, size, r) {
+                    next.push((x, y));
+                }
+            }
+        }
+        active = next;
+    }
+}
+
+/// True when the square `[x0, x0 + s) x [y0, y0 + s)` lies inside one disk of radius `r`.
+/// True when the square `[x0, x0 + s) x [y0, y0 + s)` (no larger than a grid cell) lies inside
+/// one disk of radius `r`: that disk's centre is within `r` of the square's centre, so among
+/// the `5 x 5` cells around it.
+fn covered(grid: &DiskGrid, x0: f64, y0: f64, s: f64, r: f64) -> bool {
+    let centre = [x0 + 0.5 * s, y0 + 0.5 * s];
+    let corners =
+        [[x0, y0], [x0 + s, y0], [x0, y0 + s], [x0 + s, y0 + s]].map(|c| [wrap(c[0]), wrap(c[1])]);
+    let r2 = r * r;
+    grid.any_near(centre, |q| {
+        corners.iter().all(|&c| torus_distance_squared(c, q) < r2)
+    })
+}
+
+/// The one-point-per-cell grid for radius `r`, or an error when it would be too large.
+fn disk_grid(name: &'static str, r: f64) -> Result<DiskGrid> {
+    DiskGrid::new(r, MAX_GRID_CELLS).ok_or_else(|| {
+        Error::input(name, format!("radius {r} needs more than {MAX_GRID_CELLS} grid cells; use fewer points or a larger radius"))
+    })
+}
+
+/// The most grid cells a Poisson-disk set may use (16 bytes each): enough for
+/// [`MAX_POISSON_COUNT`] points at relative radius 0.3.
+pub const MAX_GRID_CELLS: usize = 1 << 26;
+
+/// Bridson's algorithm, periodic, at relative radius `rho`, adjusted to exactly `count` points.
+#[derive(Clone, Debug)]
+pub struct Bridson {
+    count: u32,
+    rho: f64,
+}
+
+impl Bridson {
+    /// `count` points (1 to [`MAX_POISSON_COUNT`]) at relative radius `0 < rho <= MAX_DART_RHO`.
+    pub fn new(count: u64, rho: f64) -> Result<Self> {
+        let count = check("bridson", count, rho, MAX_DART_RHO)?;
+        Ok(Bridson { count, rho })
+    }
+
+    /// The absolute radius `rho * r_max(N)`.
+    pub fn radius(&self) -> f64 {
+        self.rho * relative_radius_max(self.count as usize)
+    }
+}
+
+/// Bridson's algorithm at absolute radius `r` on the unit torus: the raw set (its size is
+/// whatever the algorithm reaches), grown from one random point.
+///
+/// Returns an error when `r` is so small that the grid would exceed [`MAX_GRID_CELLS`].
+pub fn bridson(r: f64, key: u64) -> Result<Vec<[f64; 2]>> {
+    let mut rng = Pcg32::new(stream_seed(key, 3), stream_seed(key, 4));
+    let mut grid = disk_grid("bridson", r)?;
+    let mut points = Vec::new();
+    grow_bridson(&mut points, &mut grid, r, &mut rng);
+    Ok(points)
+}
+
+fn grow_bridson(points: &mut Vec<[f64; 2]>, grid: &mut DiskGrid, r: f64, rng: &mut Pcg32) {
+    let first = [uniform(rng), uniform(rng)];
+    grid.insert(first);
+    points.push(first);
+    let mut active = vec![0usize];
+    while !active.is_empty() {
+        let i = below(rng, active.len());
+        let p = points[active[i]];
+        let mut found = false;
+        for _ in 0..BRIDSON_CANDIDATES {
+            // uniform over the annulus' area, by rejection from its bounding square (no trig)
+            let (dx, dy) = loop {
+                let (dx, dy) = (
+                    (uniform(rng) * 4.0 - 2.0) * r,
+                    (uniform(rng) * 4.0 - 2.0) * r,
+                );
+                let d2 = dx * dx + dy * dy;
+                if d2 >= r * r && d2 < 4.0 * r * r {
+                    break (dx, dy);
+                }
+            };
+            let q = [wrap(p[0] + dx), wrap(p[1] + dy)];
+            if !grid.conflicts(q) {
+                grid.insert(q);
+                active.push(points.len());
+                points.push(q);
+                found = true;
+                break;
+            }
+        }
+        if !found {
+            active.swap_remove(i);
+        }
+    }
+}
+
+impl SetGenerator for Bridson {
+    fn name(&self) -> &'static str {
+        "bridson"
+    }
+
+    fn count(&self) -> u32 {
+        self.count
+    }
+
+    fn generate(&self, key: u64) -> Result<Vec<[f64; 2]>> {
+        let n = self.count as usize;
+        let r = self.radius() + F32_SLACK;
+        let mut rng = Pcg32::new(stream_seed(key, 3), stream_seed(key, 4));
+        let mut grid = disk_grid("bridson", r)?;
+        let mut points = Vec::new();
+        grow_bridson(&mut points, &mut grid, r, &mut rng);
+        if points.len() < n {
+            throw_darts(&mut points, &mut grid, n, r, &mut rng);
+            if points.len() < n {
+                return Err(saturated("bridson", points.len(), self.count, self.rho));
+            }
+        }
+        if points.len() > n {
+            eliminate(&mut points, n, r);
+        }
+        // A random order: Fisher-Yates.
+        for i in (1..points.len()).rev() {
+            let j = below(&mut rng, i + 1);
+            points.swap(i, j);
+        }
+        Ok(points)
+    }
+}
+
+/// Removes points until `target` remain, always the most crowded one, so the set keeps its
+/// blue-noise spectrum (a random subset would add white noise at low frequencies): weighted
+/// sample elimination (Yuksel, "Sample Elimination for Generating Poisson Disk Sample Sets",
+/// Eurographics 2015), weight `sum_j (1 - d_ij / 2r)^8` over the neighbours within `2r`.
+fn eliminate(points: &mut Vec<[f64; 2]>, target: usize, r: f64) {
+    use std::cmp::Ordering;
+    use std::collections::BinaryHeap;
+
+    #[derive(PartialEq)]
+    struct Entry(f64, usize);
+    impl Eq for Entry {}
+    impl PartialOrd for Entry {
+        fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+            Some(self.cmp(o))
+        }
+    }
+    impl Ord for Entry {
+        fn cmp(&self, o: &Self) -> Ordering {
+            self.0.total_cmp(&o.0).then(o.1.cmp(&self.1))
+        }
+    }
+
+    let reach = 2.0 * r;
+    let grid = crate::grid::TorusGrid::from_points(points.iter().copied());
+    let weight_of = |d2: f64| (1.0 - d2.sqrt() / reach).max(0.0).powi(8);
+    let mut weight = vec![0.0f64; points.len()];
+    for (i, &p) in points.iter().enumerate() {
+        grid.for_each_within(p, reach, |j, d2| {
+            if j != i {
+                weight[i] += weight_of(d2);
+            }
+            true
+        });
+    }
+    let mut removed = vec![false; points.len()];
+    let mut heap: BinaryHeap<Entry> = weight
+        .iter()
+        .enumerate()
+        .map(|(i, &w)| Entry(w, i))
+        .collect();
+    let mut left = points.len();
+    while left > target {
+        let Some(Entry(w, i)) = heap.pop() else { break };
+        if removed[i] || w != weight[i] {
+            continue; // stale entry
+        }
+        removed[i] = true;
+        left -= 1;
+        grid.for_each_within(points[i], reach, |j, d2| {
+            if j != i && !removed[j] {
+                weight[j] -= weight_of(d2);
+                heap.push(Entry(weight[j], j));
+            }
+            true
+        });
+    }
+    let mut k = 0;
+    points.retain(|_| {
+        k += 1;
+        !removed[k - 1]
+    });
+}
+
+/// Dart-throwing Poisson-disk sets (fixed count).
+pub type PoissonDisk = Sets<DartThrowing>;
+
+/// Bridson Poisson-disk sets (fixed count).
+pub type BridsonDisk = Sets<Bridson>;

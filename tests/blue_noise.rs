@@ -1,0 +1,246 @@
+//! Blue noise: minimum distances checked pair by pair (toroidal), exact counts, Lloyd's energy
+//! and centroids, CCVT's capacities and areas, best candidate's spacing, and the errors.
+
+mod common;
+
+use glam::Vec2;
+use strata::grid::{relative_radius_max, torus_distance_squared};
+use strata::registry::{self, Params};
+use strata::samplers::{Bridson, Ccvt, DartThrowing, SetGenerator};
+
+fn set(name: &str, n: u64, seed: u64, rho: Option<f64>) -> Vec<Vec2> {
+    let mut p = Params::new(n).seed(seed);
+    p.radius = rho;
+    let mut s = registry::build(name, &p).unwrap();
+    common::take(s.as_mut(), n as usize)
+}
+
+/// The smallest toroidal distance between two points, by brute force over all pairs.
+fn min_distance(pts: &[Vec2]) -> f64 {
+    let mut best = f64::INFINITY;
+    for i in 0..pts.len() {
+        for j in 0..i {
+            let d = torus_distance_squared(
+                [pts[i].x as f64, pts[i].y as f64],
+                [pts[j].x as f64, pts[j].y as f64],
+            );
+            best = best.min(d);
+        }
+    }
+    best.sqrt()
+}
+
+fn in_unit_square(pts: &[Vec2]) -> bool {
+    pts.iter()
+        .all(|p| (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y))
+}
+
+#[test]
+fn poisson_and_bridson_keep_the_radius_and_the_count() {
+    for name in ["poisson", "bridson"] {
+        for (n, rho) in [(64u64, 0.3), (500, 0.5), (1000, 0.7), (777, 0.76)] {
+            for seed in [1u64, 2, 3] {
+                let pts = set(name, n, seed, Some(rho));
+                assert_eq!(pts.len(), n as usize);
+                assert!(in_unit_square(&pts));
+                let d = min_distance(&pts);
+                let r = rho * relative_radius_max(n as usize);
+                assert!(
+                    d >= r,
+                    "{name} n={n} rho={rho} seed={seed}: two points {d} apart, radius {r}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_block_is_its_own_poisson_set() {
+    let mut p = Params::new(300).seed(9);
+    p.radius = Some(0.7);
+    let mut s = registry::build("poisson", &p).unwrap();
+    let a = common::take(s.as_mut(), 300);
+    let b = common::take(s.as_mut(), 300);
+    assert_ne!(a, b);
+    let r = 0.7 * relative_radius_max(300);
+    assert!(min_distance(&a) >= r && min_distance(&b) >= r);
+}
+
+#[test]
+fn dart_throwing_reports_saturation_instead_of_hanging() {
+    // rho = 0.77 sits at random sequential adsorption's jamming limit: some seeds cannot place
+    // all points; those must fail with a clear error after bounded work, the others succeed.
+    let g = DartThrowing::new(256, 0.775).unwrap();
+    let results: Vec<_> = (0..12u64).map(|k| g.generate(k)).collect();
+    for r in &results {
+        match r {
+            Ok(p) => assert_eq!(p.len(), 256),
+            Err(e) => assert!(e.to_string().contains("saturated"), "{e}"),
+        }
+    }
+    assert!(
+        results.iter().any(|r| r.is_err()),
+        "0.775 should saturate for some seeds"
+    );
+}
+
+#[test]
+fn radii_beyond_reach_are_refused_at_once() {
+    let t = std::time::Instant::now();
+    for rho in [0.0, -0.1, 1.0, 1.5, 0.79, 0.95, f64::NAN] {
+        let e = DartThrowing::new(1000, rho).expect_err("invalid radius");
+        assert!(e.to_string().contains("radius"), "{e}");
+        assert!(Bridson::new(1000, rho).is_err());
+    }
+    assert!(t.elapsed().as_secs_f64() < 1.0, "refusals must not do work");
+    assert!(DartThrowing::new(0, 0.5).is_err());
+    let huge = DartThrowing::new(1 << 40, 0.5).expect_err("too many points");
+    assert!(huge.to_string().contains("between 1 and"), "{huge}");
+}
+
+#[cfg(feature = "lloyd")]
+#[test]
+fn lloyd_energy_never_rises_and_points_end_near_their_centroids() {
+    use strata::samplers::lloyd::{DEFAULT_ITERATIONS, relax, voronoi_cells};
+    for (n, seed) in [(100usize, 1u64), (500, 2), (1024, 3)] {
+        let mut pts: Vec<[f64; 2]> = set("random", n as u64, seed, None)
+            .iter()
+            .map(|p| [p.x as f64, p.y as f64])
+            .collect();
+        // cells tile the torus
+        let cells = voronoi_cells(&pts).unwrap();
+        let area: f64 = cells.iter().map(|c| c.unwrap().area).sum();
+        assert!((area - 1.0).abs() < 1e-9, "cells cover {area}");
+        let steps = relax(&mut pts, DEFAULT_ITERATIONS).unwrap();
+        for w in steps.windows(2) {
+            assert!(
+                w[1].energy <= w[0].energy * (1.0 + 1e-12),
+                "n={n}: energy rose {} -> {}",
+                w[0].energy,
+                w[1].energy
+            );
+        }
+        let last = steps.last().unwrap();
+        assert!(
+            last.mean_offset < 0.01,
+            "n={n}: points are {} r_max from their centroids",
+            last.mean_offset
+        );
+        assert!(
+            pts.iter()
+                .all(|p| (0.0..1.0).contains(&p[0]) && (0.0..1.0).contains(&p[1]))
+        );
+    }
+}
+
+#[cfg(feature = "lloyd")]
+#[test]
+fn lloyd_separates_coincident_points() {
+    use strata::samplers::lloyd::relax;
+    let mut pts = vec![[0.25, 0.25]; 5];
+    pts.extend([[0.7, 0.1], [0.1, 0.8], [0.6, 0.6]]);
+    pts.push([0.6, 0.6]);
+    relax(&mut pts, 30).unwrap();
+    for i in 0..pts.len() {
+        for j in 0..i {
+            assert!(
+                torus_distance_squared(pts[i], pts[j]) > 1e-6,
+                "{i} and {j} still coincide: {:?}",
+                pts[i]
+            );
+        }
+    }
+    let mut single = vec![[0.3, 0.3]];
+    relax(&mut single, 3).unwrap();
+}
+
+#[test]
+fn ccvt_sites_own_equal_shares() {
+    let c = Ccvt::with_capacity(200, 200, 128).unwrap();
+    let r = c.optimize(5);
+    assert!(r.converged, "no stable state after {} passes", r.passes);
+    assert_eq!(r.points.len(), 200 * 128);
+    for w in r.energy.windows(2) {
+        assert!(w[1] <= w[0] + 1e-12, "energy rose {} -> {}", w[0], w[1]);
+    }
+    // The capacity constraint: each site's Voronoi region, estimated with independent
+    // uniform probes, holds about 1/N of the torus.
+    let grid = strata::grid::TorusGrid::from_points(r.sites.iter().copied());
+    let probes = 200_000u64;
+    let mut counts = vec![0u32; 200];
+    let mut h = 42u64;
+    for _ in 0..probes {
+        h = strata::hash::mix64(h);
+        let a = (h >> 11) as f64 / (1u64 << 53) as f64;
+        h = strata::hash::mix64(h);
+        let b = (h >> 11) as f64 / (1u64 << 53) as f64;
+        counts[grid.nearest([a, b], None).unwrap().0] += 1;
+    }
+    let mean = probes as f64 / 200.0;
+    let worst = counts
+        .iter()
+        .map(|&c| (c as f64 / mean - 1.0).abs())
+        .fold(0.0, f64::max);
+    // Binomial noise alone is about 3.5% per site here; random points' cells vary by 50%.
+    assert!(
+        worst < 0.25,
+        "a site's Voronoi area is off by {:.1}%",
+        worst * 100.0
+    );
+}
+
+#[test]
+fn blue_noise_sets_are_well_spaced() {
+    // Relative to r_max(N): random points get close to 0; these keep a real gap.
+    for (name, floor) in [
+        ("ccvt", 0.5),
+        ("best-candidate", 0.3),
+        ("poisson", 0.7),
+        ("bridson", 0.7),
+    ] {
+        if registry::find(name).is_err() {
+            continue;
+        }
+        let n = 256;
+        let pts = set(name, n, 4, None);
+        assert!(in_unit_square(&pts));
+        let d = min_distance(&pts) / relative_radius_max(n as usize);
+        assert!(d >= floor, "{name}: minimum distance {d} r_max");
+    }
+    #[cfg(feature = "lloyd")]
+    {
+        let pts = set("lloyd", 256, 4, None);
+        assert!(min_distance(&pts) / relative_radius_max(256) > 0.5);
+    }
+}
+
+#[test]
+fn best_candidate_is_progressive() {
+    let mut p = Params::new(1);
+    p.candidates = Some(2);
+    let mut s = registry::build("best-candidate", &p).unwrap();
+    let pts = common::take(s.as_mut(), 512);
+    for m in [16usize, 64, 256, 512] {
+        let d = min_distance(&pts[..m]) / relative_radius_max(m);
+        assert!(d > 0.3, "prefix {m}: minimum distance {d} r_max");
+    }
+}
+
+#[test]
+fn iteration_counts_are_checked() {
+    assert!(Ccvt::new(100, 0).is_err());
+    assert!(Ccvt::new(100, 1_000_000).is_err());
+    assert!(Ccvt::new(0, 10).is_err());
+    assert!(Ccvt::new(1 << 20, 10).is_err());
+    #[cfg(feature = "lloyd")]
+    {
+        assert!(strata::samplers::Lloyd::new(100, 1_000_000).is_err());
+        assert!(strata::samplers::Lloyd::new(0, 10).is_err());
+    }
+    let mut p = Params::new(100);
+    p.iterations = Some(5);
+    assert!(
+        registry::build("poisson", &p).is_err(),
+        "poisson takes no iterations"
+    );
+}
