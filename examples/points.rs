@@ -14,6 +14,7 @@ use std::process::ExitCode;
 use common::{
     CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_open_float, parse_pair, string_value,
 };
+use strata::pixel::{PixelSampler, Sequence};
 use strata::registry::{self, Params};
 
 const USAGE: &str = "points --sampler NAME -n N [--seed S] [--dims D] [--pixel X,Y] [--radius RHO] \
@@ -143,26 +144,57 @@ fn main() -> ExitCode {
             ))
         })?;
         let entry = registry::find(&name)?;
-        if args.dims != 2 {
-            return Err(cli_error(format!(
-                "--dims {}: {name} has 2-dimensional points only (--dims 2); no registered sampler has \
-                 D-dimensional points yet",
-                args.dims
-            )));
-        }
-        if args.pixel.is_some() {
-            return Err(cli_error(
-                "--pixel: the path-tracer adapter is not part of this build yet; omit --pixel to print the raw sequence",
-            ));
-        }
         let mut params = args.params.clone();
         params.count = n;
-        let mut sampler = entry.build(&params)?;
-        let mut points = vec![glam::Vec2::ZERO; n as usize];
-        sampler.fill(&mut points);
+        let dims = args.dims as usize;
+        // rows of `dims` values, point-major
+        let mut values = vec![0f32; n as usize * dims];
+        let mut grids = Vec::new();
+        if let Some((px, py)) = args.pixel {
+            let sequence = Sequence::by_name(&name)?;
+            let spp = u32::try_from(n)
+                .map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
+            let mut sampler = PixelSampler::new(sequence, spp, args.params.seed)?;
+            for (index, row) in values.chunks_exact_mut(dims).enumerate() {
+                sampler.start_pixel_sample([px as u32, py as u32], index as u64, 0);
+                let mut d = 0;
+                while d < dims {
+                    if dims - d >= 2 {
+                        let v = if d == 0 {
+                            sampler.get_pixel_2d()
+                        } else {
+                            sampler.get_2d()
+                        };
+                        row[d] = v.x;
+                        row[d + 1] = v.y;
+                        d += 2;
+                    } else {
+                        row[d] = sampler.get_1d();
+                        d += 1;
+                    }
+                }
+            }
+        } else if dims == 2 {
+            let mut sampler = entry.build(&params)?;
+            let mut points = vec![glam::Vec2::ZERO; n as usize];
+            sampler.fill(&mut points);
+            for (row, p) in values.chunks_exact_mut(2).zip(&points) {
+                row[0] = p.x;
+                row[1] = p.y;
+            }
+            grids = sampler.strata(n);
+        } else {
+            let mut sampler = entry.build_nd(&params, args.dims as u32)?;
+            sampler.fill(&mut values);
+        }
 
         if let Some(path) = &args.png {
-            let canvas = strata::io::draw_points(&points, &sampler.strata(n), 640);
+            // the projection on the first two dimensions (the first one twice for D = 1)
+            let points: Vec<glam::Vec2> = values
+                .chunks_exact(dims)
+                .map(|r| glam::Vec2::new(r[0], r[if dims > 1 { 1 } else { 0 }]))
+                .collect();
+            let canvas = strata::io::draw_points(&points, &grids, 640);
             strata::io::write_png(path, &canvas)?;
         }
 
@@ -170,10 +202,23 @@ fn main() -> ExitCode {
         let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
         let result = (|| -> std::io::Result<()> {
             if args.header {
-                writeln!(out, "x,y")?;
+                if dims == 2 {
+                    writeln!(out, "x,y")?;
+                } else {
+                    let names: Vec<String> = (0..dims).map(|d| format!("x{d}")).collect();
+                    writeln!(out, "{}", names.join(","))?;
+                }
             }
-            for p in &points {
-                writeln!(out, "{},{}", p.x, p.y)?;
+            let mut line = String::new();
+            for row in values.chunks_exact(dims) {
+                line.clear();
+                for (d, v) in row.iter().enumerate() {
+                    if d > 0 {
+                        line.push(',');
+                    }
+                    line.push_str(&v.to_string());
+                }
+                writeln!(out, "{line}")?;
             }
             out.flush()
         })();

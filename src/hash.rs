@@ -75,6 +75,30 @@ pub const fn hash32(x: u32, key: u32) -> u32 {
     x ^ (x >> 16)
 }
 
+/// An Owen scramble in the bit-reversed domain: every output bit is the input bit flipped by a
+/// function of the *less* significant input bits and `seed`, which after reversing is a nested
+/// uniform (Owen) scramble: each digit flipped by a function of the digits above it. This is
+/// the hash of Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020) with Vegdahl's
+/// improved constants (as in pbrt-v4's fast Owen scrambler): multiplications by even
+/// constants, an addition and a multiplication by an odd number only carry upward. `seed`
+/// should be well mixed.
+#[inline]
+pub const fn owen_scramble_rev(mut n: u32, seed: u32) -> u32 {
+    n ^= n.wrapping_mul(0x3d20_adea);
+    n = n.wrapping_add(seed);
+    n = n.wrapping_mul((seed >> 16) | 1);
+    n ^= n.wrapping_mul(0x0552_6c56);
+    n ^ n.wrapping_mul(0x53a2_2864)
+}
+
+/// The Owen scramble of a 32-bit fixed-point value (see [`owen_scramble_rev`]): the points of any
+/// aligned dyadic interval map to an aligned dyadic interval of the same size, so the scramble
+/// keeps every (t,m,s)-net property of a point set while randomizing it.
+#[inline]
+pub const fn owen_scramble(x: u32, seed: u32) -> u32 {
+    owen_scramble_rev(x.reverse_bits(), seed).reverse_bits()
+}
+
 /// A 32-bit key derived from a 64-bit one (for [`permute`], whose key is 32 bits).
 #[inline]
 pub const fn key32(key: u64) -> u32 {
@@ -351,6 +375,29 @@ mod tests {
                     let dm = DivMod::new(l).unwrap();
                     assert_eq!(Permutation::with_divider(&dm, p), perm);
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn owen_scramble_is_a_bijection_that_keeps_aligned_intervals() {
+        for seed in [1u32, 0x9e37_79b9, u32::MAX] {
+            let s = hash32(seed, 7);
+            // values sharing their top k bits keep sharing their top k bits
+            for k in [1u32, 4, 10, 20] {
+                for base in [0u32, 0x1234_5678, 0xfedc_ba98] {
+                    let top = |v: u32| v >> (32 - k);
+                    let a = owen_scramble(base, s);
+                    let b = owen_scramble(base ^ ((1 << (32 - k)) - 1), s);
+                    assert_eq!(top(a), top(b), "k={k}");
+                }
+            }
+            // a bijection on 12-bit prefixes
+            let mut seen = vec![false; 1 << 12];
+            for v in 0..1u32 << 12 {
+                let w = owen_scramble(v << 20, s) >> 20;
+                assert!(!seen[w as usize]);
+                seen[w as usize] = true;
             }
         }
     }

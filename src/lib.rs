@@ -41,6 +41,11 @@
 //! | `best-candidate` | progressive | farthest of `k n` candidates | Mitchell 1991 |
 //! | `lloyd` | fixed, any `N` | Lloyd relaxation to a centroidal Voronoi tessellation | Lloyd 1982 |
 //! | `ccvt` | fixed, any `N` | capacity-constrained Voronoi tessellation | Balzer, Schlömer, Deussen 2009 |
+//! | `sobol` | progressive | (0,m,2)-nets in dims 0-1, Owen-scrambled; up to 1000 dims | Sobol' 1967; Joe, Kuo 2008; Burley 2020 |
+//! | `halton` | progressive | prime-base radical inverses, Owen-scrambled digits; 1000 dims | Halton 1960 |
+//!
+//! [`pixel`] is the path-tracer adapter: values by (pixel, sample index, dimension), padded and
+//! decorrelated per pixel and dimension, allocation-free.
 //!
 //! Every sampler implements [`Sampler`]; [`registry`] builds them by name.
 //!
@@ -66,6 +71,7 @@
 //! * `spectrum` (default): power spectra and point-set measures ([`spectrum`]).
 //! * `io` (default): PNG, EXR and CSV output and plots ([`io`]).
 //! * `lloyd` (default): Lloyd relaxation on the periodic Voronoi diagram (`spade`).
+//! * `joe-kuo` (default): Joe and Kuo's Sobol' direction numbers for 1000 dimensions.
 //!
 //! With `default-features = false` the crate depends only on `rand`, `rand_pcg` and `glam`.
 
@@ -77,6 +83,7 @@ pub mod hash;
 #[cfg(feature = "io")]
 pub mod io;
 pub mod occupancy;
+pub mod pixel;
 pub mod registry;
 pub mod sampler;
 pub mod samplers;
@@ -89,4 +96,4 @@ pub use error::{Error, Result};
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
-pub use sampler::{Point2, Progression, Sampler, StrataGrid};
+pub use sampler::{Point2, Progression, Sampler, SamplerNd, StrataGrid};

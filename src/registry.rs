@@ -13,7 +13,7 @@
 use std::fmt;
 
 use crate::error::{Error, Result};
-use crate::sampler::Sampler;
+use crate::sampler::{Point2, Progression, Sampler, SamplerNd};
 use crate::samplers;
 
 /// An optional parameter a sampler may take (beyond the count and the seed).
@@ -154,6 +154,9 @@ impl Params {
     }
 }
 
+/// Builds a D-dimensional sampler from the parameters and `D`.
+type NdBuilder = fn(&Params, u32) -> Result<Box<dyn SamplerNd>>;
+
 /// A registered sampler: its name, what it is, and how to build it.
 pub struct Entry {
     /// The name (`--sampler NAME`).
@@ -169,6 +172,8 @@ pub struct Entry {
     /// True when generating a set takes long (relaxation, optimisation): tools use fewer
     /// realizations by default.
     pub expensive: bool,
+    /// The D-dimensional constructor, for samplers that have more than 2 dimensions.
+    nd: Option<NdBuilder>,
     build: fn(&Params) -> Result<Box<dyn Sampler>>,
 }
 
@@ -218,6 +223,68 @@ impl Entry {
         }
         (self.build)(params)
     }
+
+    /// True when the sampler has points of more than 2 dimensions.
+    pub fn has_dimensions(&self) -> bool {
+        self.nd.is_some()
+    }
+
+    /// Builds the D-dimensional sampler: the sampler's own for those that have one, the 2D
+    /// sampler itself for `D = 2`; otherwise an error naming the samplers that have D dims.
+    pub fn build_nd(&self, params: &Params, dims: u32) -> Result<Box<dyn SamplerNd>> {
+        if dims == 0 || dims > crate::samplers::MAX_DIMENSIONS {
+            return Err(Error::parameter(
+                self.name,
+                "dims",
+                dims,
+                format!("1 to {} dimensions", crate::samplers::MAX_DIMENSIONS),
+            ));
+        }
+        match self.nd {
+            Some(build) => {
+                self.build(params)?; // validates the common parameters the same way
+                build(params, dims)
+            }
+            None if dims == 2 => Ok(Box::new(TwoDimensional(self.build(params)?))),
+            None => {
+                let takers: Vec<&str> = ENTRIES
+                    .iter()
+                    .filter(|e| e.nd.is_some())
+                    .map(|e| e.name)
+                    .collect();
+                Err(Error::parameter(
+                    self.name,
+                    "dims",
+                    dims,
+                    format!(
+                        "{} has 2-dimensional points only; samplers with D dimensions: {}",
+                        self.name,
+                        takers.join(", ")
+                    ),
+                ))
+            }
+        }
+    }
+}
+
+/// A 2D sampler seen as a D-dimensional one with `D = 2`.
+struct TwoDimensional(Box<dyn Sampler>);
+
+impl SamplerNd for TwoDimensional {
+    fn name(&self) -> &'static str {
+        self.0.name()
+    }
+    fn dimensions(&self) -> u32 {
+        2
+    }
+    fn progression(&self) -> Progression {
+        self.0.progression()
+    }
+    fn next_point(&mut self, out: &mut [f32]) {
+        let p: Point2 = self.0.next_sample();
+        out[0] = p.x;
+        out[1] = p.y;
+    }
 }
 
 static ENTRIES: &[Entry] = &[
@@ -228,6 +295,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[],
         expensive: false,
+        nd: Some(|p, d| Ok(Box::new(samplers::RandomNd::new(d, p.seed)?))),
         build: |p| Ok(Box::new(samplers::Random::new(p.seed))),
     },
     Entry {
@@ -237,6 +305,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Square,
         parameters: &[],
         expensive: false,
+        nd: None,
         build: |p| Ok(Box::new(samplers::Regular::new(p.count)?)),
     },
     Entry {
@@ -246,6 +315,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Square,
         parameters: &[],
         expensive: false,
+        nd: None,
         build: |p| Ok(Box::new(samplers::Jittered::new(p.count, p.seed)?)),
     },
     Entry {
@@ -255,6 +325,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[],
         expensive: false,
+        nd: None,
         build: |p| Ok(Box::new(samplers::NRooks::new(p.count, p.seed)?)),
     },
     Entry {
@@ -264,6 +335,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Square,
         parameters: &[],
         expensive: false,
+        nd: None,
         build: |p| Ok(Box::new(samplers::MultiJittered::new(p.count, p.seed)?)),
     },
     Entry {
@@ -273,6 +345,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[],
         expensive: false,
+        nd: None,
         build: |p| Ok(Box::new(samplers::Cmj::new(p.count, p.seed)?)),
     },
     Entry {
@@ -282,6 +355,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[],
         expensive: false,
+        nd: None,
         build: |p| Ok(Box::new(samplers::Pmj::new(p.seed))),
     },
     Entry {
@@ -291,6 +365,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[Parameter::Candidates],
         expensive: false,
+        nd: None,
         build: |p| {
             let k = p.candidates.unwrap_or(samplers::pmj::DEFAULT_CANDIDATES);
             Ok(Box::new(samplers::Pmj::pmjbn(p.seed, k)?))
@@ -303,6 +378,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[],
         expensive: false,
+        nd: None,
         build: |p| Ok(Box::new(samplers::Pmj::pmj02(p.seed))),
     },
     Entry {
@@ -312,6 +388,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[Parameter::Candidates],
         expensive: false,
+        nd: None,
         build: |p| {
             let k = p.candidates.unwrap_or(samplers::pmj::DEFAULT_CANDIDATES);
             Ok(Box::new(samplers::Pmj::pmj02bn(p.seed, k)?))
@@ -324,6 +401,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[],
         expensive: false,
+        nd: None,
         build: |p| Ok(Box::new(samplers::Pmj02Stochastic::new(p.seed))),
     },
     Entry {
@@ -333,6 +411,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[Parameter::Radius],
         expensive: false,
+        nd: None,
         build: |p| {
             let rho = p.radius.unwrap_or(samplers::poisson::DEFAULT_RHO);
             Ok(Box::new(samplers::PoissonDisk::new(
@@ -348,6 +427,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[Parameter::Radius],
         expensive: false,
+        nd: None,
         build: |p| {
             let rho = p.radius.unwrap_or(samplers::poisson::DEFAULT_RHO);
             Ok(Box::new(samplers::BridsonDisk::new(
@@ -363,6 +443,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[Parameter::Candidates],
         expensive: true,
+        nd: None,
         build: |p| {
             let k = p
                 .candidates
@@ -378,6 +459,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[Parameter::Iterations],
         expensive: true,
+        nd: None,
         build: |p| {
             let k = p.iterations.unwrap_or(samplers::lloyd::DEFAULT_ITERATIONS);
             Ok(Box::new(samplers::LloydSets::new(
@@ -393,6 +475,7 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[Parameter::Iterations],
         expensive: true,
+        nd: None,
         build: |p| {
             let k = p.iterations.unwrap_or(samplers::ccvt::DEFAULT_ITERATIONS);
             Ok(Box::new(samplers::CcvtSets::new(
@@ -400,6 +483,26 @@ static ENTRIES: &[Entry] = &[
                 p.seed,
             )?))
         },
+    },
+    Entry {
+        name: "sobol",
+        description: "Sobol' (Joe-Kuo directions), Owen-scrambled by hashing, progressive, any --dims, Burley 2020",
+        progressive: true,
+        counts: CountRule::Any,
+        parameters: &[],
+        expensive: false,
+        nd: Some(|p, d| Ok(Box::new(samplers::SobolNd::new(d, p.seed)?))),
+        build: |p| Ok(Box::new(samplers::Sobol::new(p.seed))),
+    },
+    Entry {
+        name: "halton",
+        description: "Halton, Owen-scrambled digits, progressive, any --dims up to 1000, Halton 1960",
+        progressive: true,
+        counts: CountRule::Any,
+        parameters: &[],
+        expensive: false,
+        nd: Some(|p, d| Ok(Box::new(samplers::HaltonNd::new(d, p.seed)?))),
+        build: |p| Ok(Box::new(samplers::Halton::new(p.seed))),
     },
 ];
 
@@ -422,6 +525,11 @@ pub fn find(name: &str) -> Result<&'static Entry> {
             name: name.to_string(),
             known: names(),
         })
+}
+
+/// Builds the D-dimensional sampler registered under `name` (see [`Entry::build_nd`]).
+pub fn build_nd(name: &str, params: &Params, dims: u32) -> Result<Box<dyn SamplerNd>> {
+    find(name)?.build_nd(params, dims)
 }
 
 /// Builds the sampler registered under `name` (see [`Entry::build`]).

@@ -269,6 +269,49 @@ pub trait Sampler: Send {
     }
 }
 
+/// A source of `D`-dimensional sample points in `[0,1)^D`, beside the 2D [`Sampler`]: the same
+/// seeding, the same errors, the same float rules, the same progressive / fixed-count
+/// organisation.
+///
+/// ```
+/// use strata::registry::{self, Params};
+/// let mut s = registry::build_nd("sobol", &Params::new(16), 5)?;
+/// let mut p = [0.0f32; 5];
+/// s.next_point(&mut p);
+/// assert!(p.iter().all(|&v| (0.0..1.0).contains(&v)));
+/// # Ok::<(), strata::Error>(())
+/// ```
+pub trait SamplerNd: Send {
+    /// The registered name.
+    fn name(&self) -> &'static str;
+
+    /// `D`: the number of coordinates per point.
+    fn dimensions(&self) -> u32;
+
+    /// Progressive, or fixed-count and for which count.
+    fn progression(&self) -> Progression;
+
+    /// Writes the next point into `out[..D]` (`out` must hold at least `D` values).
+    fn next_point(&mut self, out: &mut [f32]);
+
+    /// Fills `out` (a multiple of `D` values) with consecutive points, point-major.
+    fn fill(&mut self, out: &mut [f32]) {
+        let d = self.dimensions() as usize;
+        for chunk in out.chunks_exact_mut(d) {
+            self.next_point(chunk);
+        }
+    }
+}
+
+impl std::fmt::Debug for dyn SamplerNd {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SamplerNd")
+            .field("name", &self.name())
+            .field("dimensions", &self.dimensions())
+            .finish()
+    }
+}
+
 impl std::fmt::Debug for dyn Sampler {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Sampler")

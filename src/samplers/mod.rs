@@ -14,6 +14,8 @@
 //! | `best-candidate` | [`BestCandidate`] | progressive | see [`best_candidate`] | Mitchell 1991 |
 //! | `lloyd` | `LloydSets` | fixed, any `N` | Lloyd relaxation (feature `lloyd`) | Lloyd 1982 |
 //! | `ccvt` | [`CcvtSets`] | fixed, any `N` | see [`ccvt`] | Balzer et al. 2009 |
+//! | `sobol` | [`Sobol`], [`SobolNd`] | progressive | see [`sobol`] | Sobol' 1967, Burley 2020 |
+//! | `halton` | [`Halton`], [`HaltonNd`] | progressive | see [`halton`] | Halton 1960 |
 //!
 //! Fixed-count samplers share one piece of machinery: a cursor that walks through blocks of
 //! `N` samples and gives each block its own key, `stream_seed(seed, block)`. Every point is a
@@ -22,6 +24,7 @@
 
 pub mod best_candidate;
 pub mod ccvt;
+pub mod halton;
 mod jittered;
 mod latin;
 #[cfg(feature = "lloyd")]
@@ -31,9 +34,11 @@ pub mod pmj;
 pub mod poisson;
 mod random;
 mod regular;
+pub mod sobol;
 
 pub use best_candidate::BestCandidate;
 pub use ccvt::{Ccvt, CcvtSets};
+pub use halton::{Halton, HaltonNd};
 pub use jittered::Jittered;
 pub use latin::NRooks;
 #[cfg(feature = "lloyd")]
@@ -41,8 +46,9 @@ pub use lloyd::{Lloyd, LloydSets};
 pub use multijitter::{Cmj, MultiJittered};
 pub use pmj::{Pmj, Pmj02Stochastic};
 pub use poisson::{Bridson, BridsonDisk, DartThrowing, PoissonDisk};
-pub use random::Random;
+pub use random::{Random, RandomNd};
 pub use regular::Regular;
+pub use sobol::{Sobol, SobolNd};
 
 use crate::error::{Error, Result};
 use crate::hash::stream_seed;
@@ -51,6 +57,10 @@ use crate::hash::stream_seed;
 /// `m n` fine strata of a multi-jittered grid, stay 32-bit). Far beyond what a set built in
 /// advance is useful for; progressive samplers go further.
 pub const MAX_FIXED_COUNT: u64 = 1 << 31;
+
+/// The most dimensions a D-dimensional sampler accepts (more than any integrand needs; the
+/// limit bounds allocations sized by `D`).
+pub const MAX_DIMENSIONS: u32 = 1 << 16;
 
 /// Where a fixed-count sampler is in its stream: which block, which sample inside it.
 #[derive(Clone, Debug)]

@@ -10,7 +10,7 @@ use rand::Rng;
 use rand_pcg::Pcg32;
 
 use crate::hash::stream_seed;
-use crate::sampler::{Point2, Progression, Sampler, unit_f32_from_u32};
+use crate::sampler::{Point2, Progression, Sampler, SamplerNd, unit_f32_from_u32};
 
 /// Independent uniform points in `[0,1)^2` (progressive: every prefix is an i.i.d. sample).
 ///
@@ -53,6 +53,52 @@ impl Sampler for Random {
     fn fill(&mut self, out: &mut [Point2]) {
         for p in out {
             *p = self.next_sample();
+        }
+    }
+}
+
+/// Independent uniform points in `[0,1)^D` (progressive).
+#[derive(Clone, Debug)]
+pub struct RandomNd {
+    dims: u32,
+    rng: Pcg32,
+}
+
+impl RandomNd {
+    /// `dims >= 1` dimensions seeded by `seed` (the first two coordinates of each point are
+    /// those of [`Random`] with the same seed only for `dims = 2`).
+    pub fn new(dims: u32, seed: u64) -> crate::Result<Self> {
+        if dims == 0 || dims > super::MAX_DIMENSIONS {
+            return Err(crate::Error::parameter(
+                "random",
+                "dims",
+                dims,
+                format!("1 to {}", super::MAX_DIMENSIONS),
+            ));
+        }
+        Ok(RandomNd {
+            dims,
+            rng: Pcg32::new(stream_seed(seed, 0), stream_seed(seed, 1)),
+        })
+    }
+}
+
+impl SamplerNd for RandomNd {
+    fn name(&self) -> &'static str {
+        "random"
+    }
+
+    fn dimensions(&self) -> u32 {
+        self.dims
+    }
+
+    fn progression(&self) -> Progression {
+        Progression::Progressive
+    }
+
+    fn next_point(&mut self, out: &mut [f32]) {
+        for o in out.iter_mut().take(self.dims as usize) {
+            *o = unit_f32_from_u32(self.rng.next_u32());
         }
     }
 }

@@ -1,0 +1,85 @@
+//! The path-tracer adapter: time per 2D value (`get_2d`) for random, padded jittered, pmj02 and
+//! Sobol', against the `sobol_burley` crate (Owen-scrambled Sobol', the peer) in the same run.
+//!
+//! Each iteration renders a 32 x 32 "image": for every pixel and sample index (16 spp) it starts
+//! the pixel sample and draws four 2D values (dimensions 0-7), as a path tracer would.
+//! `cargo bench --bench pixel`; `python3 tools/criterion_table.py pixel sobol_burley-sample`.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use strata::pixel::{PixelSampler, Sequence};
+
+const SIDE: u32 = 32;
+const SPP: u32 = 16;
+const PAIRS: u32 = 4;
+
+fn pixel(c: &mut Criterion) {
+    let values = (SIDE * SIDE * SPP * PAIRS) as u64;
+    let mut group = c.benchmark_group("pixel/get_2d");
+    group.throughput(Throughput::Elements(values));
+    group
+        .sample_size(30)
+        .measurement_time(Duration::from_secs(3));
+    for name in ["random", "jittered", "pmj02", "sobol"] {
+        let mut s = PixelSampler::new(Sequence::by_name(name).unwrap(), SPP, 1).unwrap();
+        group.bench_function(BenchmarkId::from_parameter(name), |b| {
+            b.iter(|| {
+                let mut acc = 0.0f32;
+                for y in 0..SIDE {
+                    for x in 0..SIDE {
+                        for i in 0..SPP as u64 {
+                            s.start_pixel_sample([x, y], i, 0);
+                            for _ in 0..PAIRS {
+                                let v = s.get_2d();
+                                acc += v.x + v.y;
+                            }
+                        }
+                    }
+                }
+                black_box(acc)
+            })
+        });
+    }
+    // The peer: one seed per pixel (its own decorrelation), dimensions 0..7 of its padded
+    // Sobol'. `sample` is its scalar path (two calls per 2D value); `sample_4d` its SIMD path.
+    group.bench_function(BenchmarkId::from_parameter("sobol_burley-sample"), |b| {
+        b.iter(|| {
+            let mut acc = 0.0f32;
+            for y in 0..SIDE {
+                for x in 0..SIDE {
+                    let seed = y * SIDE + x;
+                    for i in 0..SPP {
+                        for d in 0..PAIRS {
+                            acc += sobol_burley::sample(i, 2 * d, seed)
+                                + sobol_burley::sample(i, 2 * d + 1, seed);
+                        }
+                    }
+                }
+            }
+            black_box(acc)
+        })
+    });
+    group.bench_function(BenchmarkId::from_parameter("sobol_burley-sample_4d"), |b| {
+        b.iter(|| {
+            let mut acc = 0.0f32;
+            for y in 0..SIDE {
+                for x in 0..SIDE {
+                    let seed = y * SIDE + x;
+                    for i in 0..SPP {
+                        for set in 0..PAIRS / 2 {
+                            let v = sobol_burley::sample_4d(i, set, seed);
+                            acc += v[0] + v[1] + v[2] + v[3];
+                        }
+                    }
+                }
+            }
+            black_box(acc)
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, pixel);
+criterion_main!(benches);

@@ -1,0 +1,381 @@
+//! Sobol' sequences, Owen-scrambled by hashing.
+//!
+//! * Sobol', "On the distribution of points in a cube and the approximate evaluation of
+//!   integrals" (1967): dimension `d` of point `i` is `C_d bits(i)` over GF(2), a (t,s)-sequence
+//!   in base 2. Dimension 0 is van der Corput (`C` the identity), dimension 1 uses the
+//!   polynomial `x + 1` (`C` the Pascal matrix mod 2); together they form a (0,2)-sequence, so
+//!   every prefix and aligned block of `2^m` points is a (0,m,2)-net.
+//! * Direction numbers for dimensions 2.. are Joe and Kuo's `new-joe-kuo-6` (S. Joe and F. Y.
+//!   Kuo, "Constructing Sobol sequences with better two-dimensional projections", SIAM J. Sci.
+//!   Comput. 30, 2008; BSD-3-Clause, Copyright (c) 2008 Frances Y. Kuo and Stephen Joe), read
+//!   from the `sobol` crate's copy of the table (feature `joe-kuo`, 1000 dimensions). The lean
+//!   build has dimensions 0 and 1.
+//! * Randomization: Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020). The index is
+//!   shuffled by an Owen scramble of its bits (aligned blocks of `2^m` indices map to aligned
+//!   blocks, so prefixes stay nets) and each dimension's value is Owen-scrambled with its own
+//!   seed ([`crate::hash::owen_scramble`]): unbiased, decorrelated across seeds, nets kept.
+//!
+//! Evaluation is direct (no running state): indices up to `2^32 - 1`, any order, in O(1) by
+//! four 256-entry tables per dimension (one per byte of the index).
+
+use std::sync::OnceLock;
+
+use crate::error::{Error, Result};
+use crate::hash::{hash32, owen_scramble_rev, stream_seed};
+use crate::sampler::{Point2, Progression, Sampler, SamplerNd, StrataGrid, unit_f32_from_u32};
+
+/// Direction vectors of one dimension: column `k` (for index bit `k`) as a 32-bit fixed-point
+/// value, most significant bit first.
+type Matrix = [u32; 32];
+
+/// The generator matrices of dimensions 0 and 1, computed.
+fn first_two() -> [Matrix; 2] {
+    let mut vdc = [0u32; 32];
+    let mut pascal = [0u32; 32];
+    for k in 0..32 {
+        vdc[k] = 1 << (31 - k);
+        // Pascal mod 2: column k has bit (31 - r) set for rows r <= k with binom(k, r) odd.
+        for r in 0..=k {
+            if (k & r) == r {
+                pascal[k] |= 1 << (31 - r);
+            }
+        }
+    }
+    [vdc, pascal]
+}
+
+/// The matrix of a dimension with primitive polynomial of degree `s`, inner coefficients `a`
+/// (bit `s - 1 - l` is `a_l`) and initial direction integers `m` (odd, `m_k < 2^k`), by the
+/// recurrence `V_k = V_{k-s} ^ (V_{k-s} >> s) ^ sum_{l=1}^{s-1} a_l V_{k-l}`.
+pub fn direction_matrix(s: usize, a: u32, m: &[u32]) -> [u32; 32] {
+    let mut v = [0u32; 33]; // 1-based
+    for k in 1..=32 {
+        if k <= s {
+            v[k] = m[k - 1] << (32 - k);
+        } else {
+            let mut x = v[k - s] ^ (v[k - s] >> s);
+            for l in 1..s {
+                if (a >> (s - 1 - l)) & 1 == 1 {
+                    x ^= v[k - l];
+                }
+            }
+            v[k] = x;
+        }
+    }
+    let mut out = [0u32; 32];
+    out.copy_from_slice(&v[1..]);
+    out
+}
+
+/// Per dimension, four 256-entry tables in the bit-reversed index domain: table `q` maps byte
+/// `q` of the reversed index to the XOR of the reversed direction vectors of its bits.
+struct Tables {
+    matrices: Vec<Matrix>,
+    bytes: Vec<[[u32; 256]; 4]>,
+}
+
+fn build(matrices: Vec<Matrix>) -> Tables {
+    let bytes = matrices
+        .iter()
+        .map(|m| {
+            let mut t = [[0u32; 256]; 4];
+            for (q, table) in t.iter_mut().enumerate() {
+                for (v, entry) in table.iter_mut().enumerate() {
+                    let mut x = 0u32;
+                    for j in 0..8 {
+                        if (v >> j) & 1 == 1 {
+                            // reversed-index bit 8q + j is index bit 31 - (8q + j)
+                            x ^= m[31 - (8 * q + j)].reverse_bits();
+                        }
+                    }
+                    *entry = x;
+                }
+            }
+            t
+        })
+        .collect();
+    Tables { matrices, bytes }
+}
+
+fn tables() -> &'static Tables {
+    static TABLES: OnceLock<Tables> = OnceLock::new();
+    TABLES.get_or_init(|| {
+        #[cfg_attr(not(feature = "joe-kuo"), allow(unused_mut))]
+        let mut matrices: Vec<Matrix> = first_two().to_vec();
+        #[cfg(feature = "joe-kuo")]
+        {
+            // Row d of the file (d >= 2) is our dimension d - 1; dimension 1 (x + 1) is already there.
+            let params = sobol::params::JoeKuoD6::standard();
+            for dim in params.dim_params.iter().skip(1) {
+                matrices.push(direction_matrix(dim.m.len(), dim.a, &dim.m));
+            }
+        }
+        build(matrices)
+    })
+}
+
+/// The number of Sobol' dimensions available (1000 with the `joe-kuo` feature, else 2).
+pub fn max_dimensions() -> u32 {
+    tables().matrices.len() as u32
+}
+
+/// The generator matrix of dimension `dim` (columns for index bits 0..32, MSB-first values).
+pub fn matrix(dim: u32) -> Option<[u32; 32]> {
+    tables().matrices.get(dim as usize).copied()
+}
+
+/// Point `index` of dimension `dim` of the plain (unscrambled) Sobol' sequence, 32-bit fixed
+/// point; `None` past [`max_dimensions`].
+pub fn sobol_u32(index: u32, dim: u32) -> Option<u32> {
+    let t = tables().bytes.get(dim as usize)?;
+    Some(lookup(t, index.reverse_bits()).reverse_bits())
+}
+
+#[inline]
+fn lookup(t: &[[u32; 256]; 4], i_rev: u32) -> u32 {
+    t[0][(i_rev & 0xff) as usize]
+        ^ t[1][((i_rev >> 8) & 0xff) as usize]
+        ^ t[2][((i_rev >> 16) & 0xff) as usize]
+        ^ t[3][(i_rev >> 24) as usize]
+}
+
+/// Seeds of one scrambled copy of the sequence: the index shuffle and one value scramble per
+/// dimension are hashed from it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Scramble {
+    shuffle: u32,
+    key: u32,
+}
+
+impl Scramble {
+    /// The scramble for a 64-bit seed.
+    pub fn new(seed: u64) -> Self {
+        let s = stream_seed(seed, 0x50b0);
+        Scramble {
+            shuffle: hash32(s as u32, 0x79c6_8e4a),
+            key: (s >> 32) as u32,
+        }
+    }
+
+    /// The scramble for a value that is already well mixed (a hash): no further mixing.
+    #[inline]
+    pub fn from_mixed(mixed: u64) -> Self {
+        Scramble {
+            shuffle: mixed as u32,
+            key: (mixed >> 32) as u32,
+        }
+    }
+
+    /// The value-scramble seed of dimension `dim`.
+    #[inline]
+    fn dim_seed(&self, dim: u32) -> u32 {
+        hash32(dim, self.key)
+    }
+
+    /// The shuffled index, in the bit-reversed domain.
+    #[inline]
+    fn index_rev(&self, index: u32) -> u32 {
+        owen_scramble_rev(index.reverse_bits(), self.shuffle)
+    }
+
+    /// Dimensions `dim` and `dim + 1` of point `index`, as 32-bit fixed point (`dim + 1` must
+    /// exist).
+    #[inline]
+    pub fn sample2_u32(&self, index: u32, dim: u32) -> [u32; 2] {
+        let t = &tables().bytes;
+        let i = self.index_rev(index);
+        let (a, b) = (&t[dim as usize], &t[dim as usize + 1]);
+        [
+            owen_scramble_rev(lookup(a, i), self.dim_seed(dim)).reverse_bits(),
+            owen_scramble_rev(lookup(b, i), self.dim_seed(dim + 1)).reverse_bits(),
+        ]
+    }
+
+    /// Dimensions 0 and 1 of point `index` with value seeds taken straight from the scramble's
+    /// bits (no per-dimension hashing): the path-tracer adapter's fast path. Not the same values
+    /// as [`sample2_u32`](Scramble::sample2_u32)`(index, 0)`.
+    #[inline]
+    pub fn sample01_u32(&self, index: u32) -> [u32; 2] {
+        let t = &tables().bytes;
+        let i = self.index_rev(index);
+        let s1 = self.key.rotate_left(16) ^ self.shuffle.wrapping_mul(0x9e37_79b9);
+        [
+            owen_scramble_rev(lookup(&t[0], i), self.key).reverse_bits(),
+            owen_scramble_rev(lookup(&t[1], i), s1).reverse_bits(),
+        ]
+    }
+
+    /// Dimension `dim` of point `index`, as 32-bit fixed point (`dim < max_dimensions()`).
+    #[inline]
+    pub fn sample_u32(&self, index: u32, dim: u32) -> u32 {
+        let t = &tables().bytes[dim as usize];
+        owen_scramble_rev(lookup(t, self.index_rev(index)), self.dim_seed(dim)).reverse_bits()
+    }
+}
+
+/// The scrambled Sobol' sequence in 2D (dimensions 0 and 1: a (0,2)-sequence), progressive.
+///
+/// ```
+/// use strata::{Sampler, samplers::Sobol};
+/// let mut s = Sobol::new(7);
+/// let pts: Vec<_> = (0..4).map(|_| s.next_sample()).collect();
+/// // the first 4 points: one in each quadrant
+/// let mut q: Vec<_> = pts.iter().map(|p| (p.x >= 0.5, p.y >= 0.5)).collect();
+/// q.sort();
+/// q.dedup();
+/// assert_eq!(q.len(), 4);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Sobol {
+    seed: u64,
+    epoch: u64,
+    scramble: Scramble,
+    next: u64,
+}
+
+impl Sobol {
+    /// The sequence for `seed`.
+    pub fn new(seed: u64) -> Self {
+        Sobol {
+            seed,
+            epoch: 0,
+            scramble: Scramble::new(seed),
+            next: 0,
+        }
+    }
+
+    /// Point `index` (2D), without changing the stream position.
+    pub fn sample(&self, index: u32) -> Point2 {
+        let [x, y] = self.scramble.sample2_u32(index, 0);
+        Point2::new(unit_f32_from_u32(x), unit_f32_from_u32(y))
+    }
+}
+
+/// Advances a progressive 32-bit sequence, starting a new epoch (re-seeded) every `2^32`.
+fn advance(next: &mut u64, epoch: &mut u64, seed: u64, scramble: &mut Scramble) -> u32 {
+    if *next == 1 << 32 {
+        *epoch += 1;
+        *next = 0;
+        *scramble = Scramble::new(stream_seed(seed, *epoch));
+    }
+    let i = *next as u32;
+    *next += 1;
+    i
+}
+
+impl Sampler for Sobol {
+    fn name(&self) -> &'static str {
+        "sobol"
+    }
+
+    fn progression(&self) -> Progression {
+        Progression::Progressive
+    }
+
+    fn next_sample(&mut self) -> Point2 {
+        let i = advance(
+            &mut self.next,
+            &mut self.epoch,
+            self.seed,
+            &mut self.scramble,
+        );
+        self.sample(i)
+    }
+
+    fn strata(&self, n: u64) -> Vec<StrataGrid> {
+        super::pmj::pmj_grids(n, true)
+    }
+}
+
+/// The scrambled Sobol' sequence in `D` dimensions, progressive.
+#[derive(Clone, Debug)]
+pub struct SobolNd {
+    seed: u64,
+    epoch: u64,
+    dims: u32,
+    scramble: Scramble,
+    next: u64,
+}
+
+impl SobolNd {
+    /// `dims` dimensions (1 to [`max_dimensions`]) seeded by `seed`.
+    pub fn new(dims: u32, seed: u64) -> Result<Self> {
+        let max = max_dimensions();
+        if dims == 0 || dims > max {
+            let why = if cfg!(feature = "joe-kuo") {
+                ""
+            } else {
+                " (enable the `joe-kuo` feature for 1000)"
+            };
+            return Err(Error::parameter(
+                "sobol",
+                "dims",
+                dims,
+                format!("1 to {max}{why}"),
+            ));
+        }
+        Ok(SobolNd {
+            seed,
+            epoch: 0,
+            dims,
+            scramble: Scramble::new(seed),
+            next: 0,
+        })
+    }
+}
+
+impl SamplerNd for SobolNd {
+    fn name(&self) -> &'static str {
+        "sobol"
+    }
+
+    fn dimensions(&self) -> u32 {
+        self.dims
+    }
+
+    fn progression(&self) -> Progression {
+        Progression::Progressive
+    }
+
+    fn next_point(&mut self, out: &mut [f32]) {
+        let i = advance(
+            &mut self.next,
+            &mut self.epoch,
+            self.seed,
+            &mut self.scramble,
+        );
+        for (d, o) in out.iter_mut().enumerate().take(self.dims as usize) {
+            *o = unit_f32_from_u32(self.scramble.sample_u32(i, d as u32));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn first_dimensions_are_van_der_corput_and_pascal() {
+        // van der Corput: 0, 1/2, 1/4, 3/4, ...
+        let v: Vec<u32> = (0..4).map(|i| sobol_u32(i, 0).unwrap()).collect();
+        assert_eq!(v, [0, 1 << 31, 1 << 30, 3 << 30]);
+        // dimension 1 is the recurrence with s = 1, a = 0, m = [1]
+        assert_eq!(matrix(1).unwrap(), direction_matrix(1, 0, &[1]));
+    }
+
+    #[test]
+    fn byte_tables_match_the_bit_loop() {
+        for dim in 0..max_dimensions().min(40) {
+            let m = matrix(dim).unwrap();
+            for i in [0u32, 1, 2, 3, 255, 256, 0x1234_5678, u32::MAX] {
+                let mut x = 0u32;
+                for (k, col) in m.iter().enumerate() {
+                    if (i >> k) & 1 == 1 {
+                        x ^= col;
+                    }
+                }
+                assert_eq!(sobol_u32(i, dim), Some(x), "dim {dim} index {i}");
+            }
+        }
+    }
+}

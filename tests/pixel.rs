@@ -1,0 +1,227 @@
+//! The path-tracer adapter: values in [0,1), order independence (pbrt-v4's revisit test),
+//! per-pixel stratification, padding decorrelation, index limits; and Sobol' direction
+//! numbers checked against an independent implementation.
+
+use strata::pixel::{PixelSampler, PixelSequence, Sequence};
+
+fn all() -> Vec<Sequence> {
+    Sequence::NAMES
+        .iter()
+        .map(|n| Sequence::by_name(n).unwrap())
+        .collect()
+}
+
+#[test]
+fn values_stay_in_the_unit_interval_everywhere() {
+    for seq in all() {
+        let s = PixelSampler::new(seq.clone(), 16, u64::MAX).unwrap();
+        for pixel in [[0u32, 0], [u32::MAX, u32::MAX], [12345, 0]] {
+            for index in [
+                0u64,
+                1,
+                15,
+                16,
+                65535,
+                65536,
+                (1 << 32) - 1,
+                1 << 32,
+                u64::MAX,
+            ] {
+                for dim in [0u32, 1, 2, 7, 1000, u32::MAX - 1] {
+                    let v = s.sample_2d(pixel, index, dim);
+                    let w = s.sample(pixel, index, dim);
+                    for x in [v.x, v.y, w] {
+                        assert!(
+                            (0.0..1.0).contains(&x),
+                            "{}: {x} at {pixel:?} {index} {dim}",
+                            seq.name()
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn revisiting_a_pixel_in_any_order_gives_the_same_bits() {
+    for seq in all() {
+        let mut s = PixelSampler::new(seq.clone(), 16, 3).unwrap();
+        let draw = |s: &mut PixelSampler, i: u64| {
+            s.start_pixel_sample([1, 5], i, 0);
+            let mut v = Vec::new();
+            for _ in 0..4 {
+                let a = s.get_2d();
+                v.extend([a.x.to_bits(), a.y.to_bits(), s.get_1d().to_bits()]);
+            }
+            v
+        };
+        let forward: Vec<Vec<u32>> = (0..16).map(|i| draw(&mut s, i)).collect();
+        // another pixel in between, then the samples in reverse order, from a clone
+        s.start_pixel_sample([0, 6], 10, 0);
+        let _ = (s.get_2d(), s.get_1d());
+        let mut t = s.clone();
+        for i in (0..16).rev() {
+            assert_eq!(
+                draw(&mut t, i),
+                forward[i as usize],
+                "{}: sample {i}",
+                seq.name()
+            );
+        }
+        // and the stateless form agrees with get_2d / get_1d
+        t.start_pixel_sample([1, 5], 9, 0);
+        let a = t.get_2d();
+        let b = t.get_1d();
+        assert_eq!(t.sample_2d([1, 5], 9, 0), a);
+        assert_eq!(t.sample([1, 5], 9, 2), b);
+    }
+}
+
+/// Whether `pts` (2^m points) is a (0,m,2)-net.
+fn is_net(pts: &[glam::Vec2]) -> bool {
+    let m = pts.len().trailing_zeros();
+    (0..=m).all(|a| {
+        let mut cells = vec![0u8; pts.len()];
+        for p in pts {
+            let cx = (p.x as f64 * (1u64 << a) as f64) as usize;
+            let cy = (p.y as f64 * (1u64 << (m - a)) as f64) as usize;
+            cells[(cy << a) | cx] += 1;
+        }
+        cells.iter().all(|&c| c == 1)
+    })
+}
+
+#[test]
+fn each_pixel_gets_a_stratified_set_in_every_dimension_pair() {
+    for name in ["pmj02", "sobol"] {
+        for spp in [4u32, 16, 64, 256] {
+            let s = PixelSampler::new(Sequence::by_name(name).unwrap(), spp, 11).unwrap();
+            for pixel in [[0u32, 0], [7, 3], [1000, 999]] {
+                for dim in [0u32, 2, 9] {
+                    let pts: Vec<_> = (0..spp as u64)
+                        .map(|i| s.sample_2d(pixel, i, dim))
+                        .collect();
+                    assert!(
+                        is_net(&pts),
+                        "{name}: pixel {pixel:?} dim {dim} spp {spp} is not a (0,m,2)-net"
+                    );
+                }
+            }
+        }
+    }
+    // jittered: one point per cell of s x s
+    let s = PixelSampler::new(Sequence::jittered(), 49, 2).unwrap();
+    for dim in [0u32, 4] {
+        let mut cells = [0u8; 49];
+        for i in 0..49u64 {
+            let p = s.sample_2d([3, 4], i, dim);
+            cells[(p.y * 7.0) as usize * 7 + (p.x * 7.0) as usize] += 1;
+        }
+        assert!(cells.iter().all(|&c| c == 1), "jittered dim {dim}");
+    }
+}
+
+#[test]
+fn dimension_pairs_and_pixels_are_decorrelated() {
+    // If padding were broken (one copy for all dimensions), x of pair (0,1) and x of pair
+    // (2,3) would be perfectly correlated; independent copies give correlations near 0.
+    for seq in all() {
+        let s = PixelSampler::new(seq.clone(), 16, 5).unwrap();
+        let (mut sum, mut n) = (0.0f64, 0);
+        for p in 0..400u32 {
+            let xs: Vec<f64> = (0..16)
+                .map(|i| s.sample_2d([p, 0], i, 0).x as f64)
+                .collect();
+            let ys: Vec<f64> = (0..16)
+                .map(|i| s.sample_2d([p, 0], i, 2).x as f64)
+                .collect();
+            let (mx, my) = (xs.iter().sum::<f64>() / 16.0, ys.iter().sum::<f64>() / 16.0);
+            let cov: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+            let vx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
+            let vy: f64 = ys.iter().map(|y| (y - my).powi(2)).sum();
+            sum += cov / (vx * vy).sqrt();
+            n += 1;
+        }
+        let mean = sum / n as f64;
+        assert!(mean.abs() < 0.05, "{}: mean correlation {mean}", seq.name());
+        // different pixels get different values
+        assert_ne!(
+            s.sample_2d([0, 0], 0, 0),
+            s.sample_2d([1, 0], 0, 0),
+            "{}",
+            seq.name()
+        );
+    }
+}
+
+#[test]
+fn indices_past_two_to_the_32_start_a_fresh_copy() {
+    for seq in all() {
+        let s = PixelSampler::new(seq.clone(), 16, 1).unwrap();
+        let a = s.sample_2d([2, 2], 3, 0);
+        let b = s.sample_2d([2, 2], (1 << 32) + 3, 0);
+        assert_ne!(a, b, "{}", seq.name());
+        assert_eq!(b, s.sample_2d([2, 2], (1 << 32) + 3, 0));
+    }
+}
+
+#[test]
+fn bad_counts_are_refused() {
+    let e = PixelSampler::new(Sequence::jittered(), 10, 1).unwrap_err();
+    assert!(e.to_string().contains("9 or 16"), "{e}");
+    assert!(PixelSampler::new(Sequence::sobol(), 0, 1).is_err());
+    assert!(
+        Sequence::by_name("cmj")
+            .unwrap_err()
+            .to_string()
+            .contains("sobol")
+    );
+    let s = PixelSampler::new(Sequence::pmj02(), 10, 1).unwrap();
+    assert_eq!(s.round_count(10), 16);
+    assert_eq!(
+        PixelSampler::new(Sequence::jittered(), 9, 1)
+            .unwrap()
+            .round_count(10),
+        16
+    );
+}
+
+#[test]
+fn the_adapter_is_cheap_to_clone_and_thread_safe() {
+    fn send_sync<T: Send + Sync + Clone>() {}
+    send_sync::<PixelSampler>();
+    let s = PixelSampler::new(Sequence::pmj02(), 16, 1).unwrap();
+    let clones: Vec<_> = (0..8).map(|_| s.clone()).collect();
+    std::thread::scope(|scope| {
+        for c in clones {
+            scope.spawn(move || {
+                assert_eq!(
+                    c.sample_2d([1, 1], 1, 0),
+                    PixelSampler::new(Sequence::pmj02(), 16, 1)
+                        .unwrap()
+                        .sample_2d([1, 1], 1, 0)
+                );
+            });
+        }
+    });
+}
+
+#[cfg(feature = "joe-kuo")]
+#[test]
+fn sobol_direction_numbers_match_an_independent_implementation() {
+    // sobol_burley builds its tables from the same Joe-Kuo file with its own code; its
+    // `sobol_rev` is the plain (unscrambled) Sobol' value in bit-reversed form.
+    use strata::samplers::sobol::{max_dimensions, sobol_u32};
+    assert_eq!(max_dimensions(), 1000);
+    for dim in 0..256u32 {
+        for i in (0u32..1 << 16).step_by(251).chain([1, 2, 3, 65535]) {
+            let theirs = sobol_burley::parts::sobol_rev(i.reverse_bits(), dim).reverse_bits();
+            assert_eq!(
+                sobol_u32(i, dim),
+                Some(theirs),
+                "dimension {dim}, index {i}"
+            );
+        }
+    }
+}
