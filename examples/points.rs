@@ -189,12 +189,18 @@ fn main() -> ExitCode {
         }
 
         if let Some(path) = &args.png {
-            // the projection on the first two dimensions (the first one twice for D = 1)
-            let points: Vec<glam::Vec2> = values
-                .chunks_exact(dims)
-                .map(|r| glam::Vec2::new(r[0], r[if dims > 1 { 1 } else { 0 }]))
-                .collect();
-            let canvas = strata::io::draw_points(&points, &grids, 640);
+            let canvas = if dims > 2 {
+                // the matrix of all 2D projections
+                let tile = (900 / dims as u32).clamp(48, 200);
+                strata::io::draw_projections(&values, dims, tile)
+            } else {
+                // the points (the first dimension twice for D = 1)
+                let points: Vec<glam::Vec2> = values
+                    .chunks_exact(dims)
+                    .map(|r| glam::Vec2::new(r[0], r[dims - 1]))
+                    .collect();
+                strata::io::draw_points(&points, &grids, 640)
+            };
             strata::io::write_png(path, &canvas)?;
         }
 

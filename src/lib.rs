@@ -43,6 +43,10 @@
 //! | `ccvt` | fixed, any `N` | capacity-constrained Voronoi tessellation | Balzer, Schlömer, Deussen 2009 |
 //! | `sobol` | progressive | (0,m,2)-nets in dims 0-1, Owen-scrambled; up to 1000 dims | Sobol' 1967; Joe, Kuo 2008; Burley 2020 |
 //! | `halton` | progressive | prime-base radical inverses, Owen-scrambled digits; 1000 dims | Halton 1960 |
+//! | `latin` | fixed, any `N` | D-dim Latin hypercube: every 1D projection stratified | McKay et al. 1979 |
+//! | `uncorrelated` | fixed `s^2` | jittered 2D pairs combined in random orders | Cook 1986 |
+//! | `oa-bose` | fixed `q^2` | every 2D projection on `q x q`, every 1D into `N` | Jarosz et al. 2019 |
+//! | `oa-bush` | fixed `q^t` | every t-D projection on `q^t`, every 1D into `N` | Jarosz et al. 2019 |
 //!
 //! [`pixel`] is the path-tracer adapter: values by (pixel, sample index, dimension), padded and
 //! decorrelated per pixel and dimension, allocation-free.

@@ -50,6 +50,8 @@ pub enum CountRule {
     Any,
     /// Perfect squares `s^2`.
     Square,
+    /// `q^t` for a prime `q` or a prime power `q <= 256` (orthogonal arrays of strength `t`).
+    OaPower(u32),
 }
 
 impl CountRule {
@@ -58,6 +60,7 @@ impl CountRule {
         match self {
             CountRule::Any => n >= 1,
             CountRule::Square => n >= 1 && n.isqrt().pow(2) == n,
+            CountRule::OaPower(t) => oa_root(n, *t).is_some(),
         }
     }
 
@@ -70,6 +73,10 @@ impl CountRule {
                 let r = n.isqrt();
                 let (lo, hi) = (r * r, (r + 1) * (r + 1));
                 if lo >= 1 && n - lo <= hi - n { lo } else { hi }
+            }
+            CountRule::OaPower(_) => {
+                let all = self.counts_between(1, n.saturating_mul(4).max(1 << 12));
+                all.into_iter().min_by_key(|&c| c.abs_diff(n)).unwrap_or(4)
             }
         }
     }
@@ -86,6 +93,11 @@ impl CountRule {
                 };
                 (lo..=max.isqrt()).map(|s| s * s).collect()
             }
+            CountRule::OaPower(t) => (2u64..)
+                .map_while(|q| q.checked_pow(*t).filter(|&c| c <= max).map(|c| (q, c)))
+                .filter(|&(q, c)| c >= min && crate::samplers::oa::supported_symbols(q as u32))
+                .map(|(_, c)| c)
+                .collect(),
         }
     }
 }
@@ -95,7 +107,32 @@ impl fmt::Display for CountRule {
         match self {
             CountRule::Any => f.write_str("any N >= 1"),
             CountRule::Square => f.write_str("perfect squares"),
+            CountRule::OaPower(t) => write!(f, "q^{t}, q prime (power)"),
         }
+    }
+}
+
+/// `q` when `n = q^t` with a supported number of symbols `q`.
+fn oa_root(n: u64, t: u32) -> Option<u64> {
+    let q = (n as f64).powf(1.0 / t as f64).round() as u64;
+    (q >= 2 && q.checked_pow(t) == Some(n) && crate::samplers::oa::supported_symbols(q as u32))
+        .then_some(q)
+}
+
+/// A D-dimensional sampler used as a 2D one (its first two dimensions).
+struct FirstTwo(Box<dyn SamplerNd>);
+
+impl Sampler for FirstTwo {
+    fn name(&self) -> &'static str {
+        self.0.name()
+    }
+    fn progression(&self) -> Progression {
+        self.0.progression()
+    }
+    fn next_sample(&mut self) -> Point2 {
+        let mut p = [0.0f32; 2];
+        self.0.next_point(&mut p);
+        Point2::new(p[0], p[1])
     }
 }
 
@@ -503,6 +540,76 @@ static ENTRIES: &[Entry] = &[
         expensive: false,
         nd: Some(|p, d| Ok(Box::new(samplers::HaltonNd::new(d, p.seed)?))),
         build: |p| Ok(Box::new(samplers::Halton::new(p.seed))),
+    },
+    Entry {
+        name: "latin",
+        description: "Latin hypercube in D dimensions (--dims D): one point per 1/N stratum of every axis, McKay et al. 1979",
+        progressive: false,
+        counts: CountRule::Any,
+        parameters: &[],
+        expensive: false,
+        nd: Some(|p, d| Ok(Box::new(samplers::LatinHypercube::new(p.count, d, p.seed)?))),
+        build: |p| {
+            Ok(Box::new(FirstTwo(Box::new(samplers::LatinHypercube::new(
+                p.count, 2, p.seed,
+            )?))))
+        },
+    },
+    Entry {
+        name: "uncorrelated",
+        description: "uncorrelated jitter: jittered pairs (0,1), (2,3), ... in random orders (N = s^2), Cook 1986",
+        progressive: false,
+        counts: CountRule::Square,
+        parameters: &[],
+        expensive: false,
+        nd: Some(|p, d| {
+            Ok(Box::new(samplers::UncorrelatedJitter::new(
+                p.count, d, p.seed,
+            )?))
+        }),
+        build: |p| {
+            Ok(Box::new(FirstTwo(Box::new(
+                samplers::UncorrelatedJitter::new(p.count, 2, p.seed)?,
+            ))))
+        },
+    },
+    Entry {
+        name: "oa-bose",
+        description: "orthogonal array, strength 2 (N = q^2, up to q+1 dims), multi-jittered, Jarosz et al. 2019",
+        progressive: false,
+        counts: CountRule::OaPower(2),
+        parameters: &[],
+        expensive: false,
+        nd: Some(|p, d| Ok(Box::new(samplers::Bose::new(p.count, d, p.seed)?))),
+        build: |p| {
+            Ok(Box::new(FirstTwo(Box::new(samplers::Bose::new(
+                p.count, 2, p.seed,
+            )?))))
+        },
+    },
+    Entry {
+        name: "oa-bush",
+        description: "orthogonal array, strength T (--strength T, default 3; N = q^T, up to q dims), multi-jittered, Jarosz et al. 2019",
+        progressive: false,
+        counts: CountRule::OaPower(3),
+        parameters: &[Parameter::Strength],
+        expensive: false,
+        nd: Some(|p, d| {
+            Ok(Box::new(samplers::Bush::new(
+                p.count,
+                p.strength.unwrap_or(3),
+                d,
+                p.seed,
+            )?))
+        }),
+        build: |p| {
+            Ok(Box::new(FirstTwo(Box::new(samplers::Bush::new(
+                p.count,
+                p.strength.unwrap_or(3),
+                2,
+                p.seed,
+            )?))))
+        },
     },
 ];
 

@@ -34,7 +34,7 @@ fn every_sampler_stays_in_the_unit_square() {
 #[test]
 fn same_seed_same_bits_other_seed_other_bits() {
     for entry in registry::entries() {
-        let n = 64;
+        let n = entry.counts.nearest(64);
         let run = |seed| {
             let mut s = entry.build(&Params::new(n).seed(seed)).unwrap();
             take(s.as_mut(), 2 * n as usize)
@@ -178,7 +178,7 @@ fn registry_errors_say_what_is_allowed() {
 #[test]
 fn samplers_report_their_progression() {
     for entry in registry::entries() {
-        let s = entry.build(&Params::new(16)).unwrap();
+        let s = entry.build(&Params::new(entry.counts.nearest(16))).unwrap();
         assert_eq!(
             s.progression().is_progressive(),
             entry.progressive,

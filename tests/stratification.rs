@@ -128,8 +128,9 @@ fn fixed_count_blocks_are_independent_sets() {
 
 #[test]
 fn fill_equals_repeated_next_sample_across_block_edges() {
-    for name in strata::registry::names() {
-        let params = strata::registry::Params::new(9).seed(4);
+    for entry in strata::registry::entries() {
+        let name = entry.name;
+        let params = strata::registry::Params::new(entry.counts.nearest(9)).seed(4);
         let mut a = strata::registry::build(name, &params).unwrap();
         let mut b = strata::registry::build(name, &params).unwrap();
         let bulk = take(a.as_mut(), 31);

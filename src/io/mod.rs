@@ -84,6 +84,39 @@ pub fn draw_points(points: &[Point2], grids: &[StrataGrid], size: u32) -> Canvas
 }
 
 #[cfg(feature = "spectrum")]
+/// Draws the 2D projections of a `dims`-dimensional point set (`values` point-major) as a
+/// `dims x dims` matrix of `tile`-pixel scatter plots: tile (row `i`, column `j`) plots
+/// dimension `j` across against dimension `i` up; the diagonal shows each 1D projection as
+/// ticks along a line.
+pub fn draw_projections(values: &[f32], dims: usize, tile: u32) -> Canvas {
+    let gap = 4u32;
+    let side = dims as u32 * (tile + gap) + gap;
+    let mut canvas = Canvas::new(side, side, Rgb::grey(235));
+    let n = values.len() / dims.max(1);
+    let radius = (tile as f32 / (n.max(1) as f32).sqrt() * 0.16).clamp(0.7, 3.0);
+    for i in 0..dims {
+        for j in 0..dims {
+            let mut t = Canvas::new(tile, tile, Rgb::WHITE);
+            let s = tile as f32;
+            for p in values.chunks_exact(dims) {
+                if i == j {
+                    let x = (p[j] * s) as i64;
+                    for y in (tile as i64 / 2 - 6)..(tile as i64 / 2 + 6) {
+                        t.blend(x, y, Rgb::new(20, 40, 120), 0.35);
+                    }
+                } else {
+                    t.disc(p[j] * s, (1.0 - p[i]) * s, radius, Rgb::new(20, 40, 120));
+                }
+            }
+            t.frame(Rgb::grey(150));
+            let x0 = (gap + j as u32 * (tile + gap)) as i64;
+            let y0 = (gap + i as u32 * (tile + gap)) as i64;
+            canvas.paste(&t, x0, y0);
+        }
+    }
+    canvas
+}
+
 /// The log-scale range of [`draw_spectrum`]: `P` from `10^LOW` (black) to `10^HIGH` (white), so
 /// white noise (`P = 1`) is a mid grey and every picture shares one scale.
 pub const SPECTRUM_LOG_RANGE: (f64, f64) = (-2.0, 1.0);

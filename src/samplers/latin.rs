@@ -6,8 +6,10 @@
 //! stratified for any `N`, but 2D can show large gaps; its spectrum has the dark cross along the
 //! axes (low power at `u = 0` or `v = 0`) and is white elsewhere.
 
-use super::{BlockCursor, check_count, fixed_count_sampler};
-use crate::hash::{Permutation, hash_u64, key32};
+use super::{
+    BlockCursor, MAX_DIMENSIONS, check_count, fixed_count_sampler, fixed_count_sampler_nd,
+};
+use crate::hash::{Permutation, hash_u64, key32, stream_seed};
 use crate::sampler::{Point2, Strata, StrataGrid};
 
 /// N-rooks (2D Latin hypercube): any `N >= 1`, one point per `1/N` column and per `1/N` row.
@@ -85,3 +87,68 @@ impl NRooks {
 }
 
 fixed_count_sampler!(NRooks, "nrooks");
+
+/// Latin hypercube sampling in `D` dimensions (McKay, Beckman, Conover 1979; Shirley 1991): any
+/// `N >= 1`, each coordinate a jittered set of `N` strata, the coordinates paired by independent
+/// hashed permutations; every 1D projection has one point per `1/N` stratum.
+///
+/// ```
+/// use strata::{SamplerNd, samplers::LatinHypercube};
+/// let mut s = LatinHypercube::new(10, 4, 1).unwrap();
+/// let mut p = [0.0f32; 4];
+/// s.next_point(&mut p);
+/// assert!(p.iter().all(|&x| (0.0..1.0).contains(&x)));
+/// ```
+#[derive(Clone, Debug)]
+pub struct LatinHypercube {
+    count: u32,
+    dims: u32,
+    strata: Strata,
+    perms: Vec<Permutation>,
+    key: u64,
+    cursor: BlockCursor,
+}
+
+impl LatinHypercube {
+    /// Sets of `count >= 1` points in `dims` (1 to [`MAX_DIMENSIONS`]) dimensions.
+    pub fn new(count: u64, dims: u32, seed: u64) -> crate::Result<Self> {
+        let n = check_count("latin", count)?;
+        if dims == 0 || dims > MAX_DIMENSIONS {
+            return Err(crate::Error::parameter(
+                "latin",
+                "dims",
+                dims,
+                format!("1 to {MAX_DIMENSIONS}"),
+            ));
+        }
+        Ok(LatinHypercube {
+            count: n,
+            dims,
+            strata: Strata::new(n as u64),
+            perms: Vec::new(),
+            key: 0,
+            cursor: BlockCursor::new(seed, n),
+        })
+    }
+
+    /// Points per set.
+    pub fn count(&self) -> u32 {
+        self.count
+    }
+
+    fn begin_block(&mut self, key: u64) {
+        self.key = key;
+        self.perms = (0..self.dims as u64)
+            .map(|d| Permutation::new(self.count, key32(stream_seed(key, d))).expect("n >= 1"))
+            .collect();
+    }
+
+    fn point(&self, i: u32, out: &mut [f32]) {
+        for (d, (o, perm)) in out.iter_mut().zip(&self.perms).enumerate() {
+            let h = hash_u64(self.key, (i as u64) << 16 | d as u64);
+            *o = self.strata.place(perm.apply(i), h as u32);
+        }
+    }
+}
+
+fixed_count_sampler_nd!(LatinHypercube, "latin");

@@ -16,6 +16,9 @@
 //! | `ccvt` | [`CcvtSets`] | fixed, any `N` | see [`ccvt`] | Balzer et al. 2009 |
 //! | `sobol` | [`Sobol`], [`SobolNd`] | progressive | see [`sobol`] | Sobol' 1967, Burley 2020 |
 //! | `halton` | [`Halton`], [`HaltonNd`] | progressive | see [`halton`] | Halton 1960 |
+//! | `latin` | [`LatinHypercube`] | fixed, any `N`, D dims | every 1D projection | McKay et al. 1979 |
+//! | `uncorrelated` | [`UncorrelatedJitter`] | fixed `s^2`, D dims | jittered pairs | Cook 1986 |
+//! | `oa-bose`, `oa-bush` | [`Bose`], [`Bush`] | fixed `q^t`, D dims | see [`oa`] | Jarosz et al. 2019 |
 //!
 //! Fixed-count samplers share one piece of machinery: a cursor that walks through blocks of
 //! `N` samples and gives each block its own key, `stream_seed(seed, block)`. Every point is a
@@ -30,25 +33,29 @@ mod latin;
 #[cfg(feature = "lloyd")]
 pub mod lloyd;
 mod multijitter;
+pub mod oa;
 pub mod pmj;
 pub mod poisson;
 mod random;
 mod regular;
 pub mod sobol;
+mod uncorrelated;
 
 pub use best_candidate::BestCandidate;
 pub use ccvt::{Ccvt, CcvtSets};
 pub use halton::{Halton, HaltonNd};
 pub use jittered::Jittered;
-pub use latin::NRooks;
+pub use latin::{LatinHypercube, NRooks};
 #[cfg(feature = "lloyd")]
 pub use lloyd::{Lloyd, LloydSets};
 pub use multijitter::{Cmj, MultiJittered};
+pub use oa::{Bose, Bush};
 pub use pmj::{Pmj, Pmj02Stochastic};
 pub use poisson::{Bridson, BridsonDisk, DartThrowing, PoissonDisk};
 pub use random::{Random, RandomNd};
 pub use regular::Regular;
 pub use sobol::{Sobol, SobolNd};
+pub use uncorrelated::UncorrelatedJitter;
 
 use crate::error::{Error, Result};
 use crate::hash::stream_seed;
@@ -320,3 +327,33 @@ impl<G: SetGenerator> crate::Sampler for Sets<G> {
         }
     }
 }
+
+/// Implements [`SamplerNd`] for a fixed-count D-dimensional sampler struct with fields
+/// `cursor: BlockCursor`, `dims: u32` and methods `count()`, `begin_block(key)`,
+/// `point(i, out)`.
+macro_rules! fixed_count_sampler_nd {
+    ($ty:ty, $name:literal) => {
+        impl $crate::SamplerNd for $ty {
+            fn name(&self) -> &'static str {
+                $name
+            }
+            fn dimensions(&self) -> u32 {
+                self.dims
+            }
+            fn progression(&self) -> $crate::Progression {
+                $crate::Progression::FixedCount {
+                    count: self.count() as u64,
+                }
+            }
+            fn next_point(&mut self, out: &mut [f32]) {
+                if self.cursor.at_block_start() {
+                    let key = self.cursor.block_key();
+                    self.begin_block(key);
+                }
+                self.point(self.cursor.position().0, out);
+                self.cursor.advance(1);
+            }
+        }
+    };
+}
+pub(crate) use fixed_count_sampler_nd;

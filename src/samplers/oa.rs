@@ -1,0 +1,428 @@
+//! Orthogonal-array sampling: Jarosz, Enayet, Kensler, Kilpatrick, Christensen, "Orthogonal
+//! Array Sampling for Monte Carlo Rendering" (EGSR 2019).
+//!
+//! An orthogonal array OA(N, D, q, t) is an `N x D` table over `q` symbols in which every `t`
+//! columns contain each of the `q^t` symbol combinations exactly once. Read each row as a sample
+//! and each symbol as a stratum of `[0,1)`, and every `t`-dimensional projection is jittered on
+//! the `q^t` grid, for any number of dimensions `D` up to the construction's limit: the answer
+//! to the curse of dimensionality for the projections that matter.
+//!
+//! * [`Bose`] (Bose 1938): strength 2, `N = q^2`, up to `q + 1` dimensions; row `i = a0 + q a1`
+//!   has columns `a0`, `a1` and `a0 + j a1` for the field elements `j != 0`.
+//! * [`Bush`] (Bush 1952): strength `t`, `N = q^t`, up to `q` dimensions; the `t` base-`q` digits
+//!   of `i` are the coefficients of a polynomial, evaluated at the field element `j` for column
+//!   `j`.
+//!
+//! `q` is a prime or a prime power (`q <= 256` for powers, with Galois-field arithmetic from
+//! tables built at construction: `GF(p^n)` is polynomials over `GF(p)` modulo the first monic
+//! irreducible polynomial of degree `n`). Strata are shuffled per dimension with Kensler's
+//! [`Permutation`]; inside its stratum each coordinate takes a *multi-jittered* sub-stratum so
+//! that every 1D projection is also stratified into `N` strata: for Bose the sub-stratum is a
+//! permutation of a partner column (two columns of a strength-2 array pair every symbol with
+//! every other, so the `q` samples of a stratum get distinct sub-strata); for Bush it is a
+//! permutation of `i / q`, the index without its lowest digit (for fixed high digits the column
+//! is a bijection of the lowest one). Everything is computed sample by sample, as in the paper.
+
+use super::{BlockCursor, MAX_FIXED_COUNT, fixed_count_sampler_nd};
+use crate::error::{Error, Result};
+use crate::hash::{DivMod, Permutation, hash_u64, hash32, key32, stream_seed};
+use crate::sampler::Strata;
+
+/// The largest prime power (not prime) supported as the number of symbols.
+pub const MAX_PRIME_POWER: u32 = 256;
+
+/// A finite field `GF(q)`: arithmetic modulo a prime, or tables for a prime power.
+#[derive(Clone, Debug)]
+pub struct Field {
+    q: u32,
+    /// For prime powers: `q x q` addition and multiplication tables.
+    add: Vec<u16>,
+    mul: Vec<u16>,
+}
+
+/// `(p, n)` when `q = p^n` with `p` prime, `n >= 1`.
+pub fn prime_power(q: u32) -> Option<(u32, u32)> {
+    if q < 2 {
+        return None;
+    }
+    let p = (2..=q).find(|&d| q.is_multiple_of(d))?;
+    let (mut m, mut n) = (q, 0);
+    while m.is_multiple_of(p) {
+        m /= p;
+        n += 1;
+    }
+    (m == 1).then_some((p, n))
+}
+
+impl Field {
+    /// `GF(q)`: `q` prime (any size), or a prime power up to [`MAX_PRIME_POWER`].
+    pub fn new(q: u32) -> Option<Self> {
+        let (p, n) = prime_power(q)?;
+        if n == 1 {
+            return Some(Field {
+                q,
+                add: Vec::new(),
+                mul: Vec::new(),
+            });
+        }
+        if q > MAX_PRIME_POWER {
+            return None;
+        }
+        // polynomials over GF(p) as base-p digit vectors (coefficient k = digit k)
+        let digits = |mut v: u32| -> Vec<u32> {
+            (0..n)
+                .map(|_| {
+                    let d = v % p;
+                    v /= p;
+                    d
+                })
+                .collect()
+        };
+        let value = |c: &[u32]| c.iter().rev().fold(0u32, |acc, &d| acc * p + d);
+        let poly_mod = |a: &[u32], m: &[u32]| -> Vec<u32> {
+            // remainder of a (any degree) modulo the monic m (degree m.len() - 1)
+            let mut r = a.to_vec();
+            let dm = m.len() - 1;
+            while r.len() > dm {
+                let lead = *r.last().expect("non-empty");
+                let shift = r.len() - 1 - dm;
+                for (k, &c) in m.iter().enumerate() {
+                    r[shift + k] = (r[shift + k] + p * p - (lead * c) % p) % p;
+                }
+                r.pop();
+            }
+            r
+        };
+        let poly_mul = |a: &[u32], b: &[u32]| -> Vec<u32> {
+            let mut r = vec![0u32; a.len() + b.len() - 1];
+            for (i, &x) in a.iter().enumerate() {
+                for (j, &y) in b.iter().enumerate() {
+                    r[i + j] = (r[i + j] + x * y) % p;
+                }
+            }
+            r
+        };
+        // the first monic irreducible of degree n: no monic factor of degree 1..=n/2
+        let monic = |coeffs: u32, degree: u32| -> Vec<u32> {
+            let mut c: Vec<u32> = (0..degree)
+                .map({
+                    let mut v = coeffs;
+                    move |_| {
+                        let d = v % p;
+                        v /= p;
+                        d
+                    }
+                })
+                .collect();
+            c.push(1);
+            c
+        };
+        let irreducible = (0..p.pow(n)).map(|c| monic(c, n)).find(|m| {
+            m[0] != 0
+                && (1..=n / 2).all(|d| {
+                    (0..p.pow(d)).all(|c| poly_mod(m, &monic(c, d)).iter().any(|&x| x != 0))
+                })
+        })?;
+        let (mut add, mut mul) = (vec![0u16; (q * q) as usize], vec![0u16; (q * q) as usize]);
+        for a in 0..q {
+            let da = digits(a);
+            for b in 0..q {
+                let db = digits(b);
+                let sum: Vec<u32> = da.iter().zip(&db).map(|(x, y)| (x + y) % p).collect();
+                add[(a * q + b) as usize] = value(&sum) as u16;
+                let mut prod = poly_mod(&poly_mul(&da, &db), &irreducible);
+                prod.resize(n as usize, 0);
+                mul[(a * q + b) as usize] = value(&prod) as u16;
+            }
+        }
+        Some(Field { q, add, mul })
+    }
+
+    /// The number of elements.
+    pub fn order(&self) -> u32 {
+        self.q
+    }
+
+    /// `a + b`.
+    #[inline]
+    pub fn add(&self, a: u32, b: u32) -> u32 {
+        if self.add.is_empty() {
+            let s = a + b;
+            if s >= self.q { s - self.q } else { s }
+        } else {
+            self.add[(a * self.q + b) as usize] as u32
+        }
+    }
+
+    /// `a b`.
+    #[inline]
+    pub fn mul(&self, a: u32, b: u32) -> u32 {
+        if self.mul.is_empty() {
+            ((a as u64 * b as u64) % self.q as u64) as u32
+        } else {
+            self.mul[(a * self.q + b) as usize] as u32
+        }
+    }
+}
+
+/// True when `q` is a supported number of symbols: a prime, or a prime power up to
+/// [`MAX_PRIME_POWER`].
+pub fn supported_symbols(q: u32) -> bool {
+    prime_power(q).is_some_and(|(_, n)| n == 1 || q <= MAX_PRIME_POWER)
+}
+
+/// The allowed symbol counts nearest to a requested sample count, for error messages: the
+/// supported `q` with `q^t` just below and above `count`.
+fn nearest_counts(count: u64, t: u32) -> String {
+    let supported = supported_symbols;
+    let root = (count as f64).powf(1.0 / t as f64);
+    let below = (2..=root.floor().max(2.0) as u32 + 1)
+        .rev()
+        .find(|&q| supported(q) && (q as u64).pow(t) <= count);
+    let above =
+        (root.ceil().max(2.0) as u32..).find(|&q| supported(q) && (q as u64).pow(t) >= count);
+    match (below, above) {
+        (Some(b), Some(a)) if b != a => format!(
+            "{} ({b}^{t}) or {} ({a}^{t})",
+            (b as u64).pow(t),
+            (a as u64).pow(t)
+        ),
+        (_, Some(a)) => format!("{} ({a}^{t})", (a as u64).pow(t)),
+        _ => "none".into(),
+    }
+}
+
+/// Checks `count = q^t` for a supported `q`, returning `q`.
+fn check_oa_count(name: &'static str, count: u64, t: u32) -> Result<u32> {
+    let q = (count as f64).powf(1.0 / t as f64).round() as u64;
+    let ok = (4..=MAX_FIXED_COUNT).contains(&count)
+        && q >= 2
+        && q.checked_pow(t) == Some(count)
+        && prime_power(q as u32).is_some_and(|(_, n)| n == 1 || q as u32 <= MAX_PRIME_POWER);
+    if !ok {
+        return Err(Error::count(
+            name,
+            count,
+            format!(
+                "the count must be q^{t} for a prime q, or a prime power q <= {MAX_PRIME_POWER}, at most {MAX_FIXED_COUNT} (nearest allowed: {})",
+                nearest_counts(count, t)
+            ),
+        ));
+    }
+    Ok(q as u32)
+}
+
+fn check_dims(name: &'static str, dims: u32, max: u32, why: &str) -> Result<()> {
+    if dims == 0 || dims > max {
+        return Err(Error::parameter(
+            name,
+            "dims",
+            dims,
+            format!("1 to {max} ({why})"),
+        ));
+    }
+    Ok(())
+}
+
+/// Per-block, per-dimension permutation keys.
+fn dim_keys(key: u64, dims: u32) -> Vec<(u32, u32)> {
+    (0..dims as u64)
+        .map(|j| {
+            let k = stream_seed(key, j);
+            (key32(k), key32(k ^ 0x5eed))
+        })
+        .collect()
+}
+
+/// Bose orthogonal-array sets: strength 2, `N = q^2`, up to `q + 1` dimensions.
+#[derive(Clone, Debug)]
+pub struct Bose {
+    field: Field,
+    q: DivMod,
+    dims: u32,
+    strata: Strata,
+    keys: Vec<(u32, u32)>,
+    key: u64,
+    cursor: BlockCursor,
+}
+
+impl Bose {
+    /// `count = q^2` samples in `dims` dimensions (`dims <= q + 1`), seeded by `seed`.
+    pub fn new(count: u64, dims: u32, seed: u64) -> Result<Self> {
+        let q = check_oa_count("oa-bose", count, 2)?;
+        check_dims(
+            "oa-bose",
+            dims,
+            q + 1,
+            "a Bose array has at most q + 1 columns",
+        )?;
+        let field = Field::new(q).expect("checked");
+        Ok(Bose {
+            field,
+            q: DivMod::new(q).expect("q >= 2"),
+            dims,
+            strata: Strata::new(count),
+            keys: Vec::new(),
+            key: 0,
+            cursor: BlockCursor::new(seed, count as u32),
+        })
+    }
+
+    /// Samples per set.
+    pub fn count(&self) -> u32 {
+        self.q.divisor() * self.q.divisor()
+    }
+
+    /// Symbol `j` of row `i`: `a0`, `a1`, then `a0 + (j - 1) a1`.
+    #[inline]
+    fn symbol(&self, j: u32, a0: u32, a1: u32) -> u32 {
+        match j {
+            0 => a0,
+            1 => a1,
+            _ => self.field.add(a0, self.field.mul(j - 1, a1)),
+        }
+    }
+
+    fn begin_block(&mut self, key: u64) {
+        self.key = key;
+        self.keys = dim_keys(key, self.dims);
+    }
+
+    fn point(&self, i: u32, out: &mut [f32]) {
+        let q = self.q.divisor();
+        let (a1, a0) = self.q.div_rem(i);
+        for (j, o) in out.iter_mut().enumerate().take(self.dims as usize) {
+            let j = j as u32;
+            let (ks, kb) = self.keys[j as usize];
+            let stratum = Permutation::new(q, ks)
+                .expect("q >= 2")
+                .apply(self.symbol(j, a0, a1));
+            // partner column: 1 for column 0, else 0
+            let partner = self.symbol(if j == 0 { 1 } else { 0 }, a0, a1);
+            let sub = Permutation::new(q, hash32(stratum, kb))
+                .expect("q >= 2")
+                .apply(partner);
+            let jitter = hash_u64(self.key, (i as u64) << 16 | j as u64) as u32;
+            *o = self.strata.place(stratum * q + sub, jitter);
+        }
+    }
+}
+
+/// Bush orthogonal-array sets: strength `t`, `N = q^t`, up to `q` dimensions.
+#[derive(Clone, Debug)]
+pub struct Bush {
+    field: Field,
+    q: DivMod,
+    t: u32,
+    dims: u32,
+    strata: Strata,
+    keys: Vec<(u32, u32)>,
+    key: u64,
+    cursor: BlockCursor,
+}
+
+impl Bush {
+    /// `count = q^strength` samples in `dims` dimensions (`dims <= q`), strength `>= 2`.
+    pub fn new(count: u64, strength: u32, dims: u32, seed: u64) -> Result<Self> {
+        if !(2..=16).contains(&strength) {
+            return Err(Error::parameter("oa-bush", "strength", strength, "2 to 16"));
+        }
+        let q = check_oa_count("oa-bush", count, strength)?;
+        check_dims("oa-bush", dims, q, "a Bush array has at most q columns")?;
+        Ok(Bush {
+            field: Field::new(q).expect("checked"),
+            q: DivMod::new(q).expect("q >= 2"),
+            t: strength,
+            dims,
+            strata: Strata::new(count),
+            keys: Vec::new(),
+            key: 0,
+            cursor: BlockCursor::new(seed, count as u32),
+        })
+    }
+
+    /// Samples per set.
+    pub fn count(&self) -> u32 {
+        self.q.divisor().pow(self.t)
+    }
+
+    fn begin_block(&mut self, key: u64) {
+        self.key = key;
+        self.keys = dim_keys(key, self.dims);
+    }
+
+    fn point(&self, i: u32, out: &mut [f32]) {
+        let q = self.q.divisor();
+        let sub_count = self.count() / q; // q^(t-1)
+        let (high, _) = self.q.div_rem(i); // i / q: the index without its lowest digit
+        let mut digits = [0u32; 16];
+        let mut v = i;
+        for d in digits.iter_mut().take(self.t as usize) {
+            let (rest, digit) = self.q.div_rem(v);
+            *d = digit;
+            v = rest;
+        }
+        for (j, o) in out.iter_mut().enumerate().take(self.dims as usize) {
+            let j = j as u32;
+            // Horner: sum_k d_k j^k
+            let mut phi = 0u32;
+            for k in (0..self.t as usize).rev() {
+                phi = self.field.add(self.field.mul(phi, j), digits[k]);
+            }
+            let (ks, kb) = self.keys[j as usize];
+            let stratum = Permutation::new(q, ks).expect("q >= 2").apply(phi);
+            let sub = Permutation::new(sub_count, kb)
+                .expect("q^(t-1) >= 1")
+                .apply(high);
+            let jitter = hash_u64(self.key, (i as u64) << 16 | j as u64) as u32;
+            *o = self.strata.place(stratum * sub_count + sub, jitter);
+        }
+    }
+}
+
+fixed_count_sampler_nd!(Bose, "oa-bose");
+fixed_count_sampler_nd!(Bush, "oa-bush");
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn galois_fields_are_fields() {
+        for q in [2u32, 3, 4, 5, 8, 9, 16, 25, 27, 49, 64, 81, 121, 125, 128] {
+            let f = Field::new(q).unwrap();
+            for a in 0..q {
+                // every nonzero element has an inverse; multiplication by a is a bijection
+                let mut seen = vec![false; q as usize];
+                for b in 0..q {
+                    seen[f.mul(a, b) as usize] = true;
+                    assert_eq!(f.add(a, b), f.add(b, a));
+                }
+                if a != 0 {
+                    assert!(seen.iter().all(|&s| s), "GF({q}): {a} has no inverse");
+                }
+            }
+            // distributivity on a sample of triples
+            for (a, b, c) in [(1, 2, 3), (q - 1, q / 2, 1), (2 % q, q - 1, q - 1)] {
+                assert_eq!(
+                    f.mul(a, f.add(b, c)),
+                    f.add(f.mul(a, b), f.mul(a, c)),
+                    "GF({q})"
+                );
+            }
+        }
+        assert!(Field::new(6).is_none());
+        assert!(Field::new(512).is_none());
+        assert!(Field::new(65521).is_some());
+    }
+
+    #[test]
+    fn count_errors_name_the_nearest_allowed() {
+        let e = check_oa_count("oa-bose", 100, 2).unwrap_err().to_string();
+        assert!(e.contains("81 (9^2) or 121 (11^2)"), "{e}");
+        let e = check_oa_count("oa-bush", 100, 3).unwrap_err().to_string();
+        assert!(e.contains("64 (4^3) or 125 (5^3)"), "{e}");
+        assert_eq!(check_oa_count("oa-bose", 49, 2).unwrap(), 7);
+        assert_eq!(check_oa_count("oa-bush", 512, 3).unwrap(), 8);
+    }
+}
