@@ -81,6 +81,8 @@
 
 #![warn(missing_docs)]
 
+#[cfg(feature = "spectrum")]
+pub mod analysis;
 pub mod error;
 pub mod grid;
 pub mod hash;
