@@ -8,14 +8,28 @@ use std::process::Command;
 
 use strata::registry::{self, Params};
 
-/// The `points` example binary that `cargo test` builds next to the test executables.
-fn points_bin() -> Option<PathBuf> {
+/// An example binary that `cargo test` builds next to the test executables (built here when
+/// only this test target was asked for).
+fn example_bin(name: &str) -> Option<PathBuf> {
     let exe = std::env::current_exe().ok()?;
     let dir = exe.parent()?.parent()?; // target/<profile>/deps -> target/<profile>
     let bin = dir
         .join("examples")
-        .join(format!("points{}", std::env::consts::EXE_SUFFIX));
+        .join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+    if !bin.exists() {
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let mut cmd = Command::new(cargo);
+        cmd.args(["build", "--example", name]);
+        if dir.file_name()? == "release" {
+            cmd.arg("--release");
+        }
+        cmd.status().ok()?;
+    }
     bin.exists().then_some(bin)
+}
+
+fn points_bin() -> Option<PathBuf> {
+    example_bin("points")
 }
 
 fn run(args: &[&str]) -> (i32, String, String) {
@@ -151,4 +165,79 @@ fn dims_and_pixel_print_the_library_values() {
     let (code, _, err) = run(&["--sampler", "cmj", "-n", "4", "--pixel", "1,1"]);
     assert_ne!(code, 0);
     assert!(err.contains("pmj02"), "{err}");
+}
+
+#[test]
+fn the_main_job_and_the_study_give_the_same_bytes_with_1_and_2_threads() {
+    let base = std::env::temp_dir().join(format!("strata-threads-{}", std::process::id()));
+    let run = |threads: &str| {
+        let out = base.join(threads);
+        let bin = example_bin("spectrum").expect("spectrum example");
+        let status = Command::new(bin)
+            .env("RAYON_NUM_THREADS", threads)
+            .args([
+                "--sampler",
+                "cmj",
+                "-n",
+                "256",
+                "--realizations",
+                "20",
+                "--resolution",
+                "64",
+                "--out",
+            ])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            status.status.success(),
+            "{}",
+            String::from_utf8_lossy(&status.stderr)
+        );
+        let bin = example_bin("tradeoff").expect("tradeoff example");
+        let status = Command::new(bin)
+            .env("RAYON_NUM_THREADS", threads)
+            .args([
+                "--samplers",
+                "jittered,sobol",
+                "--integrands",
+                "disk,gaussian4d",
+                "--max-n",
+                "64",
+                "--seeds",
+                "6",
+                "--out",
+            ])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            status.status.success(),
+            "{}",
+            String::from_utf8_lossy(&status.stderr)
+        );
+        let csv = std::fs::read_to_string(out.join("tradeoff.csv")).unwrap();
+        // every column but the timing
+        let study: Vec<String> = csv
+            .lines()
+            .map(|l| {
+                let mut c: Vec<&str> = l.split(',').collect();
+                c.remove(7);
+                c.join(",")
+            })
+            .collect();
+        (
+            std::fs::read(out.join("cmj-spectrum.exr")).unwrap(),
+            std::fs::read(out.join("cmj-radial.csv")).unwrap(),
+            study,
+        )
+    };
+    let (one, two) = (run("1"), run("2"));
+    std::fs::remove_dir_all(&base).ok();
+    assert!(one.0 == two.0, "the EXR differs between 1 and 2 threads");
+    assert_eq!(
+        one.1, two.1,
+        "the radial CSV differs between 1 and 2 threads"
+    );
+    assert_eq!(one.2, two.2, "the study differs between 1 and 2 threads");
 }

@@ -192,6 +192,14 @@ fn bad_dimensions_counts_and_strengths_are_refused() {
             .contains("121")
     );
     assert!(registry::build_nd("random", &Params::new(10), 0).is_err());
+    // huge counts are refused at once (found by fuzzing: the nearest-count search once scanned
+    // billions of candidates)
+    let t = std::time::Instant::now();
+    for n in [u64::MAX, 9_259_542_122_566_407_766, 1 << 40, (1 << 31) + 1] {
+        assert!(Bose::new(n, 3, 1).is_err());
+        assert!(Bush::new(n, 3, 3, 1).is_err());
+    }
+    assert!(t.elapsed().as_secs_f64() < 1.0);
 }
 
 #[test]

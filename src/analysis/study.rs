@@ -17,6 +17,9 @@ pub const MAX_STUDY_COUNT: u64 = 1 << 20;
 /// The largest number of seeds.
 pub const MAX_SEEDS: u32 = 1 << 16;
 
+/// The most coordinates a study holds at once (`seeds x N x D`, 4 bytes each: 1 GiB).
+pub const MAX_STUDY_VALUES: u64 = 1 << 28;
+
 /// What to study.
 #[derive(Clone, Debug)]
 pub struct Config {
@@ -152,6 +155,21 @@ pub fn check(config: &Config) -> Result<()> {
             "seeds",
             config.seeds,
             format!("2 to {MAX_SEEDS} (a variance needs two estimates)"),
+        ));
+    }
+    let dims = config
+        .integrands
+        .iter()
+        .map(|f| f.dimensions())
+        .max()
+        .unwrap_or(2) as u64;
+    if config.seeds as u64 * config.max_n * dims > MAX_STUDY_VALUES {
+        return Err(Error::input(
+            "tradeoff",
+            format!(
+                "{} seeds of {} points in {dims} dimensions would hold more than {MAX_STUDY_VALUES} coordinates; use fewer seeds or a smaller max-n",
+                config.seeds, config.max_n
+            ),
         ));
     }
     for e in &config.samplers {

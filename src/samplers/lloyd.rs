@@ -27,6 +27,9 @@ pub const DEFAULT_ITERATIONS: u32 = 64;
 /// The most iterations accepted.
 pub const MAX_ITERATIONS: u32 = 100_000;
 
+/// Points closer than this (toroidally) to an earlier point are treated as duplicates.
+pub const DUPLICATE: f64 = 1e-10;
+
 /// The most points per relaxed set.
 pub const MAX_LLOYD_COUNT: u64 = 1 << 22;
 
@@ -55,7 +58,8 @@ pub struct Cell {
 }
 
 /// The periodic Voronoi cells of `points` (coordinates in `[0,1)`); `None` for points that
-/// coincide with an earlier one (they have no cell of their own).
+/// coincide with an earlier one (closer than [`DUPLICATE`] on the torus: they have no cell of
+/// their own).
 pub fn voronoi_cells(points: &[[f64; 2]]) -> Result<Vec<Option<Cell>>> {
     let n = points.len();
     if n == 0 {
@@ -73,12 +77,26 @@ pub fn voronoi_cells(points: &[[f64; 2]]) -> Result<Vec<Option<Cell>>> {
             ),
         ));
     }
+    // Points closer than DUPLICATE (toroidally) to an earlier one are duplicates: they get no
+    // cell. Removing them here, rather than leaving the merge to the triangulation, matters on
+    // the torus, where a point may coincide with another's periodic copy.
+    let grid = crate::grid::TorusGrid::from_points(points.iter().copied());
+    let mut keep = vec![true; n];
+    for (i, &p) in points.iter().enumerate() {
+        grid.for_each_within(p, DUPLICATE, |j, _| {
+            if j < i && keep[j] {
+                keep[i] = false;
+                return false;
+            }
+            true
+        });
+    }
     // Start with a margin of a few typical spacings; grow until every cell is exact.
     let mut margin = (4.0 * relative_radius_max(n)).min(1.0);
     loop {
         let full = margin >= 1.0;
         let mut sites = Vec::with_capacity(n + n / 2);
-        for (i, p) in points.iter().enumerate() {
+        for (i, p) in points.iter().enumerate().filter(|(i, _)| keep[*i]) {
             for dy in -1i32..=1 {
                 for dx in -1i32..=1 {
                     let q = [p[0] + dx as f64, p[1] + dy as f64];
@@ -200,15 +218,15 @@ pub fn relax(points: &mut [[f64; 2]], iterations: u32) -> Result<Vec<LloydStep>>
                     *p = [wrap(c.centroid[0]), wrap(c.centroid[1])];
                 }
                 None => {
-                    // a duplicate: nudge it by up to 1e-6 r_max in a hashed direction
+                    // a duplicate: nudge it by up to 1e-3 r_max in a hashed direction
                     let h = hash_u64(0x11_0d, (it as u64) << 32 | i as u64);
                     let (dx, dy) = (
                         (h as u32) as f64 / 4294967296.0 - 0.5,
                         ((h >> 32) as u32) as f64 / 4294967296.0 - 0.5,
                     );
                     *p = [
-                        wrap(p[0] + dx * 1e-6 * r_max),
-                        wrap(p[1] + dy * 1e-6 * r_max),
+                        wrap(p[0] + dx * 1e-3 * r_max),
+                        wrap(p[1] + dy * 1e-3 * r_max),
                     ];
                 }
             }

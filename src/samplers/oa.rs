@@ -40,12 +40,15 @@ pub struct Field {
     mul: Vec<u16>,
 }
 
-/// `(p, n)` when `q = p^n` with `p` prime, `n >= 1`.
+/// `(p, n)` when `q = p^n` with `p` prime, `n >= 1` (trial division up to `sqrt q`).
 pub fn prime_power(q: u32) -> Option<(u32, u32)> {
     if q < 2 {
         return None;
     }
-    let p = (2..=q).find(|&d| q.is_multiple_of(d))?;
+    let p = (2u32..)
+        .take_while(|d| (*d as u64) * (*d as u64) <= q as u64)
+        .find(|&d| q.is_multiple_of(d))
+        .unwrap_or(q);
     let (mut m, mut n) = (q, 0);
     while m.is_multiple_of(p) {
         m /= p;
@@ -194,19 +197,27 @@ fn nearest_counts(count: u64, t: u32) -> String {
 
 /// Checks `count = q^t` for a supported `q`, returning `q`.
 fn check_oa_count(name: &'static str, count: u64, t: u32) -> Result<u32> {
+    let rule = || {
+        format!(
+            "the count must be q^{t} for a prime q, or a prime power q <= {MAX_PRIME_POWER}, at most {MAX_FIXED_COUNT}"
+        )
+    };
+    if count > MAX_FIXED_COUNT {
+        // no search for the nearest counts up there: say the rule and the largest
+        let largest = nearest_counts(MAX_FIXED_COUNT, t);
+        return Err(Error::count(
+            name,
+            count,
+            format!("{} (the largest allowed are about {largest})", rule()),
+        ));
+    }
     let q = (count as f64).powf(1.0 / t as f64).round() as u64;
-    let ok = (4..=MAX_FIXED_COUNT).contains(&count)
-        && q >= 2
-        && q.checked_pow(t) == Some(count)
-        && prime_power(q as u32).is_some_and(|(_, n)| n == 1 || q as u32 <= MAX_PRIME_POWER);
+    let ok = count >= 4 && q >= 2 && q.checked_pow(t) == Some(count) && supported_symbols(q as u32);
     if !ok {
         return Err(Error::count(
             name,
             count,
-            format!(
-                "the count must be q^{t} for a prime q, or a prime power q <= {MAX_PRIME_POWER}, at most {MAX_FIXED_COUNT} (nearest allowed: {})",
-                nearest_counts(count, t)
-            ),
+            format!("{} (nearest allowed: {})", rule(), nearest_counts(count, t)),
         ));
     }
     Ok(q as u32)

@@ -136,6 +136,12 @@ impl SetGenerator for DartThrowing {
     fn generate(&self, key: u64) -> Result<Vec<[f64; 2]>> {
         let r = self.radius() + F32_SLACK;
         let mut rng = Pcg32::new(stream_seed(key, 1), stream_seed(key, 2));
+        if DiskGrid::new(r, MAX_GRID_CELLS).is_none() {
+            // A radius so small that one cell per r / sqrt 2 would not fit: the disks cover
+            // almost nothing, so plain darts checked on the general neighbour grid suffice.
+            return tiny_radius_darts(self.count as usize, r, &mut rng)
+                .ok_or_else(|| saturated("poisson", 0, self.count, self.rho));
+        }
         let mut grid = disk_grid("poisson", r)?;
         let mut points = Vec::with_capacity(self.count as usize);
         throw_darts(&mut points, &mut grid, self.count as usize, r, &mut rng);
@@ -144,6 +150,24 @@ impl SetGenerator for DartThrowing {
         }
         Ok(points)
     }
+}
+
+/// Dart throwing for radii far below the spacing of the points (`rho` tiny): uniform darts,
+/// rejected when closer than `r` to a point, at most `100 n` darts.
+fn tiny_radius_darts(n: usize, r: f64, rng: &mut Pcg32) -> Option<Vec<[f64; 2]>> {
+    let mut grid = crate::grid::TorusGrid::new((n as f64).sqrt() as usize);
+    let mut points = Vec::with_capacity(n);
+    for _ in 0..100 * n.max(1) {
+        if points.len() == n {
+            break;
+        }
+        let p = [uniform(rng), uniform(rng)];
+        if !grid.any_closer_than(p, r) {
+            grid.insert(p);
+            points.push(p);
+        }
+    }
+    (points.len() == n).then_some(points)
 }
 
 fn saturated(name: &'static str, got: usize, count: u32, rho: f64) -> Error {
@@ -238,7 +262,14 @@ fn covered(grid: &DiskGrid, x0: f64, y0: f64, s: f64, r: f64) -> bool {
 /// The one-point-per-cell grid for radius `r`, or an error when it would be too large.
 fn disk_grid(name: &'static str, r: f64) -> Result<DiskGrid> {
     DiskGrid::new(r, MAX_GRID_CELLS).ok_or_else(|| {
-        Error::input(name, format!("radius {r} needs more than {MAX_GRID_CELLS} grid cells; use fewer points or a larger radius"))
+        let min_r = (2.0 / MAX_GRID_CELLS as f64).sqrt();
+        Error::input(
+            name,
+            format!(
+                "radius {r:e} is too small: the accelerating grid (one cell per r / sqrt 2) would need more than \
+                 {MAX_GRID_CELLS} cells, and Bridson's set about 1 / r^2 points; allowed r >= {min_r:e}"
+            ),
+        )
     })
 }
 

@@ -244,6 +244,11 @@ impl Sobol {
         }
     }
 
+    /// Point `index` (2D) as 32-bit fixed point, without changing the stream position.
+    pub fn sample_fixed(&self, index: u32) -> [u32; 2] {
+        self.scramble.sample2_u32(index, 0)
+    }
+
     /// Point `index` (2D), without changing the stream position.
     pub fn sample(&self, index: u32) -> Point2 {
         let [x, y] = self.scramble.sample2_u32(index, 0);

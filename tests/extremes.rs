@@ -1,0 +1,224 @@
+//! The crate at its limits: one sample; 2^24 and more samples (prefix and last block still
+//! nets); seeds 0 and u64::MAX; indices near 2^32; Poisson radii near 0 and near the limit;
+//! coincident and nearly coincident points into Lloyd and the spectrum; no 1.0 anywhere.
+
+use glam::Vec2;
+use strata::registry::{self, Params};
+use strata::samplers::{Pmj, Pmj02Stochastic, Sobol};
+use strata::{Progression, Sampler};
+
+/// Whether `pts` (2^m fixed-point points) is a (0,m,2)-net, with one bitset per shape.
+fn is_net(pts: &[[u32; 2]]) -> bool {
+    let m = pts.len().trailing_zeros();
+    let top = |v: u32, b: u32| if b == 0 { 0 } else { (v >> (32 - b)) as usize };
+    (0..=m).all(|a| {
+        let mut seen = vec![0u64; pts.len().div_ceil(64)];
+        pts.iter().all(|p| {
+            let i = (top(p[1], m - a) << a) | top(p[0], a);
+            let fresh = seen[i >> 6] >> (i & 63) & 1 == 0;
+            seen[i >> 6] |= 1 << (i & 63);
+            fresh
+        })
+    })
+}
+
+#[test]
+fn one_sample_is_a_valid_set_everywhere() {
+    for entry in registry::entries() {
+        let n = entry.counts.nearest(1);
+        let mut s = entry.build(&Params::new(n)).unwrap();
+        let p = s.next_sample();
+        assert!(
+            (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y),
+            "{}",
+            entry.name
+        );
+    }
+    #[cfg(feature = "spectrum")]
+    {
+        let s = strata::spectrum::periodogram(&[Vec2::new(0.5, 0.5)], 8).unwrap();
+        assert!((s.get(0, 0).unwrap() - 1.0).abs() < 1e-9);
+        assert!((s.get(3, -2).unwrap() - 1.0).abs() < 1e-7); // one point: |F| = 1 everywhere
+    }
+}
+
+#[test]
+fn two_to_the_24_and_beyond_stay_nets() {
+    // pmj02 by construction: the prefix of 2^24 and its last block of 2^20
+    let mut p = Pmj::pmj02(3);
+    p.reserve(1 << 24).unwrap();
+    let g = p.generated();
+    assert!(is_net(&g[..1 << 24]), "pmj02: prefix 2^24");
+    assert!(
+        is_net(&g[(1 << 24) - (1 << 20)..1 << 24]),
+        "pmj02: last block of 2^20"
+    );
+    // stochastic pmj02 and Sobol': 2^25
+    let mut s = Pmj02Stochastic::new(u64::MAX);
+    s.reserve(1 << 25);
+    let g = s.generated();
+    assert!(is_net(&g[..1 << 25]), "pmj02-stochastic: prefix 2^25");
+    assert!(
+        is_net(&g[(1 << 25) - (1 << 20)..]),
+        "pmj02-stochastic: last block"
+    );
+    let sobol = Sobol::new(0);
+    let g: Vec<[u32; 2]> = (0..1u32 << 25).map(|i| sobol.sample_fixed(i)).collect();
+    assert!(is_net(&g), "sobol: prefix 2^25");
+    assert!(is_net(&g[(1 << 25) - (1 << 20)..]), "sobol: last block");
+}
+
+#[test]
+fn seeds_at_the_extremes_work_and_differ() {
+    for entry in registry::entries() {
+        let n = entry.counts.nearest(if entry.expensive { 16 } else { 256 });
+        let mut a = entry.build(&Params::new(n).seed(0)).unwrap();
+        let mut b = entry.build(&Params::new(n).seed(u64::MAX)).unwrap();
+        let (pa, pb): (Vec<Vec2>, Vec<Vec2>) = (
+            (0..n).map(|_| a.next_sample()).collect(),
+            (0..n).map(|_| b.next_sample()).collect(),
+        );
+        for p in pa.iter().chain(&pb) {
+            assert!(
+                (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y),
+                "{}",
+                entry.name
+            );
+        }
+        if entry.name != "regular" {
+            assert_ne!(
+                pa, pb,
+                "{}: seeds 0 and u64::MAX give the same points",
+                entry.name
+            );
+        }
+    }
+}
+
+#[test]
+fn indices_near_two_to_the_32() {
+    // random access at the end of the 32-bit range: in [0,1), and the stochastic sequence's
+    // random access agrees with the net property of its last aligned block
+    for i in [u32::MAX - 3, u32::MAX - 1, u32::MAX] {
+        let p = Pmj02Stochastic::point_at(9, i);
+        let q = Sobol::new(9).sample(i);
+        for v in [p.x, p.y, q.x, q.y] {
+            assert!((0.0..1.0).contains(&v), "index {i}: {v}");
+        }
+    }
+    let block: Vec<[u32; 2]> = (u32::MAX - 1023..=u32::MAX)
+        .map(|i| Pmj02Stochastic::point_at_fixed(9, i))
+        .collect();
+    assert!(
+        is_net(&block),
+        "the last 1024 of the 2^32 stochastic pmj02 points"
+    );
+    let block: Vec<[u32; 2]> = (u32::MAX - 1023..=u32::MAX)
+        .map(|i| Sobol::new(9).sample_fixed(i))
+        .collect();
+    assert!(is_net(&block), "the last 1024 of the 2^32 Sobol' points");
+    // the adapter past 2^32 (documented: a fresh copy)
+    let s = strata::pixel::PixelSampler::new(strata::pixel::Sequence::sobol(), 16, 1).unwrap();
+    for i in [(1u64 << 32) - 1, 1 << 32, u64::MAX] {
+        let v = s.sample_2d([1, 1], i, 0);
+        assert!((0.0..1.0).contains(&v.x) && (0.0..1.0).contains(&v.y));
+    }
+}
+
+#[test]
+fn poisson_radii_near_zero_and_near_the_limit() {
+    use strata::grid::{relative_radius_max, torus_distance_squared};
+    use strata::samplers::{DartThrowing, SetGenerator};
+    // near zero: behaves like random points, and the radius holds
+    let g = DartThrowing::new(500, 1e-6).unwrap();
+    let pts = g.generate(1).unwrap();
+    assert_eq!(pts.len(), 500);
+    // near the limit: either the set or a clear saturation error, after bounded work
+    let t = std::time::Instant::now();
+    let g = DartThrowing::new(200, 0.779).unwrap();
+    for k in 0..4 {
+        match g.generate(k) {
+            Ok(pts) => {
+                let r = 0.779 * relative_radius_max(200);
+                for i in 0..pts.len() {
+                    for j in 0..i {
+                        assert!(torus_distance_squared(pts[i], pts[j]).sqrt() >= r);
+                    }
+                }
+            }
+            Err(e) => assert!(e.to_string().contains("saturated"), "{e}"),
+        }
+    }
+    assert!(
+        t.elapsed().as_secs() < 30,
+        "saturation must be detected quickly"
+    );
+}
+
+#[cfg(feature = "lloyd")]
+#[test]
+fn coincident_and_nearly_coincident_points_into_lloyd() {
+    use strata::samplers::lloyd::{relax, voronoi_cells};
+    let mut pts = vec![[0.3, 0.3]; 10];
+    pts.push([0.3 + 1e-15, 0.3]);
+    pts.push([0.3, 0.3 + 1e-9]);
+    pts.push([0.999_999_999_999, 0.0]);
+    pts.push([0.0, 0.999_999_999_999]);
+    let cells = voronoi_cells(&pts).unwrap();
+    let area: f64 = cells.iter().flatten().map(|c| c.area).sum();
+    assert!(
+        (area - 1.0).abs() < 1e-6,
+        "cells of the distinct points tile the torus: {area}"
+    );
+    relax(&mut pts, 20).unwrap();
+    assert!(
+        pts.iter()
+            .all(|p| (0.0..1.0).contains(&p[0]) && (0.0..1.0).contains(&p[1]))
+    );
+    // bad coordinates are refused, not panicked on
+    assert!(voronoi_cells(&[[1.0, 0.5]]).is_err());
+    assert!(voronoi_cells(&[[f64::NAN, 0.5]]).is_err());
+    assert!(voronoi_cells(&[]).is_err());
+}
+
+#[cfg(feature = "spectrum")]
+#[test]
+fn coincident_points_into_the_spectrum() {
+    use strata::spectrum::{periodogram, periodogram_direct, point_set_measures};
+    let mut pts = vec![Vec2::new(0.25, 0.75); 100];
+    pts.push(Vec2::new(0.25 + f32::EPSILON, 0.75));
+    pts.push(Vec2::new(0.999_999_94, 0.999_999_94));
+    let fast = periodogram(&pts, 32).unwrap();
+    let direct = periodogram_direct(&pts, 32).unwrap();
+    for (a, b) in fast.values().iter().zip(direct.values()) {
+        assert!(a.is_finite() && (a - b).abs() < 1e-6);
+    }
+    let m = point_set_measures(&[pts]).unwrap();
+    assert_eq!(m.global_min_distance, 0.0);
+    assert!(m.average_min_distance.is_finite());
+}
+
+#[test]
+fn no_sampler_ever_returns_one() {
+    // Many blocks of every sampler at small counts; the fixed-point extremes of the float
+    // conversions are tested in the unit tests.
+    for entry in registry::entries() {
+        let n = entry.counts.nearest(9);
+        let blocks = if entry.expensive { 2 } else { 200 };
+        let mut s = entry.build(&Params::new(n).seed(77)).unwrap();
+        for _ in 0..n * blocks {
+            let p = s.next_sample();
+            assert!(
+                p.x < 1.0 && p.y < 1.0 && p.x >= 0.0 && p.y >= 0.0,
+                "{}: {p}",
+                entry.name
+            );
+        }
+        if let Progression::FixedCount { count } = s.progression() {
+            assert_eq!(count, n, "{}", entry.name);
+        }
+    }
+    assert!(
+        strata::sampler::f32_in_stratum(u32::MAX as u64 - 1, u32::MAX as u64, 1.0 - 1e-17) < 1.0
+    );
+}
