@@ -48,7 +48,7 @@ def main():
                 base = rows[b][0]
         for b, (median, elements) in rows.items():
             per = human(median / elements) if elements else ""
-            ratio = (f"{median / base:.2f}x" if median >= base else f"{median / base:.4f}x ({base / median:.0f}x faster)") if base else ""
+            ratio = (f"{median / base:.2f}x" if median >= base else f"{median / base:.4f}x ({base / median:.2f}x faster)") if base else ""
             print(f"| {g} | {b} | {human(median)} | {per} | {ratio} |")
 
 
