@@ -4,15 +4,14 @@
 //! `cargo bench --bench generate`; `python3 tools/criterion_table.py generate` prints the medians
 //! and the ratios to the baseline.
 
+mod common;
+
 use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::Vec2;
-use rand::Rng;
-use rand_pcg::Pcg32;
 use strata::registry::{self, Params};
-use strata::sampler::unit_f32_from_u32;
 
 const COUNTS: [u64; 3] = [256, 4096, 65536];
 
@@ -21,19 +20,7 @@ fn generate(c: &mut Criterion) {
         let mut group = c.benchmark_group(format!("generate/{n}"));
         group.throughput(Throughput::Elements(n));
         let mut buf = vec![Vec2::ZERO; n as usize];
-
-        let mut rng = Pcg32::new(0xcafe_f00d_d15e_a5e5, 0x0a02_bdbf_7bb3_c0a7);
-        group.bench_function(BenchmarkId::from_parameter("baseline-pcg32"), |b| {
-            b.iter(|| {
-                for p in buf.iter_mut() {
-                    *p = Vec2::new(
-                        unit_f32_from_u32(rng.next_u32()),
-                        unit_f32_from_u32(rng.next_u32()),
-                    );
-                }
-                black_box(&buf);
-            })
-        });
+        common::pcg32_baseline(&mut group, &mut buf);
 
         for entry in registry::entries() {
             if !entry.counts.allows(n) {

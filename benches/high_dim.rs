@@ -18,15 +18,12 @@ fn high_dim(c: &mut Criterion) {
             .sample_size(20)
             .measurement_time(Duration::from_secs(2));
         let mut buf = vec![0f32; n as usize * d as usize];
-        for name in [
-            "random",
-            "latin",
-            "uncorrelated",
-            "oa-bose",
-            "oa-bush",
-            "sobol",
-            "halton",
-        ] {
+        // every sampler with D-dimensional points
+        for name in registry::entries()
+            .iter()
+            .filter(|e| e.has_dimensions())
+            .map(|e| e.name)
+        {
             let mut s = registry::build_nd(name, &Params::new(n).seed(1), d).unwrap();
             group.bench_function(BenchmarkId::from_parameter(name), |b| {
                 b.iter(|| {

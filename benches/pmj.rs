@@ -3,15 +3,14 @@
 //!
 //! `cargo bench --bench pmj`; `python3 tools/criterion_table.py pmj` prints medians and ratios.
 
+mod common;
+
 use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::Vec2;
-use rand::Rng;
-use rand_pcg::Pcg32;
 use strata::registry::{self, Params};
-use strata::sampler::unit_f32_from_u32;
 
 fn pmj(c: &mut Criterion) {
     for n in [4096u64, 65536] {
@@ -22,18 +21,7 @@ fn pmj(c: &mut Criterion) {
             .warm_up_time(Duration::from_millis(500))
             .measurement_time(Duration::from_secs(3));
         let mut buf = vec![Vec2::ZERO; n as usize];
-        let mut rng = Pcg32::new(0xcafe_f00d_d15e_a5e5, 0x0a02_bdbf_7bb3_c0a7);
-        group.bench_function(BenchmarkId::from_parameter("baseline-pcg32"), |b| {
-            b.iter(|| {
-                for p in buf.iter_mut() {
-                    *p = Vec2::new(
-                        unit_f32_from_u32(rng.next_u32()),
-                        unit_f32_from_u32(rng.next_u32()),
-                    );
-                }
-                black_box(&buf);
-            })
-        });
+        common::pcg32_baseline(&mut group, &mut buf);
         for name in ["pmj", "pmjbn", "pmj02", "pmj02bn", "pmj02-stochastic"] {
             if name == "pmjbn" && n > 4096 {
                 continue; // about half a second per sequence; 4096 shows the cost

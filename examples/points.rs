@@ -11,9 +11,7 @@ mod common;
 use std::io::Write;
 use std::process::ExitCode;
 
-use common::{
-    CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_open_float, parse_pair, string_value,
-};
+use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_pair, string_value};
 use strata::pixel::{PixelSampler, Sequence};
 use strata::registry::{self, Params};
 
@@ -85,21 +83,9 @@ fn parse() -> Result<Option<Args>, CliError> {
                 let v = string_value("--pixel", parser.value()?)?;
                 args.pixel = Some(parse_pair("--pixel", &v, u32::MAX as u64)?);
             }
-            Long("radius") => {
-                let v = string_value("--radius", parser.value()?)?;
-                args.params.radius = Some(parse_open_float("--radius", &v, 0.0, 1.0)?);
-            }
-            Long("iterations") => {
-                let v = string_value("--iterations", parser.value()?)?;
-                args.params.iterations = Some(parse_int("--iterations", &v, 0, 100_000)? as u32);
-            }
-            Long("strength") => {
-                let v = string_value("--strength", parser.value()?)?;
-                args.params.strength = Some(parse_int("--strength", &v, 0, 64)? as u32);
-            }
-            Long("candidates") => {
-                let v = string_value("--candidates", parser.value()?)?;
-                args.params.candidates = Some(parse_int("--candidates", &v, 0, 1 << 16)? as u32);
+            Long(flag @ ("radius" | "iterations" | "strength" | "candidates")) => {
+                let flag = flag.to_owned(); // the argument borrows the parser
+                common::sampler_param(&flag, &mut parser, &mut args.params)?
             }
             Long("png") => args.png = Some(parser.value()?.into()),
             Long("no-header") => args.header = false,

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_open_float, string_value};
+use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, string_value};
 use glam::Vec2;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -96,21 +96,9 @@ fn parse() -> Result<Option<Args>, CliError> {
                 a.resolution = k;
             }
             Long("out") => a.out = p.value()?.into(),
-            Long("radius") => {
-                let v = string_value("--radius", p.value()?)?;
-                a.params.radius = Some(parse_open_float("--radius", &v, 0.0, 1.0)?);
-            }
-            Long("iterations") => {
-                let v = string_value("--iterations", p.value()?)?;
-                a.params.iterations = Some(parse_int("--iterations", &v, 0, 100_000)? as u32);
-            }
-            Long("strength") => {
-                let v = string_value("--strength", p.value()?)?;
-                a.params.strength = Some(parse_int("--strength", &v, 0, 64)? as u32);
-            }
-            Long("candidates") => {
-                let v = string_value("--candidates", p.value()?)?;
-                a.params.candidates = Some(parse_int("--candidates", &v, 0, 1 << 16)? as u32);
+            Long(flag @ ("radius" | "iterations" | "strength" | "candidates")) => {
+                let flag = flag.to_owned(); // the argument borrows the parser
+                common::sampler_param(&flag, &mut p, &mut a.params)?
             }
             Long("no-overview") => a.overview = false,
             Short('h') | Long("help") => {

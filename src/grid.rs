@@ -19,6 +19,14 @@ pub fn relative_radius_max(n: usize) -> f64 {
     (2.0 / (3f64.sqrt() * n.max(1) as f64)).sqrt()
 }
 
+/// `x` wrapped onto the unit torus, into `[0, 1)`: `x - floor(x)`, with the results that round to
+/// 1.0 (tiny negative `x`) and NaN mapped to 0.
+#[inline]
+pub fn wrap_unit(x: f64) -> f64 {
+    let y = x - x.floor();
+    if y < 1.0 { y } else { 0.0 }
+}
+
 /// The squared toroidal distance between two points of the unit torus.
 #[inline]
 pub fn torus_distance_squared(a: [f64; 2], b: [f64; 2]) -> f64 {

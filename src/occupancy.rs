@@ -282,10 +282,7 @@ impl ElementaryIntervals {
     /// True when some interval containing the point is already occupied.
     pub fn collides(&self, p: [u32; 2]) -> bool {
         let m = self.level;
-        (0..=m).any(|a| {
-            let i = self.cell(a, top_bits(p[0], a), top_bits(p[1], m - a));
-            self.words[i >> 6] >> (i & 63) & 1 != 0
-        })
+        (0..=m).any(|a| self.occupied_cell(a, top_bits(p[0], a), top_bits(p[1], m - a)))
     }
 
     /// Appends to `xs` and `ys` the x strata and y strata (indices at resolution `2^m`) inside

@@ -53,8 +53,8 @@ use std::sync::{Arc, OnceLock};
 use glam::Vec2;
 
 use crate::error::{Error, Result};
-use crate::hash::{GOLDEN_GAMMA, Permutation, hash_u64, mix64, stream_seed};
-use crate::sampler::unit_f32_from_u32;
+use crate::hash::{DivMod, GOLDEN_GAMMA, Permutation, hash_u64, mix64, stream_seed};
+use crate::sampler::{Strata, unit_f32_from_u32};
 use crate::samplers::{Pmj02Stochastic, halton, sobol};
 
 /// Points in the shared pmj02 table (`2^16`, 512 KB: lookups stay in cache); later indices
@@ -73,6 +73,35 @@ fn pmj02_table() -> &'static Arc<Vec<[u32; 2]>> {
     })
 }
 
+/// A samples-per-pixel count with what the sequences derive from it, computed once when the
+/// sampler is built rather than on every draw.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SamplesPerPixel {
+    spp: u32,
+    /// Jittered: the `s^2 <= spp` cells of a set, and the side `s`.
+    cells: DivMod,
+    side: DivMod,
+    strata: Strata,
+}
+
+impl SamplesPerPixel {
+    /// The derived values of `spp` (0 is treated as 1).
+    pub fn new(spp: u32) -> Self {
+        let s = spp.isqrt().max(1);
+        SamplesPerPixel {
+            spp,
+            cells: DivMod::new(s * s).expect("s >= 1"),
+            side: DivMod::new(s).expect("s >= 1"),
+            strata: Strata::new(s as u64),
+        }
+    }
+
+    /// The count.
+    pub fn get(&self) -> u32 {
+        self.spp
+    }
+}
+
 /// A 2D sequence the adapter draws from: point `index` of the independently scrambled copy
 /// selected by `stream` (a well-mixed 64-bit value).
 pub trait PixelSequence: Clone + Send + Sync {
@@ -80,10 +109,10 @@ pub trait PixelSequence: Clone + Send + Sync {
     fn name(&self) -> &'static str;
 
     /// The 2D point `index` of copy `stream` (`index < 2^32`; `spp` is the samples per pixel).
-    fn sample_2d(&self, stream: u64, index: u32, spp: u32) -> [f32; 2];
+    fn sample_2d(&self, stream: u64, index: u32, spp: &SamplesPerPixel) -> [f32; 2];
 
     /// A 1D value: the first coordinate of [`sample_2d`](PixelSequence::sample_2d).
-    fn sample_1d(&self, stream: u64, index: u32, spp: u32) -> f32 {
+    fn sample_1d(&self, stream: u64, index: u32, spp: &SamplesPerPixel) -> f32 {
         self.sample_2d(stream, index, spp)[0]
     }
 
@@ -172,7 +201,7 @@ impl PixelSequence for Sequence {
     }
 
     #[inline]
-    fn sample_2d(&self, stream: u64, index: u32, spp: u32) -> [f32; 2] {
+    fn sample_2d(&self, stream: u64, index: u32, spp: &SamplesPerPixel) -> [f32; 2] {
         match self {
             Sequence::Random => {
                 let h = hash_u64(stream, index as u64);
@@ -183,17 +212,14 @@ impl PixelSequence for Sequence {
             }
             Sequence::Jittered => {
                 // Set number `index / spp` of this stream; its stratum by a hashed permutation.
-                let s = spp.isqrt().max(1);
-                let n = s * s;
-                let (block, i) = (index / n, index % n);
+                let (block, i) = spp.cells.div_rem(index);
                 let key = mix64(stream ^ (block as u64).wrapping_mul(GOLDEN_GAMMA));
-                let k = Permutation::new(n, key as u32).expect("n >= 1").apply(i);
+                let k = Permutation::with_divider(&spp.cells, key as u32).apply(i);
+                let (row, col) = spp.side.div_rem(k);
                 let h = hash_u64(key, i as u64);
-                let strata = crate::sampler::Strata::new(s as u64);
-                [
-                    strata.place(k % s, h as u32),
-                    strata.place(k / s, (h >> 32) as u32),
-                ]
+                spp.strata
+                    .place2([col, row], [h as u32, (h >> 32) as u32])
+                    .to_array()
             }
             Sequence::Pmj02(table) => {
                 // XOR shuffle of the index (an aligned block of the table per pixel and draw:
@@ -218,6 +244,15 @@ impl PixelSequence for Sequence {
                 halton::scrambled_radical_inverse(0, index as u64, stream),
                 halton::scrambled_radical_inverse(1, index as u64, stream),
             ],
+        }
+    }
+
+    #[inline]
+    fn sample_1d(&self, stream: u64, index: u32, spp: &SamplesPerPixel) -> f32 {
+        match self {
+            // the second coordinate (base 3) is most of the cost: skip it
+            Sequence::Halton => halton::scrambled_radical_inverse(0, index as u64, stream),
+            _ => self.sample_2d(stream, index, spp)[0],
         }
     }
 
@@ -260,7 +295,7 @@ impl PixelSequence for Sequence {
 #[derive(Clone, Debug)]
 pub struct PixelSampler<S: PixelSequence = Sequence> {
     sequence: S,
-    spp: u32,
+    spp: SamplesPerPixel,
     seed: u64,
     pixel_key: u64,
     index: u64,
@@ -273,7 +308,7 @@ impl<S: PixelSequence> PixelSampler<S> {
         sequence.check_spp(samples_per_pixel)?;
         Ok(PixelSampler {
             sequence,
-            spp: samples_per_pixel,
+            spp: SamplesPerPixel::new(samples_per_pixel),
             seed,
             pixel_key: pixel_key(seed, [0, 0]),
             index: 0,
@@ -283,7 +318,7 @@ impl<S: PixelSequence> PixelSampler<S> {
 
     /// Samples per pixel.
     pub fn samples_per_pixel(&self) -> u32 {
-        self.spp
+        self.spp.get()
     }
 
     /// The sample count nearest above `n` at which the sequence is best stratified (a square
@@ -349,13 +384,13 @@ impl<S: PixelSequence> PixelSampler<S> {
     #[inline]
     fn value_1d(&self, pixel_key: u64, index: u64, dim: u32) -> f32 {
         let (s, i) = self.stream(pixel_key, index, dim);
-        self.sequence.sample_1d(s, i, self.spp)
+        self.sequence.sample_1d(s, i, &self.spp)
     }
 
     #[inline]
     fn value_2d(&self, pixel_key: u64, index: u64, dim: u32) -> Vec2 {
         let (s, i) = self.stream(pixel_key, index, dim);
-        let [x, y] = self.sequence.sample_2d(s, i, self.spp);
+        let [x, y] = self.sequence.sample_2d(s, i, &self.spp);
         Vec2::new(x, y)
     }
 }

@@ -227,6 +227,13 @@ impl fmt::Debug for Entry {
 impl Entry {
     /// Builds the sampler, after checking that every optional parameter given is one it takes.
     pub fn build(&self, params: &Params) -> Result<Box<dyn Sampler>> {
+        self.check_params(params)?;
+        (self.build)(params)
+    }
+
+    /// The checks common to both forms: every optional parameter given is one this sampler
+    /// takes, and the count is not 0.
+    fn check_params(&self, params: &Params) -> Result<()> {
         for (p, value) in params.given() {
             if !self.parameters.contains(&p) {
                 let takers: Vec<&str> = ENTRIES
@@ -258,7 +265,7 @@ impl Entry {
                 format!("allowed counts: {}", self.counts),
             ));
         }
-        (self.build)(params)
+        Ok(())
     }
 
     /// True when the sampler has points of more than 2 dimensions.
@@ -279,7 +286,7 @@ impl Entry {
         }
         match self.nd {
             Some(build) => {
-                self.build(params)?; // validates the common parameters the same way
+                self.check_params(params)?;
                 build(params, dims)
             }
             None if dims == 2 => Ok(Box::new(TwoDimensional(self.build(params)?))),
@@ -548,12 +555,8 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Any,
         parameters: &[],
         expensive: false,
-        nd: Some(|p, d| Ok(Box::new(samplers::LatinHypercube::new(p.count, d, p.seed)?))),
-        build: |p| {
-            Ok(Box::new(FirstTwo(Box::new(samplers::LatinHypercube::new(
-                p.count, 2, p.seed,
-            )?))))
-        },
+        nd: Some(latin_nd),
+        build: |p| Ok(Box::new(FirstTwo(latin_nd(p, 2)?))),
     },
     Entry {
         name: "uncorrelated",
@@ -562,16 +565,8 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::Square,
         parameters: &[],
         expensive: false,
-        nd: Some(|p, d| {
-            Ok(Box::new(samplers::UncorrelatedJitter::new(
-                p.count, d, p.seed,
-            )?))
-        }),
-        build: |p| {
-            Ok(Box::new(FirstTwo(Box::new(
-                samplers::UncorrelatedJitter::new(p.count, 2, p.seed)?,
-            ))))
-        },
+        nd: Some(uncorrelated_nd),
+        build: |p| Ok(Box::new(FirstTwo(uncorrelated_nd(p, 2)?))),
     },
     Entry {
         name: "oa-bose",
@@ -580,12 +575,8 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::OaPower(2),
         parameters: &[],
         expensive: false,
-        nd: Some(|p, d| Ok(Box::new(samplers::Bose::new(p.count, d, p.seed)?))),
-        build: |p| {
-            Ok(Box::new(FirstTwo(Box::new(samplers::Bose::new(
-                p.count, 2, p.seed,
-            )?))))
-        },
+        nd: Some(bose_nd),
+        build: |p| Ok(Box::new(FirstTwo(bose_nd(p, 2)?))),
     },
     Entry {
         name: "oa-bush",
@@ -594,24 +585,27 @@ static ENTRIES: &[Entry] = &[
         counts: CountRule::OaPower(3),
         parameters: &[Parameter::Strength],
         expensive: false,
-        nd: Some(|p, d| {
-            Ok(Box::new(samplers::Bush::new(
-                p.count,
-                p.strength.unwrap_or(3),
-                d,
-                p.seed,
-            )?))
-        }),
-        build: |p| {
-            Ok(Box::new(FirstTwo(Box::new(samplers::Bush::new(
-                p.count,
-                p.strength.unwrap_or(3),
-                2,
-                p.seed,
-            )?))))
-        },
+        nd: Some(bush_nd),
+        build: |p| Ok(Box::new(FirstTwo(bush_nd(p, 2)?))),
     },
 ];
+
+// The D-dimensional constructors whose 2D form is their first two dimensions.
+fn latin_nd(p: &Params, d: u32) -> Result<Box<dyn SamplerNd>> {
+    Ok(Box::new(samplers::LatinHypercube::new(p.count, d, p.seed)?))
+}
+fn uncorrelated_nd(p: &Params, d: u32) -> Result<Box<dyn SamplerNd>> {
+    Ok(Box::new(samplers::UncorrelatedJitter::new(
+        p.count, d, p.seed,
+    )?))
+}
+fn bose_nd(p: &Params, d: u32) -> Result<Box<dyn SamplerNd>> {
+    Ok(Box::new(samplers::Bose::new(p.count, d, p.seed)?))
+}
+fn bush_nd(p: &Params, d: u32) -> Result<Box<dyn SamplerNd>> {
+    let strength = p.strength.unwrap_or(3);
+    Ok(Box::new(samplers::Bush::new(p.count, strength, d, p.seed)?))
+}
 
 /// Every registered sampler, in a stable order (simplest first).
 pub fn entries() -> &'static [Entry] {

@@ -46,6 +46,13 @@ pub fn unit_f64_from_u32(x: u32) -> f64 {
     x as f64 * INV_2_POW_32
 }
 
+/// The top 53 bits of a 64-bit random word as an `f64` in `[0, 1)` (exact, uniform on the
+/// multiples of `2^-53`).
+#[inline]
+pub fn unit_f64_from_u64(x: u64) -> f64 {
+    (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
 /// An `f64` in `[0, 1)` as an `f32` in `[0, 1)`: rounds toward zero, maps NaN and negatives to 0
 /// and everything at or above the largest `f32` below 1 to [`ONE_MINUS_EPSILON`].
 ///

@@ -93,3 +93,23 @@ pub fn unexpected(arg: lexopt::Arg<'_>, usage: &str) -> CliError {
     };
     cli_error(format!("{what}; usage: {usage}"))
 }
+
+/// The sampler parameters `points` and `spectrum` share: `--radius`, `--iterations`,
+/// `--strength`, `--candidates` (the flag's name without dashes), read from `parser` into
+/// `params` with the same ranges in both programs.
+pub fn sampler_param(
+    flag: &str,
+    parser: &mut lexopt::Parser,
+    params: &mut strata::registry::Params,
+) -> Result<(), CliError> {
+    let dashed = format!("--{flag}");
+    let v = string_value(&dashed, parser.value()?)?;
+    match flag {
+        "radius" => params.radius = Some(parse_open_float(&dashed, &v, 0.0, 1.0)?),
+        "iterations" => params.iterations = Some(parse_int(&dashed, &v, 0, 100_000)? as u32),
+        "strength" => params.strength = Some(parse_int(&dashed, &v, 0, 64)? as u32),
+        "candidates" => params.candidates = Some(parse_int(&dashed, &v, 0, 1 << 16)? as u32),
+        other => return Err(cli_error(format!("--{other} is not a sampler parameter"))),
+    }
+    Ok(())
+}

@@ -9,7 +9,7 @@ use super::fourier::{integrand_power, predicted_variance};
 use crate::error::{Error, Result};
 use crate::registry::{CountRule, Entry, Params};
 use crate::sampler::Point2;
-use crate::spectrum::expected_spectrum_of_sets;
+use crate::spectrum::expected_spectrum;
 
 /// The largest count a study accepts.
 pub const MAX_STUDY_COUNT: u64 = 1 << 20;
@@ -258,15 +258,15 @@ pub fn run(
             // the 2D spectrum of the first two dimensions, for the predictions
             let spectrum = if config.predict && integrands.iter().any(|f| f.dimensions() == 2) {
                 let k = ((4.0 * (n as f64).sqrt()) as u32 / 2 * 2).clamp(32, 256);
-                let two: Vec<Vec<Point2>> = sets
-                    .iter()
-                    .map(|(v, _)| {
-                        v.chunks_exact(dims as usize)
-                            .map(|c| Point2::new(c[0], c[1]))
-                            .collect()
-                    })
-                    .collect();
-                Some((k, expected_spectrum_of_sets(&two, k)?))
+                // each set's first two dimensions, converted as the realizations are needed
+                let spectrum = expected_spectrum(config.seeds, k, |r| {
+                    Ok(sets[r as usize]
+                        .0
+                        .chunks_exact(dims as usize)
+                        .map(|c| Point2::new(c[0], c[1]))
+                        .collect())
+                })?;
+                Some((k, spectrum))
             } else {
                 None
             };

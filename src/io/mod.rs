@@ -209,8 +209,6 @@ pub fn read_exr_y(path: impl AsRef<Path>) -> Result<(usize, usize, Vec<f32>)> {
 #[cfg(feature = "spectrum")]
 /// Writes the radial mean as CSV: `frequency,power,anisotropy`, one row per bin.
 pub fn write_radial_csv(path: impl AsRef<Path>, bins: &[RadialBin]) -> Result<()> {
-    let path = path.as_ref();
-    create_parent(path)?;
     let mut text = String::from("frequency,power,anisotropy\n");
     for b in bins {
         text.push_str(&format!("{},{},{}\n", b.frequency, b.power, b.anisotropy));

@@ -22,7 +22,7 @@ use rand_pcg::Pcg32;
 use super::poisson::{below, uniform};
 use super::{SetGenerator, Sets};
 use crate::error::{Error, Result};
-use crate::grid::{TorusGrid, torus_distance_squared};
+use crate::grid::{TorusGrid, torus_distance_squared, wrap_unit};
 use crate::hash::stream_seed;
 
 /// Discrete points per site.
@@ -239,11 +239,7 @@ fn torus_centroid(points: &[[f64; 2]], around: [f64; 2]) -> [f64; 2] {
         sy += dy - dy.round();
     }
     let k = points.len() as f64;
-    let w = |v: f64| {
-        let y = v - v.floor();
-        if y < 1.0 { y } else { 0.0 }
-    };
-    [w(around[0] + sx / k), w(around[1] + sy / k)]
+    [wrap_unit(around[0] + sx / k), wrap_unit(around[1] + sy / k)]
 }
 
 /// `sum_i sum_{x in A_i} |x - s_i|^2`.

@@ -12,7 +12,7 @@
 //! the 32-bit result, including the trailing zero digits of the index, so the scrambled points
 //! are uniform. The stratification above is kept.
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::hash::{GOLDEN_GAMMA, Permutation, hash32, mix64, owen_scramble, stream_seed};
 use crate::sampler::{
     Point2, Progression, Sampler, SamplerNd, Strata, StrataGrid, unit_f32_from_u32,
@@ -153,14 +153,12 @@ pub struct HaltonNd {
 impl HaltonNd {
     /// `dims` dimensions (1 to [`MAX_DIMENSIONS`]) seeded by `seed`.
     pub fn new(dims: u32, seed: u64) -> Result<Self> {
-        if dims == 0 || dims as usize > MAX_DIMENSIONS {
-            return Err(Error::parameter(
-                "halton",
-                "dims",
-                dims,
-                format!("1 to {MAX_DIMENSIONS} (one prime base per dimension)"),
-            ));
-        }
+        super::check_dims(
+            "halton",
+            dims,
+            MAX_DIMENSIONS as u32,
+            " (one prime base per dimension)",
+        )?;
         Ok(HaltonNd {
             seed,
             dims,

@@ -7,9 +7,10 @@
 //! axes (low power at `u = 0` or `v = 0`) and is white elsewhere.
 
 use super::{
-    BlockCursor, MAX_DIMENSIONS, check_count, fixed_count_sampler, fixed_count_sampler_nd,
+    BlockCursor, MAX_DIMENSIONS, block_permutations, check_count, check_dims, fixed_count_sampler,
+    fixed_count_sampler_nd,
 };
-use crate::hash::{Permutation, hash_u64, key32, stream_seed};
+use crate::hash::{Permutation, hash_u64, key32};
 use crate::sampler::{Point2, Strata, StrataGrid};
 
 /// N-rooks (2D Latin hypercube): any `N >= 1`, one point per `1/N` column and per `1/N` row.
@@ -113,14 +114,7 @@ impl LatinHypercube {
     /// Sets of `count >= 1` points in `dims` (1 to [`MAX_DIMENSIONS`]) dimensions.
     pub fn new(count: u64, dims: u32, seed: u64) -> crate::Result<Self> {
         let n = check_count("latin", count)?;
-        if dims == 0 || dims > MAX_DIMENSIONS {
-            return Err(crate::Error::parameter(
-                "latin",
-                "dims",
-                dims,
-                format!("1 to {MAX_DIMENSIONS}"),
-            ));
-        }
+        check_dims("latin", dims, MAX_DIMENSIONS, "")?;
         Ok(LatinHypercube {
             count: n,
             dims,
@@ -138,9 +132,7 @@ impl LatinHypercube {
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
-        self.perms = (0..self.dims as u64)
-            .map(|d| Permutation::new(self.count, key32(stream_seed(key, d))).expect("n >= 1"))
-            .collect();
+        block_permutations(&mut self.perms, self.count, key, self.dims);
     }
 
     fn point(&self, i: u32, out: &mut [f32]) {

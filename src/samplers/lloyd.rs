@@ -17,8 +17,9 @@ use spade::{DelaunayTriangulation, HasPosition, Point2 as SPoint, Triangulation}
 
 use super::{SetGenerator, Sets};
 use crate::error::{Error, Result};
-use crate::grid::relative_radius_max;
+use crate::grid::{relative_radius_max, wrap_unit as wrap};
 use crate::hash::{hash_u64, stream_seed};
+use crate::sampler::{unit_f64_from_u32, unit_f64_from_u64};
 
 /// The default number of iterations: enough, from random points, for the mean distance from a
 /// point to its cell's centroid to fall below 1% of `r_max(N)` (tested).
@@ -221,8 +222,8 @@ pub fn relax(points: &mut [[f64; 2]], iterations: u32) -> Result<Vec<LloydStep>>
                     // a duplicate: nudge it by up to 1e-3 r_max in a hashed direction
                     let h = hash_u64(0x11_0d, (it as u64) << 32 | i as u64);
                     let (dx, dy) = (
-                        (h as u32) as f64 / 4294967296.0 - 0.5,
-                        ((h >> 32) as u32) as f64 / 4294967296.0 - 0.5,
+                        unit_f64_from_u32(h as u32) - 0.5,
+                        unit_f64_from_u32((h >> 32) as u32) - 0.5,
                     );
                     *p = [
                         wrap(p[0] + dx * 1e-3 * r_max),
@@ -237,11 +238,6 @@ pub fn relax(points: &mut [[f64; 2]], iterations: u32) -> Result<Vec<LloydStep>>
         });
     }
     Ok(steps)
-}
-
-fn wrap(x: f64) -> f64 {
-    let y = x - x.floor();
-    if y < 1.0 { y } else { 0.0 }
 }
 
 /// Lloyd-relaxed sets: `count` random points relaxed `iterations` times.
@@ -282,10 +278,9 @@ pub(crate) fn random_start(count: usize, key: u64) -> Vec<[f64; 2]> {
     let k = stream_seed(key, 5);
     (0..count as u64)
         .map(|i| {
-            let (a, b) = (hash_u64(k, 2 * i), hash_u64(k, 2 * i + 1));
             [
-                (a >> 11) as f64 / (1u64 << 53) as f64,
-                (b >> 11) as f64 / (1u64 << 53) as f64,
+                unit_f64_from_u64(hash_u64(k, 2 * i)),
+                unit_f64_from_u64(hash_u64(k, 2 * i + 1)),
             ]
         })
         .collect()

@@ -58,7 +58,7 @@ pub use sobol::{Sobol, SobolNd};
 pub use uncorrelated::UncorrelatedJitter;
 
 use crate::error::{Error, Result};
-use crate::hash::stream_seed;
+use crate::hash::{Permutation, key32, stream_seed};
 
 /// The largest count a fixed-count sampler accepts (`2^31`: indices within a block, and the
 /// `m n` fine strata of a multi-jittered grid, stay 32-bit). Far beyond what a set built in
@@ -123,6 +123,29 @@ pub(crate) fn check_count(sampler: &'static str, count: u64) -> Result<u32> {
         ));
     }
     Ok(count as u32)
+}
+
+/// Validates a dimension count: 1 to `max`; `note` (empty, or starting with a space) follows
+/// the allowed range in the error.
+pub(crate) fn check_dims(sampler: &'static str, dims: u32, max: u32, note: &str) -> Result<()> {
+    if dims == 0 || dims > max {
+        return Err(Error::parameter(
+            sampler,
+            "dims",
+            dims,
+            format!("1 to {max}{note}"),
+        ));
+    }
+    Ok(())
+}
+
+/// Replaces `out` with `k` independent permutations of `[0, len)` for block key `key` (one per
+/// dimension or group of dimensions, permutation `d` keyed by stream `d` of `key`).
+pub(crate) fn block_permutations(out: &mut Vec<Permutation>, len: u32, key: u64, k: u32) {
+    out.clear();
+    out.extend(
+        (0..k as u64).map(|d| Permutation::new(len, key32(stream_seed(key, d))).expect("len >= 1")),
+    );
 }
 
 /// Validates a count that must be a perfect square `s^2`, returning `s`.

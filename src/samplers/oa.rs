@@ -23,7 +23,7 @@
 //! permutation of `i / q`, the index without its lowest digit (for fixed high digits the column
 //! is a bijection of the lowest one). Everything is computed sample by sample, as in the paper.
 
-use super::{BlockCursor, MAX_FIXED_COUNT, fixed_count_sampler_nd};
+use super::{BlockCursor, MAX_FIXED_COUNT, check_dims, fixed_count_sampler_nd};
 use crate::error::{Error, Result};
 use crate::hash::{DivMod, Permutation, hash_u64, hash32, key32, stream_seed};
 use crate::sampler::Strata;
@@ -223,26 +223,12 @@ fn check_oa_count(name: &'static str, count: u64, t: u32) -> Result<u32> {
     Ok(q as u32)
 }
 
-fn check_dims(name: &'static str, dims: u32, max: u32, why: &str) -> Result<()> {
-    if dims == 0 || dims > max {
-        return Err(Error::parameter(
-            name,
-            "dims",
-            dims,
-            format!("1 to {max} ({why})"),
-        ));
-    }
-    Ok(())
-}
-
-/// Per-block, per-dimension permutation keys.
-fn dim_keys(key: u64, dims: u32) -> Vec<(u32, u32)> {
-    (0..dims as u64)
-        .map(|j| {
-            let k = stream_seed(key, j);
-            (key32(k), key32(k ^ 0x5eed))
-        })
-        .collect()
+/// Per-block, per-dimension permutation keys: the stratum key and the sub-stratum key.
+fn dim_keys(key: u64, dims: u32) -> impl Iterator<Item = (u32, u32)> {
+    (0..dims as u64).map(move |j| {
+        let k = stream_seed(key, j);
+        (key32(k), key32(k ^ 0x5eed))
+    })
 }
 
 /// Bose orthogonal-array sets: strength 2, `N = q^2`, up to `q + 1` dimensions.
@@ -252,7 +238,8 @@ pub struct Bose {
     q: DivMod,
     dims: u32,
     strata: Strata,
-    keys: Vec<(u32, u32)>,
+    /// Per dimension: the block's stratum permutation and its sub-stratum key.
+    keys: Vec<(Permutation, u32)>,
     key: u64,
     cursor: BlockCursor,
 }
@@ -265,7 +252,7 @@ impl Bose {
             "oa-bose",
             dims,
             q + 1,
-            "a Bose array has at most q + 1 columns",
+            " (a Bose array has at most q + 1 columns)",
         )?;
         let field = Field::new(q).expect("checked");
         Ok(Bose {
@@ -296,7 +283,10 @@ impl Bose {
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
-        self.keys = dim_keys(key, self.dims);
+        self.keys.clear();
+        self.keys.extend(
+            dim_keys(key, self.dims).map(|(ks, kb)| (Permutation::with_divider(&self.q, ks), kb)),
+        );
     }
 
     fn point(&self, i: u32, out: &mut [f32]) {
@@ -304,15 +294,11 @@ impl Bose {
         let (a1, a0) = self.q.div_rem(i);
         for (j, o) in out.iter_mut().enumerate().take(self.dims as usize) {
             let j = j as u32;
-            let (ks, kb) = self.keys[j as usize];
-            let stratum = Permutation::new(q, ks)
-                .expect("q >= 2")
-                .apply(self.symbol(j, a0, a1));
+            let (perm, kb) = &self.keys[j as usize];
+            let stratum = perm.apply(self.symbol(j, a0, a1));
             // partner column: 1 for column 0, else 0
             let partner = self.symbol(if j == 0 { 1 } else { 0 }, a0, a1);
-            let sub = Permutation::new(q, hash32(stratum, kb))
-                .expect("q >= 2")
-                .apply(partner);
+            let sub = Permutation::with_divider(&self.q, hash32(stratum, *kb)).apply(partner);
             let jitter = hash_u64(self.key, (i as u64) << 16 | j as u64) as u32;
             *o = self.strata.place(stratum * q + sub, jitter);
         }
@@ -325,9 +311,12 @@ pub struct Bush {
     field: Field,
     q: DivMod,
     t: u32,
+    /// `q^(t-1)`: the sub-strata per stratum.
+    sub_count: u32,
     dims: u32,
     strata: Strata,
-    keys: Vec<(u32, u32)>,
+    /// Per dimension: the block's stratum and sub-stratum permutations.
+    keys: Vec<(Permutation, Permutation)>,
     key: u64,
     cursor: BlockCursor,
 }
@@ -339,11 +328,12 @@ impl Bush {
             return Err(Error::parameter("oa-bush", "strength", strength, "2 to 16"));
         }
         let q = check_oa_count("oa-bush", count, strength)?;
-        check_dims("oa-bush", dims, q, "a Bush array has at most q columns")?;
+        check_dims("oa-bush", dims, q, " (a Bush array has at most q columns)")?;
         Ok(Bush {
             field: Field::new(q).expect("checked"),
             q: DivMod::new(q).expect("q >= 2"),
             t: strength,
+            sub_count: (count / q as u64) as u32,
             dims,
             strata: Strata::new(count),
             keys: Vec::new(),
@@ -359,12 +349,18 @@ impl Bush {
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
-        self.keys = dim_keys(key, self.dims);
+        self.keys.clear();
+        let sub_count = self.sub_count;
+        self.keys.extend(dim_keys(key, self.dims).map(|(ks, kb)| {
+            (
+                Permutation::with_divider(&self.q, ks),
+                Permutation::new(sub_count, kb).expect("q^(t-1) >= 1"),
+            )
+        }));
     }
 
     fn point(&self, i: u32, out: &mut [f32]) {
-        let q = self.q.divisor();
-        let sub_count = self.count() / q; // q^(t-1)
+        let sub_count = self.sub_count;
         let (high, _) = self.q.div_rem(i); // i / q: the index without its lowest digit
         let mut digits = [0u32; 16];
         let mut v = i;
@@ -380,11 +376,9 @@ impl Bush {
             for k in (0..self.t as usize).rev() {
                 phi = self.field.add(self.field.mul(phi, j), digits[k]);
             }
-            let (ks, kb) = self.keys[j as usize];
-            let stratum = Permutation::new(q, ks).expect("q >= 2").apply(phi);
-            let sub = Permutation::new(sub_count, kb)
-                .expect("q^(t-1) >= 1")
-                .apply(high);
+            let (perm, sub_perm) = &self.keys[j as usize];
+            let stratum = perm.apply(phi);
+            let sub = sub_perm.apply(high);
             let jitter = hash_u64(self.key, (i as u64) << 16 | j as u64) as u32;
             *o = self.strata.place(stratum * sub_count + sub, jitter);
         }

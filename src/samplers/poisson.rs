@@ -28,8 +28,9 @@ use rand_pcg::Pcg32;
 
 use super::{SetGenerator, Sets};
 use crate::error::{Error, Result};
-use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared};
+use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared, wrap_unit as wrap};
 use crate::hash::stream_seed;
+use crate::sampler::unit_f64_from_u64;
 
 /// The default relative radius.
 pub const DEFAULT_RHO: f64 = 0.7;
@@ -53,24 +54,12 @@ const F32_SLACK: f64 = 1.0 / (1u64 << 22) as f64;
 
 /// A uniform `f64` in `[0, 1)` from the generator.
 pub(crate) fn uniform(rng: &mut Pcg32) -> f64 {
-    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    unit_f64_from_u64(rng.next_u64())
 }
 
 /// A uniform index in `[0, len)`.
 pub(crate) fn below(rng: &mut Pcg32, len: usize) -> usize {
     ((rng.next_u32() as u64 * len as u64) >> 32) as usize
-}
-
-/// `x` wrapped into `[0, 1)` (for `x` within one period of it).
-pub(crate) fn wrap(x: f64) -> f64 {
-    let y = if x < 0.0 {
-        x + 1.0
-    } else if x >= 1.0 {
-        x - 1.0
-    } else {
-        x
-    };
-    if (0.0..1.0).contains(&y) { y } else { 0.0 }
 }
 
 /// Validates the count and the relative radius shared by the Poisson-disk samplers.

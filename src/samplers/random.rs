@@ -68,14 +68,7 @@ impl RandomNd {
     /// `dims >= 1` dimensions seeded by `seed` (the first two coordinates of each point are
     /// those of [`Random`] with the same seed only for `dims = 2`).
     pub fn new(dims: u32, seed: u64) -> crate::Result<Self> {
-        if dims == 0 || dims > super::MAX_DIMENSIONS {
-            return Err(crate::Error::parameter(
-                "random",
-                "dims",
-                dims,
-                format!("1 to {}", super::MAX_DIMENSIONS),
-            ));
-        }
+        super::check_dims("random", dims, super::MAX_DIMENSIONS, "")?;
         Ok(RandomNd {
             dims,
             rng: Pcg32::new(stream_seed(seed, 0), stream_seed(seed, 1)),

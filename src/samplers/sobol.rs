@@ -20,7 +20,7 @@
 
 use std::sync::OnceLock;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::hash::{hash32, owen_scramble_rev, stream_seed};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, StrataGrid, unit_f32_from_u32};
 
@@ -184,10 +184,9 @@ impl Scramble {
     pub fn sample2_u32(&self, index: u32, dim: u32) -> [u32; 2] {
         let t = &tables().bytes;
         let i = self.index_rev(index);
-        let (a, b) = (&t[dim as usize], &t[dim as usize + 1]);
         [
-            owen_scramble_rev(lookup(a, i), self.dim_seed(dim)).reverse_bits(),
-            owen_scramble_rev(lookup(b, i), self.dim_seed(dim + 1)).reverse_bits(),
+            self.sample_rev_u32(&t[dim as usize], i, dim),
+            self.sample_rev_u32(&t[dim as usize + 1], i, dim + 1),
         ]
     }
 
@@ -208,8 +207,13 @@ impl Scramble {
     /// Dimension `dim` of point `index`, as 32-bit fixed point (`dim < max_dimensions()`).
     #[inline]
     pub fn sample_u32(&self, index: u32, dim: u32) -> u32 {
-        let t = &tables().bytes[dim as usize];
-        owen_scramble_rev(lookup(t, self.index_rev(index)), self.dim_seed(dim)).reverse_bits()
+        self.sample_rev_u32(&tables().bytes[dim as usize], self.index_rev(index), dim)
+    }
+
+    /// Dimension `dim` (byte tables `t`) at an already shuffled index `i_rev`.
+    #[inline]
+    fn sample_rev_u32(&self, t: &[[u32; 256]; 4], i_rev: u32, dim: u32) -> u32 {
+        owen_scramble_rev(lookup(t, i_rev), self.dim_seed(dim)).reverse_bits()
     }
 }
 
@@ -306,19 +310,12 @@ impl SobolNd {
     /// `dims` dimensions (1 to [`max_dimensions`]) seeded by `seed`.
     pub fn new(dims: u32, seed: u64) -> Result<Self> {
         let max = max_dimensions();
-        if dims == 0 || dims > max {
-            let why = if cfg!(feature = "joe-kuo") {
-                ""
-            } else {
-                " (enable the `joe-kuo` feature for 1000)"
-            };
-            return Err(Error::parameter(
-                "sobol",
-                "dims",
-                dims,
-                format!("1 to {max}{why}"),
-            ));
-        }
+        let why = if cfg!(feature = "joe-kuo") {
+            ""
+        } else {
+            " (enable the `joe-kuo` feature for 1000)"
+        };
+        super::check_dims("sobol", dims, max, why)?;
         Ok(SobolNd {
             seed,
             epoch: 0,
@@ -349,8 +346,10 @@ impl SamplerNd for SobolNd {
             self.seed,
             &mut self.scramble,
         );
-        for (d, o) in out.iter_mut().enumerate().take(self.dims as usize) {
-            *o = unit_f32_from_u32(self.scramble.sample_u32(i, d as u32));
+        // one index shuffle for all dimensions of the point
+        let (t, ir) = (&tables().bytes, self.scramble.index_rev(i));
+        for (d, (o, table)) in out.iter_mut().zip(t).take(self.dims as usize).enumerate() {
+            *o = unit_f32_from_u32(self.scramble.sample_rev_u32(table, ir, d as u32));
         }
     }
 }

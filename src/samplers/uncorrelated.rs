@@ -8,8 +8,11 @@
 //! trailing dimension stratified; across pairs the samples are uncorrelated, like Latin
 //! hypercube sampling (of which this is a special case).
 
-use super::{BlockCursor, MAX_DIMENSIONS, check_count, check_square, fixed_count_sampler_nd};
-use crate::hash::{Permutation, hash_u64, key32, stream_seed};
+use super::{
+    BlockCursor, MAX_DIMENSIONS, block_permutations, check_count, check_dims, check_square,
+    fixed_count_sampler_nd,
+};
+use crate::hash::{DivMod, Permutation, hash_u64};
 use crate::sampler::Strata;
 
 /// Uncorrelated jitter in `D` dimensions: `N = s^2` (any `N` when `D = 1`).
@@ -24,7 +27,7 @@ use crate::sampler::Strata;
 #[derive(Clone, Debug)]
 pub struct UncorrelatedJitter {
     count: u32,
-    side: u32,
+    side: DivMod,
     dims: u32,
     pairs: Strata,
     single: Strata,
@@ -37,23 +40,16 @@ impl UncorrelatedJitter {
     /// Sets of `count` points in `dims` (1 to [`MAX_DIMENSIONS`]) dimensions; `count` must be a
     /// perfect square when `dims >= 2`.
     pub fn new(count: u64, dims: u32, seed: u64) -> crate::Result<Self> {
-        if dims == 0 || dims > MAX_DIMENSIONS {
-            return Err(crate::Error::parameter(
-                "uncorrelated",
-                "dims",
-                dims,
-                format!("1 to {MAX_DIMENSIONS}"),
-            ));
-        }
-        let n = check_count("uncorrelated", count)?;
-        let side = if dims >= 2 {
-            check_square("uncorrelated", count)?
+        check_dims("uncorrelated", dims, MAX_DIMENSIONS, "")?;
+        let (n, side) = if dims >= 2 {
+            let s = check_square("uncorrelated", count)?;
+            (s * s, s)
         } else {
-            1
+            (check_count("uncorrelated", count)?, 1)
         };
         Ok(UncorrelatedJitter {
             count: n,
-            side,
+            side: DivMod::new(side).expect("side >= 1"),
             dims,
             pairs: Strata::new(side as u64),
             single: Strata::new(n as u64),
@@ -70,21 +66,18 @@ impl UncorrelatedJitter {
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
-        let groups = self.dims.div_ceil(2) as u64;
-        self.perms = (0..groups)
-            .map(|g| Permutation::new(self.count, key32(stream_seed(key, g))).expect("n >= 1"))
-            .collect();
+        block_permutations(&mut self.perms, self.count, key, self.dims.div_ceil(2));
     }
 
     fn point(&self, i: u32, out: &mut [f32]) {
-        let s = self.side;
         for (g, perm) in self.perms.iter().enumerate() {
             let cell = perm.apply(i);
             let h = hash_u64(self.key, (i as u64) << 16 | g as u64);
             let d = 2 * g;
             if d + 1 < self.dims as usize {
-                out[d] = self.pairs.place(cell % s, h as u32);
-                out[d + 1] = self.pairs.place(cell / s, (h >> 32) as u32);
+                let (row, col) = self.side.div_rem(cell);
+                out[d] = self.pairs.place(col, h as u32);
+                out[d + 1] = self.pairs.place(row, (h >> 32) as u32);
             } else {
                 out[d] = self.single.place(cell, h as u32);
             }

@@ -44,6 +44,8 @@ pub(crate) struct Plan {
     e3: Vec<f64>,
     /// `1 / (M g^(k))` for `k = -K/2 ..= K/2`.
     deconvolve: Vec<f64>,
+    /// The DFT index of each wanted frequency `-K/2 ..= K/2` (`f mod M`), and of its negative.
+    wanted: Vec<(usize, usize)>,
     fft: Arc<dyn Fft<f64>>,
 }
 
@@ -86,6 +88,12 @@ impl Plan {
                 1.0 / (mf * g_hat)
             })
             .collect();
+        let wanted = (0..modes)
+            .map(|f| {
+                let at = (f + m - k / 2) % m;
+                (at, (m - at) % m)
+            })
+            .collect();
         let fft = FftPlanner::new().plan_fft_forward(m);
         Plan {
             modes,
@@ -94,6 +102,7 @@ impl Plan {
             tau,
             e3,
             deconvolve,
+            wanted,
             fft,
         }
     }
@@ -138,10 +147,15 @@ impl Plan {
         for (i, prow) in padded.chunks_exact(pw).enumerate() {
             let gy_row = (i + shift) % m;
             let grow = &mut grid[gy_row * m..(gy_row + 1) * m];
-            for (j, &v) in prow.iter().enumerate() {
-                if v != 0.0 {
-                    grow[(j + shift) % m] += v;
+            // contiguous runs of the padded row onto the grid row (same order of additions)
+            let mut j = 0;
+            while j < pw {
+                let t = (j + shift) % m;
+                let len = (m - t).min(pw - j);
+                for (g, &v) in grow[t..t + len].iter_mut().zip(&prow[j..j + len]) {
+                    *g += v;
                 }
+                j += len;
             }
         }
         grid
@@ -168,9 +182,6 @@ impl Plan {
     /// kernel's transform.
     fn fft_and_deconvolve(&self, grid: Vec<f64>) -> Vec<Complex64> {
         let (m, modes) = (self.m, self.modes);
-        let half = (modes - 1) / 2;
-        // Frequency f in -K/2..=K/2 sits at DFT index f mod M.
-        let index = |f: usize| (f + m - half) % m;
         let mut scratch = vec![Complex64::new(0.0, 0.0); self.fft.get_inplace_scratch_len()];
 
         // Pass 1 along x: two real rows per complex FFT (z = a + i b gives A and B by symmetry).
@@ -185,10 +196,9 @@ impl Plan {
                 *b = Complex64::new(grid[y * m + x], im);
             }
             self.fft.process_with_scratch(&mut buf, &mut scratch);
-            for f in 0..modes {
-                let k = index(f);
+            for (f, &(k, minus_k)) in self.wanted.iter().enumerate() {
                 let z = buf[k];
-                let zc = buf[(m - k) % m].conj();
+                let zc = buf[minus_k].conj();
                 rows[y * modes + f] = (z + zc) * 0.5;
                 if two {
                     // (z - conj z(-k)) / 2i
@@ -206,8 +216,8 @@ impl Plan {
                 *b = rows[yy * modes + fx];
             }
             self.fft.process_with_scratch(&mut buf, &mut scratch);
-            for fy in 0..modes {
-                out[fy * modes + fx] = buf[index(fy)] * (self.deconvolve[fx] * self.deconvolve[fy]);
+            for (fy, &(k, _)) in self.wanted.iter().enumerate() {
+                out[fy * modes + fx] = buf[k] * (self.deconvolve[fx] * self.deconvolve[fy]);
             }
         }
         out

@@ -6,7 +6,7 @@ use rand_pcg::Pcg32;
 use crate::grid::{TorusGrid, torus_distance_squared};
 use crate::hash::{hash_u64, stream_seed};
 use crate::occupancy::{ElementaryIntervals, Strata1D, top_bits};
-use crate::sampler::INV_2_POW_32;
+use crate::sampler::unit_f64_from_u32;
 
 /// Which constraints a new point obeys, and how many best-candidate candidates it draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,7 +47,7 @@ pub(crate) struct Construction {
 }
 
 fn to_f64(p: [u32; 2]) -> [f64; 2] {
-    [p[0] as f64 * INV_2_POW_32, p[1] as f64 * INV_2_POW_32]
+    p.map(unit_f64_from_u32)
 }
 
 impl Construction {
