@@ -133,11 +133,14 @@ fn dims_and_pixel_print_the_library_values() {
     assert_eq!(lines.next(), Some("x0,x1,x2,x3,x4"));
     let mut s = registry::build_nd("sobol", &Params::new(8).seed(3), 5).unwrap();
     let mut want = vec![0f32; 5];
+    let mut rows = 0;
     for line in lines {
         s.next_point(&mut want);
         let got: Vec<f32> = line.split(',').map(|v| v.parse().unwrap()).collect();
         assert_eq!(got, want);
+        rows += 1;
     }
+    assert_eq!(rows, 8);
     // --pixel X,Y: the adapter's values, dims 0-1 get_pixel_2d, then get_2d, then get_1d
     let (code, out, err) = run(&[
         "--sampler",
@@ -151,13 +154,18 @@ fn dims_and_pixel_print_the_library_values() {
     ]);
     assert_eq!(code, 0, "{err}");
     let sampler = strata::pixel::PixelSampler::new(strata::pixel::Sequence::pmj02(), 4, 1).unwrap();
-    for (i, line) in out.lines().skip(1).enumerate() {
+    let mut lines = out.lines();
+    assert_eq!(lines.next(), Some("x0,x1,x2,x3,x4"));
+    let mut rows = 0;
+    for (i, line) in lines.enumerate() {
         let got: Vec<f32> = line.split(',').map(|v| v.parse().unwrap()).collect();
         let a = sampler.sample_2d([3, 7], i as u64, 0);
         let b = sampler.sample_2d([3, 7], i as u64, 2);
         let c = sampler.sample([3, 7], i as u64, 4);
         assert_eq!(got, vec![a.x, a.y, b.x, b.y, c]);
+        rows += 1;
     }
+    assert_eq!(rows, 4);
     // refusals name what is allowed
     let (code, _, err) = run(&["--sampler", "jittered", "-n", "4", "--dims", "3"]);
     assert_ne!(code, 0);

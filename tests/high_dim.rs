@@ -193,32 +193,30 @@ fn bad_dimensions_counts_and_strengths_are_refused() {
     );
     assert!(registry::build_nd("random", &Params::new(10), 0).is_err());
     // huge counts are refused at once (found by fuzzing: the nearest-count search once scanned
-    // billions of candidates)
-    let t = std::time::Instant::now();
+    // billions of candidates); the refusal names the largest counts instead of searching
     for n in [u64::MAX, 9_259_542_122_566_407_766, 1 << 40, (1 << 31) + 1] {
-        assert!(Bose::new(n, 3, 1).is_err());
-        assert!(Bush::new(n, 3, 3, 1).is_err());
+        for e in [
+            Bose::new(n, 3, 1).unwrap_err(),
+            Bush::new(n, 3, 3, 1).unwrap_err(),
+        ] {
+            assert!(
+                e.to_string().contains("the largest allowed are about"),
+                "{e}"
+            );
+        }
     }
-    assert!(t.elapsed().as_secs_f64() < 1.0);
 }
 
 #[test]
 fn registry_nd_samplers_are_reproducible() {
-    for name in [
-        "latin",
-        "uncorrelated",
-        "oa-bose",
-        "oa-bush",
-        "sobol",
-        "halton",
-        "random",
-    ] {
-        let e = registry::find(name).unwrap();
+    for e in registry::entries().iter().filter(|e| e.has_dimensions()) {
+        let name = e.name;
         let n = e.counts.nearest(100);
-        let run = || {
-            let mut s = registry::build_nd(name, &Params::new(n).seed(4), 4).unwrap();
+        let run = |seed| {
+            let mut s = registry::build_nd(name, &Params::new(n).seed(seed), 4).unwrap();
             points(s.as_mut(), n as usize)
         };
-        assert_eq!(run(), run(), "{name}");
+        assert_eq!(run(4), run(4), "{name}: same seed, same bits");
+        assert_ne!(run(4), run(5), "{name}: another seed, other points");
     }
 }

@@ -2,6 +2,9 @@
 //! per-pixel stratification, padding decorrelation, index limits; and Sobol' direction
 //! numbers checked against an independent implementation.
 
+mod common;
+
+use common::is_net;
 use strata::pixel::{PixelSampler, PixelSequence, Sequence};
 
 fn all() -> Vec<Sequence> {
@@ -78,20 +81,6 @@ fn revisiting_a_pixel_in_any_order_gives_the_same_bits() {
     }
 }
 
-/// Whether `pts` (2^m points) is a (0,m,2)-net.
-fn is_net(pts: &[glam::Vec2]) -> bool {
-    let m = pts.len().trailing_zeros();
-    (0..=m).all(|a| {
-        let mut cells = vec![0u8; pts.len()];
-        for p in pts {
-            let cx = (p.x as f64 * (1u64 << a) as f64) as usize;
-            let cy = (p.y as f64 * (1u64 << (m - a)) as f64) as usize;
-            cells[(cy << a) | cx] += 1;
-        }
-        cells.iter().all(|&c| c == 1)
-    })
-}
-
 #[test]
 fn each_pixel_gets_a_stratified_set_in_every_dimension_pair() {
     for name in ["pmj02", "sobol"] {
@@ -113,12 +102,8 @@ fn each_pixel_gets_a_stratified_set_in_every_dimension_pair() {
     // jittered: one point per cell of s x s
     let s = PixelSampler::new(Sequence::jittered(), 49, 2).unwrap();
     for dim in [0u32, 4] {
-        let mut cells = [0u8; 49];
-        for i in 0..49u64 {
-            let p = s.sample_2d([3, 4], i, dim);
-            cells[(p.y * 7.0) as usize * 7 + (p.x * 7.0) as usize] += 1;
-        }
-        assert!(cells.iter().all(|&c| c == 1), "jittered dim {dim}");
+        let pts: Vec<_> = (0..49u64).map(|i| s.sample_2d([3, 4], i, dim)).collect();
+        common::assert_one_per_cell(&pts, 7, 7, &format!("jittered dim {dim}"));
     }
 }
 

@@ -4,13 +4,13 @@
 
 mod common;
 
+use common::top;
 use strata::Sampler;
 use strata::samplers::pmj::{class2, class4};
 use strata::samplers::{Pmj, Pmj02Stochastic};
 
 /// For each shape `2^a x 2^(m-a)` (`a = 0..=m`), how many cells hold exactly one point.
 fn stratified_shapes(pts: &[[u32; 2]], m: u32) -> Vec<u32> {
-    let top = |v: u32, b: u32| if b == 0 { 0 } else { (v >> (32 - b)) as usize };
     (0..=m)
         .filter(|&a| {
             let mut c = vec![0u32; 1 << m];
@@ -196,7 +196,6 @@ fn stochastic_classes_are_stratified_on_their_own() {
                     .collect();
                 assert_eq!(class.len(), n / 2);
                 for a in 0..=m - 2 {
-                    let top = |v: u32, b: u32| if b == 0 { 0 } else { (v >> (32 - b)) as usize };
                     let mut cells = vec![0u32; 1 << (m - 2)];
                     for p in &class {
                         cells[(top(p[1], m - 2 - a) << a) | top(p[0], a)] += 1;

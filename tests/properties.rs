@@ -6,31 +6,9 @@ use strata::SamplerNd;
 use strata::registry::{self, Params};
 use strata::samplers::{Bose, Cmj, Jittered, MultiJittered, NRooks, Pmj, Pmj02Stochastic, Sobol};
 
-fn counts(points: &[glam::Vec2], cols: u32, rows: u32) -> Vec<u32> {
-    let mut c = vec![0u32; (cols * rows) as usize];
-    for p in points {
-        let (x, y) = (
-            (p.x as f64 * cols as f64) as u32,
-            (p.y as f64 * rows as f64) as u32,
-        );
-        c[(y * cols + x) as usize] += 1;
-    }
-    c
-}
+mod common;
 
-fn take(s: &mut dyn strata::Sampler, n: usize) -> Vec<glam::Vec2> {
-    (0..n).map(|_| s.next_sample()).collect()
-}
-
-fn is_net(pts: &[[u32; 2]]) -> bool {
-    let m = pts.len().trailing_zeros();
-    let top = |v: u32, b: u32| if b == 0 { 0 } else { (v >> (32 - b)) as usize };
-    (0..=m).all(|a| {
-        let mut seen = vec![false; pts.len()];
-        pts.iter()
-            .all(|p| !std::mem::replace(&mut seen[(top(p[1], m - a) << a) | top(p[0], a)], true))
-    })
-}
+use common::{counts, is_net_fixed as is_net, take};
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]

@@ -50,3 +50,35 @@ pub fn assert_at_most_one_per_cell(points: &[Vec2], columns: u32, rows: u32, wha
         );
     }
 }
+
+/// The top `bits` bits of a 32-bit fixed-point coordinate (its cell among `2^bits`).
+pub fn top(v: u32, bits: u32) -> usize {
+    if bits == 0 {
+        0
+    } else {
+        (v >> (32 - bits)) as usize
+    }
+}
+
+/// Whether `pts` (2^m fixed-point points) is a (0,m,2)-net: one point in every cell of every
+/// shape `2^a x 2^(m-a)`, counted with one bitset per shape (cheap enough for 2^25 points).
+pub fn is_net_fixed(pts: &[[u32; 2]]) -> bool {
+    let m = pts.len().trailing_zeros();
+    (0..=m).all(|a| {
+        let mut seen = vec![0u64; pts.len().div_ceil(64)];
+        pts.iter().all(|p| {
+            let i = (top(p[1], m - a) << a) | top(p[0], a);
+            let fresh = seen[i >> 6] >> (i & 63) & 1 == 0;
+            seen[i >> 6] |= 1 << (i & 63);
+            fresh
+        })
+    })
+}
+
+/// Whether `pts` (2^m points) is a (0,m,2)-net: one point per cell of every shape
+/// `2^a x 2^(m-a)`.
+pub fn is_net(pts: &[Vec2]) -> bool {
+    let m = pts.len().trailing_zeros();
+    pts.len().is_power_of_two()
+        && (0..=m).all(|a| counts(pts, 1 << a, 1 << (m - a)).iter().all(|&c| c == 1))
+}
