@@ -136,6 +136,7 @@ fn main() -> ExitCode {
         // rows of `dims` values, point-major
         let mut values = vec![0f32; n as usize * dims];
         let mut grids = Vec::new();
+        let mut projection_grids = Vec::new();
         if let Some((px, py)) = args.pixel {
             let sequence = Sequence::by_name(&name)?;
             let spp = u32::try_from(n)
@@ -172,13 +173,17 @@ fn main() -> ExitCode {
         } else {
             let mut sampler = entry.build_nd(&params, args.dims as u32)?;
             sampler.fill(&mut values);
+            // the grid of each 2D projection, row y, column x
+            projection_grids = (0..dims * dims)
+                .map(|k| sampler.projection_strata((k % dims) as u32, (k / dims) as u32))
+                .collect();
         }
 
         if let Some(path) = &args.png {
             let canvas = if dims > 2 {
                 // the matrix of all 2D projections
                 let tile = (900 / dims as u32).clamp(48, 200);
-                strata::io::draw_projections(&values, dims, tile)
+                strata::io::draw_projections(&values, dims, tile, &projection_grids)
             } else {
                 // the points (the first dimension twice for D = 1)
                 let points: Vec<glam::Vec2> = values

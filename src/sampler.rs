@@ -308,6 +308,14 @@ pub trait SamplerNd: Send {
             self.next_point(chunk);
         }
     }
+
+    /// The grid on which the 2D projection onto dimensions `x` (columns) and `y` (rows) of a
+    /// complete set is stratified, every cell holding the same number of points; `None` where
+    /// the sampler promises no such grid (for drawing; the tests count the cells).
+    fn projection_strata(&self, x: u32, y: u32) -> Option<StrataGrid> {
+        let _ = (x, y);
+        None
+    }
 }
 
 impl std::fmt::Debug for dyn SamplerNd {

@@ -220,3 +220,43 @@ fn registry_nd_samplers_are_reproducible() {
         assert_ne!(run(4), run(5), "{name}: another seed, other points");
     }
 }
+
+#[test]
+fn projection_strata_hold_equal_counts_per_cell() {
+    // every grid a D-dimensional sampler reports for a 2D projection is counted cell by cell
+    let mut checked = 0;
+    for e in registry::entries().iter().filter(|e| e.has_dimensions()) {
+        let n = e.counts.nearest(49);
+        let dims = 4;
+        let Ok(mut s) = registry::build_nd(e.name, &Params::new(n).seed(8), dims) else {
+            continue;
+        };
+        let mut v = vec![0f32; n as usize * dims as usize];
+        s.fill(&mut v);
+        for x in 0..dims {
+            for y in 0..dims {
+                let Some(g) = s.projection_strata(x, y) else {
+                    continue;
+                };
+                let cells = (g.columns * g.rows) as usize;
+                assert_eq!(n as usize % cells, 0, "{}: {n} points on {g:?}", e.name);
+                let mut c = vec![0usize; cells];
+                for p in v.chunks_exact(dims as usize) {
+                    let cx = (p[x as usize] as f64 * g.columns as f64) as usize;
+                    let cy = (p[y as usize] as f64 * g.rows as f64) as usize;
+                    c[cy * g.columns as usize + cx] += 1;
+                }
+                let want = n as usize / cells;
+                assert!(
+                    c.iter().all(|&k| k == want),
+                    "{}: projection ({x}, {y}) on {g:?}",
+                    e.name
+                );
+                checked += 1;
+            }
+        }
+        assert!(s.projection_strata(0, 0).is_none() && s.projection_strata(0, dims).is_none());
+    }
+    // oa-bose and oa-bush: all 12 ordered pairs each; uncorrelated: (0,1), (1,0), (2,3), (3,2)
+    assert_eq!(checked, 12 + 12 + 4);
+}

@@ -60,20 +60,11 @@ pub fn draw_points(points: &[Point2], grids: &[StrataGrid], size: u32) -> Canvas
     let mut canvas = Canvas::new(size, size, Rgb::WHITE);
     let s = size as f32;
     for (level, grid) in grids.iter().enumerate().rev() {
-        let colour = Rgb::grey(if level == 0 { 190 } else { 225 });
-        for (cells, vertical) in [(grid.columns, true), (grid.rows, false)] {
-            if cells < 2 || s / cells as f32 <= 3.0 {
-                continue;
-            }
-            for k in 1..cells {
-                let t = (k as f64 / cells as f64 * size as f64).round() as i64;
-                if vertical {
-                    canvas.vline(t, colour);
-                } else {
-                    canvas.hline(size as i64 - 1 - t, colour);
-                }
-            }
-        }
+        draw_grid(
+            &mut canvas,
+            grid,
+            Rgb::grey(if level == 0 { 190 } else { 225 }),
+        );
     }
     let radius = (s / (points.len().max(1) as f32).sqrt() * 0.18).clamp(0.9, 5.0);
     for p in points {
@@ -83,12 +74,38 @@ pub fn draw_points(points: &[Point2], grids: &[StrataGrid], size: u32) -> Canvas
     canvas
 }
 
+/// Draws the cell boundaries of `grid` over the whole (square) canvas, unless the cells would be
+/// 3 pixels or narrower.
+fn draw_grid(canvas: &mut Canvas, grid: &StrataGrid, colour: Rgb) {
+    let size = canvas.width();
+    for (cells, vertical) in [(grid.columns, true), (grid.rows, false)] {
+        if cells < 2 || size as f32 / cells as f32 <= 3.0 {
+            continue;
+        }
+        for k in 1..cells {
+            let t = (k as f64 / cells as f64 * size as f64).round() as i64;
+            if vertical {
+                canvas.vline(t, colour);
+            } else {
+                canvas.hline(size as i64 - 1 - t, colour);
+            }
+        }
+    }
+}
+
 #[cfg(feature = "spectrum")]
 /// Draws the 2D projections of a `dims`-dimensional point set (`values` point-major) as a
 /// `dims x dims` matrix of `tile`-pixel scatter plots: tile (row `i`, column `j`) plots
 /// dimension `j` across against dimension `i` up; the diagonal shows each 1D projection as
-/// ticks along a line.
-pub fn draw_projections(values: &[f32], dims: usize, tile: u32) -> Canvas {
+/// ticks along a line. `strata[y * dims + x]`, when given, is the grid the projection onto
+/// dimensions `x` (across) and `y` (up) is stratified on, drawn under the points (an empty
+/// slice draws none).
+pub fn draw_projections(
+    values: &[f32],
+    dims: usize,
+    tile: u32,
+    strata: &[Option<StrataGrid>],
+) -> Canvas {
     let gap = 4u32;
     let side = dims as u32 * (tile + gap) + gap;
     let mut canvas = Canvas::new(side, side, Rgb::grey(235));
@@ -97,6 +114,9 @@ pub fn draw_projections(values: &[f32], dims: usize, tile: u32) -> Canvas {
     for i in 0..dims {
         for j in 0..dims {
             let mut t = Canvas::new(tile, tile, Rgb::WHITE);
+            if let Some(Some(grid)) = strata.get(i * dims + j) {
+                draw_grid(&mut t, grid, Rgb::grey(205));
+            }
             let s = tile as f32;
             for p in values.chunks_exact(dims) {
                 if i == j {

@@ -135,6 +135,12 @@ impl LatinHypercube {
         block_permutations(&mut self.perms, self.count, key, self.dims);
     }
 
+    /// Pairs of dimensions are N-rooks (one point per row and column), not stratified on a
+    /// grid of equal cells.
+    fn pair_strata(&self, _x: u32, _y: u32) -> Option<StrataGrid> {
+        None
+    }
+
     fn point(&self, i: u32, out: &mut [f32]) {
         for (d, (o, perm)) in out.iter_mut().zip(&self.perms).enumerate() {
             let h = hash_u64(self.key, (i as u64) << 16 | d as u64);

@@ -376,6 +376,12 @@ macro_rules! fixed_count_sampler_nd {
                 self.point(self.cursor.position().0, out);
                 self.cursor.advance(1);
             }
+            fn projection_strata(&self, x: u32, y: u32) -> Option<$crate::StrataGrid> {
+                if x == y || x >= self.dims || y >= self.dims {
+                    return None;
+                }
+                self.pair_strata(x, y)
+            }
         }
     };
 }

@@ -26,7 +26,7 @@
 use super::{BlockCursor, MAX_FIXED_COUNT, check_dims, fixed_count_sampler_nd};
 use crate::error::{Error, Result};
 use crate::hash::{DivMod, Permutation, hash_u64, hash32, key32, stream_seed};
-use crate::sampler::Strata;
+use crate::sampler::{Strata, StrataGrid};
 
 /// The largest prime power (not prime) supported as the number of symbols.
 pub const MAX_PRIME_POWER: u32 = 256;
@@ -271,6 +271,15 @@ impl Bose {
         self.q.divisor() * self.q.divisor()
     }
 
+    /// Every pair of dimensions is stratified on the `q x q` grid (strength 2).
+    fn pair_strata(&self, _x: u32, _y: u32) -> Option<StrataGrid> {
+        let q = self.q.divisor();
+        Some(StrataGrid {
+            columns: q,
+            rows: q,
+        })
+    }
+
     /// Symbol `j` of row `i`: `a0`, `a1`, then `a0 + (j - 1) a1`.
     #[inline]
     fn symbol(&self, j: u32, a0: u32, a1: u32) -> u32 {
@@ -345,6 +354,16 @@ impl Bush {
     /// Samples per set.
     pub fn count(&self) -> u32 {
         self.q.divisor().pow(self.t)
+    }
+
+    /// Every pair of dimensions is stratified on the `q x q` grid (`q^(t-2)` points per cell:
+    /// strength `t >= 2`).
+    fn pair_strata(&self, _x: u32, _y: u32) -> Option<StrataGrid> {
+        let q = self.q.divisor();
+        Some(StrataGrid {
+            columns: q,
+            rows: q,
+        })
     }
 
     fn begin_block(&mut self, key: u64) {

@@ -13,7 +13,7 @@ use super::{
     fixed_count_sampler_nd,
 };
 use crate::hash::{DivMod, Permutation, hash_u64};
-use crate::sampler::Strata;
+use crate::sampler::{Strata, StrataGrid};
 
 /// Uncorrelated jitter in `D` dimensions: `N = s^2` (any `N` when `D = 1`).
 ///
@@ -62,6 +62,16 @@ impl UncorrelatedJitter {
     /// Points per set.
     pub fn count(&self) -> u32 {
         self.count
+    }
+
+    /// The pairs (0,1), (2,3), ... are jittered on the `s x s` grid; other pairs are not
+    /// stratified together.
+    fn pair_strata(&self, x: u32, y: u32) -> Option<StrataGrid> {
+        let s = self.side.divisor();
+        (x / 2 == y / 2 && s > 1).then_some(StrataGrid {
+            columns: s,
+            rows: s,
+        })
     }
 
     fn begin_block(&mut self, key: u64) {
