@@ -1,5 +1,6 @@
-//! The path-tracer adapter: time per 2D value (`get_2d`) for random, padded jittered, pmj02 and
-//! Sobol', against the `sobol_burley` crate (Owen-scrambled Sobol', the peer) in the same run.
+//! The path-tracer adapter: time per 2D value (`get_2d`) for every adapter sequence (random,
+//! padded jittered, pmj02, Sobol', Halton), against the `sobol_burley` crate (Owen-scrambled
+//! Sobol', the peer) in the same run.
 //!
 //! Each iteration renders a 32 x 32 "image": for every pixel and sample index (16 spp) it starts
 //! the pixel sample and draws four 2D values (dimensions 0-7), as a path tracer would.
@@ -22,7 +23,7 @@ fn pixel(c: &mut Criterion) {
     group
         .sample_size(30)
         .measurement_time(Duration::from_secs(3));
-    for name in ["random", "jittered", "pmj02", "sobol"] {
+    for name in ["random", "jittered", "pmj02", "sobol", "halton"] {
         let mut s = PixelSampler::new(Sequence::by_name(name).unwrap(), SPP, 1).unwrap();
         group.bench_function(BenchmarkId::from_parameter(name), |b| {
             b.iter(|| {

@@ -1,14 +1,24 @@
-//! `render`: the samplers inside a small path tracer, against a converged reference.
+//! `render`: the samplers inside a small path tracer, against a converged reference, over a
+//! sweep of sample counts.
 //!
 //! ```text
-//! cargo run --release --example render -- [--samplers a,b,..|all] [--spp N] [--size WxH] [--out DIR]
+//! cargo run --release --example render -- [--samplers a,b,..|all] [--spp N[,N,..]]
+//!         [--size WxH] [--scene cornell|spheres] [--reference-spp N] [--out DIR]
 //! ```
 //!
-//! The scene needs seven sample dimensions per camera sample: the position in the pixel (0-1),
-//! the thin lens (2-3, depth of field), the shutter time (4, a moving sphere), and a point on a
-//! square area light (5-6, soft shadows; direct lighting with one shadow ray). Each sampler
-//! renders it at `--spp` samples per pixel through the path-tracer adapter
-//! (`strata::pixel::PixelSampler`); the reference is scrambled Sobol' at 64 times as many.
+//! Two scenes, both through the path-tracer adapter (`strata::pixel::PixelSampler`):
+//!
+//! * `cornell` (default): a Cornell box lit by two area lights, with a white diffuse sphere and
+//!   a sphere that is half mirror, half diffuse. Up to eight bounces of diffuse
+//!   interreflection, next-event estimation with a discrete choice of light (by power), a
+//!   discrete choice of lobe, Russian roulette from the third bounce, and a thin-lens camera
+//!   (caustics, diffuse-mirror-light paths, are left out, as in many production renderers):
+//!   about 60 sample dimensions per path, each bounce at a fixed dimension budget
+//!   (`start_bounce`), as a real path tracer takes them.
+//! * `spheres`: direct lighting only (seven dimensions: pixel, lens, time, light).
+//!
+//! The reference is scrambled Sobol' at `--reference-spp` (default 16 times the largest count,
+//! at least 1024) with another seed.
 
 mod common;
 
@@ -19,14 +29,15 @@ use std::time::Instant;
 use common::{CliError, cli_error, parse_int, string_value};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use strata::io::{self, Canvas, Rgb};
-use strata::pixel::{PixelSampler, PixelSequence, Sequence};
+use strata::io::{self, Canvas, LinePlot, Rgb, Series};
+use strata::pixel::{PixelSampler, PixelSequence, Sequence, warp};
 
-const USAGE: &str = "render [--samplers a,b,..|all] [--spp N] [--size WxH] [--out DIR]";
+const USAGE: &str = "render [--samplers a,b,..|all] [--spp N[,N,..]] [--size WxH] \
+[--scene cornell|spheres] [--reference-spp N] [--seed S] [--seeds K] [--out DIR]";
 
 const HELP: &str = "\
-render: a small path tracer (depth of field, motion blur, an area light) rendered with each
-sampler at N samples per pixel and compared with a converged reference.
+render: a small path tracer rendered with each sampler at one or more sample counts and
+compared with a converged reference.
 
 Usage:
   cargo run --release --example render -- [options]
@@ -34,21 +45,43 @@ Usage:
 Options:
   --samplers a,b,..|all  samplers with a path-tracer adapter: random, jittered, pmj02, sobol,
                          halton (default all)
-  --spp N                samples per pixel (default 16; 1 to 65536; jittered needs a square)
-  --size WxH             image size (default 192x128; each side 8 to 4096)
-  --reference-spp N      samples per pixel of the reference (default 64 x spp, at most 16384)
+  --spp N[,N,..]         samples per pixel, one or more counts (default 4,16,64,256; each 1 to
+                         65536; jittered needs squares)
+  --size WxH             image size (default 128x128; each side 8 to 4096)
+  --scene NAME           cornell (default: a Cornell box, up to 8 bounces, two lights, a
+                         discrete light and lobe choice, Russian roulette, thin lens) or spheres
+                         (direct lighting, seven dimensions)
+  --reference-spp N      samples per pixel of the reference (default 16 x the largest count,
+                         at least 1024, at most 65536)
+  --seed S               seed of the samplers (u64, default 1; the reference has its own)
+  --seeds K              renders per sampler and count, seeds S to S+K-1 (default 4, 1 to
+                         64): rmse and rel_rmse are over all of them (the root of the mean
+                         squared error), ms is the mean time; the pictures show seed S
   --out DIR              output directory (default out/render)
   -h, --help             this text
 
-Writes DIR/NAME.png, DIR/NAME-error.png (per-pixel relative error |I - R| / (R + 0.02),
-colour-mapped from 0 to 0.5 with a scale), DIR/reference.png, DIR/compare.png (side by side)
-and DIR/render.csv (sampler,spp,rmse,rel_rmse,ms); prints the table.";
+Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms: one row per sampler and count;
+rmse over all pixels and channels of linear radiance, rel_rmse of |I - R| / (R + 0.02) on
+luminance, ms the render time on all cores), NAME.png and NAME-error.png (the largest count;
+the error map is the per-pixel relative error, colour-mapped from 0 to 0.5), NAME-SPP.png for
+each count, reference.png, compare.png (one row per sampler) and convergence.png (RMSE against
+spp with the fitted slope per sampler); prints the table and the slopes.";
+
+/// Which scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum SceneKind {
+    Cornell,
+    Spheres,
+}
 
 struct Args {
     samplers: Vec<String>,
-    spp: u32,
+    spp: Vec<u32>,
     size: (u32, u32),
+    scene: SceneKind,
     reference_spp: Option<u32>,
+    seed: u64,
+    seeds: u32,
     out: PathBuf,
 }
 
@@ -56,9 +89,12 @@ fn parse() -> Result<Option<Args>, CliError> {
     use lexopt::prelude::*;
     let mut a = Args {
         samplers: Sequence::NAMES.iter().map(|s| s.to_string()).collect(),
-        spp: 16,
-        size: (192, 128),
+        spp: vec![4, 16, 64, 256],
+        size: (128, 128),
+        scene: SceneKind::Cornell,
         reference_spp: None,
+        seed: 1,
+        seeds: 4,
         out: PathBuf::from("out/render"),
     };
     let mut p = lexopt::Parser::from_env();
@@ -78,17 +114,34 @@ fn parse() -> Result<Option<Args>, CliError> {
                 }
             }
             Long("spp") => {
-                a.spp = parse_int("--spp", &string_value("--spp", p.value()?)?, 1, 65536)? as u32
+                let v = string_value("--spp", p.value()?)?;
+                a.spp = v
+                    .split(',')
+                    .map(|s| parse_int("--spp", s, 1, 65536).map(|n| n as u32))
+                    .collect::<Result<_, _>>()?;
+                a.spp.sort_unstable();
+                a.spp.dedup();
             }
             Long("reference-spp") => {
                 let v = string_value("--reference-spp", p.value()?)?;
-                a.reference_spp = Some(parse_int("--reference-spp", &v, 1, 16384)? as u32);
+                a.reference_spp = Some(parse_int("--reference-spp", &v, 1, 65536)? as u32);
+            }
+            Long("scene") => {
+                a.scene = match string_value("--scene", p.value()?)?.as_str() {
+                    "cornell" => SceneKind::Cornell,
+                    "spheres" => SceneKind::Spheres,
+                    other => {
+                        return Err(cli_error(format!(
+                            "--scene {other:?} is not a scene; allowed: cornell, spheres"
+                        )));
+                    }
+                }
             }
             Long("size") => {
                 let v = string_value("--size", p.value()?)?;
                 let bad = || {
                     cli_error(format!(
-                        "--size {v:?} is not WxH; allowed: two whole numbers 8 to 4096, e.g. 192x128"
+                        "--size {v:?} is not WxH; allowed: two whole numbers 8 to 4096, e.g. 128x128"
                     ))
                 };
                 let (w, h) = v.split_once(['x', 'X']).ok_or_else(bad)?;
@@ -96,6 +149,14 @@ fn parse() -> Result<Option<Args>, CliError> {
                     parse_int("--size", w, 8, 4096)? as u32,
                     parse_int("--size", h, 8, 4096)? as u32,
                 );
+            }
+            Long("seeds") => {
+                let v = string_value("--seeds", p.value()?)?;
+                a.seeds = parse_int("--seeds", &v, 1, 64)? as u32;
+            }
+            Long("seed") => {
+                let v = string_value("--seed", p.value()?)?;
+                a.seed = parse_int("--seed", &v, 0, u64::MAX)?;
             }
             Long("out") => a.out = p.value()?.into(),
             Short('h') | Long("help") => {
@@ -109,196 +170,471 @@ fn parse() -> Result<Option<Args>, CliError> {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The scene
+// Geometry shared by the scenes
 
+/// A sphere, possibly moving over the shutter interval (motion blur).
 struct Sphere {
     centre: Vec3,
     radius: f32,
-    albedo: Vec3,
-    /// Displacement over the shutter interval (motion blur).
     motion: Vec3,
+    material: Material,
+}
+
+/// An axis-aligned rectangle: `axis` is the normal axis (0, 1, 2) at `offset`, spanning
+/// `[lo, hi]` on the other two axes; `facing` is the sign of the side it faces.
+struct Rect {
+    axis: usize,
+    offset: f32,
+    lo: [f32; 2],
+    hi: [f32; 2],
+    facing: f32,
+    material: Material,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Material {
+    /// Lambertian with an albedo; `mirror` is the probability weight of a perfect mirror lobe.
+    Surface { albedo: Vec3, mirror: f32 },
+    /// An area light, emitting `radiance` on its facing side (black behind).
+    Light { radiance: Vec3 },
 }
 
 struct Hit {
     t: f32,
     point: Vec3,
     normal: Vec3,
-    albedo: Vec3,
-    emissive: bool,
+    material: Material,
 }
 
-/// A square light in the plane y = LIGHT_Y, centred at (LIGHT_X, LIGHT_Z), facing down.
-const LIGHT_Y: f32 = 4.0;
-const LIGHT_X: f32 = -1.0;
-const LIGHT_Z: f32 = 1.5;
-const LIGHT_SIZE: f32 = 1.6;
-const LIGHT_RADIANCE: f32 = 12.0;
-
-fn spheres() -> [Sphere; 3] {
-    [
-        Sphere {
-            centre: Vec3::new(-1.2, 0.8, 1.0),
-            radius: 0.8,
-            albedo: Vec3::new(0.8, 0.3, 0.25),
-            motion: Vec3::ZERO,
-        },
-        Sphere {
-            centre: Vec3::new(0.6, 0.6, 2.4),
-            radius: 0.6,
-            albedo: Vec3::new(0.25, 0.5, 0.8),
-            motion: Vec3::new(0.5, 0.0, 0.0),
-        },
-        Sphere {
-            centre: Vec3::new(1.8, 0.5, -0.5),
-            radius: 0.5,
-            albedo: Vec3::new(0.85, 0.8, 0.3),
-            motion: Vec3::ZERO,
-        },
-    ]
+fn other_axes(axis: usize) -> (usize, usize) {
+    match axis {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    }
 }
 
-fn intersect(origin: Vec3, dir: Vec3, time: f32, spheres: &[Sphere; 3]) -> Option<Hit> {
-    let mut best: Option<Hit> = None;
-    for s in spheres {
-        let c = s.centre + s.motion * time;
-        let oc = origin - c;
-        let b = oc.dot(dir);
-        let disc = b * b - (oc.length_squared() - s.radius * s.radius);
-        if disc < 0.0 {
-            continue;
-        }
-        let t = -b - disc.sqrt();
-        if t > 1e-3 && best.as_ref().is_none_or(|h| t < h.t) {
-            let point = origin + dir * t;
-            best = Some(Hit {
-                t,
-                point,
-                normal: (point - c) / s.radius,
-                albedo: s.albedo,
-                emissive: false,
-            });
-        }
+impl Rect {
+    fn normal(&self) -> Vec3 {
+        let mut n = Vec3::ZERO;
+        n[self.axis] = self.facing;
+        n
     }
-    // ground plane y = 0 with a checkerboard
-    if dir.y < 0.0 {
-        let t = -origin.y / dir.y;
-        if t > 1e-3 && best.as_ref().is_none_or(|h| t < h.t) {
-            let point = origin + dir * t;
-            let check = ((point.x * 1.5).floor() as i64 + (point.z * 1.5).floor() as i64)
-                .rem_euclid(2)
-                == 0;
-            let albedo = if check {
-                Vec3::splat(0.75)
-            } else {
-                Vec3::splat(0.2)
-            };
-            best = Some(Hit {
-                t,
-                point,
-                normal: Vec3::Y,
-                albedo,
-                emissive: false,
-            });
-        }
+
+    fn area(&self) -> f32 {
+        (self.hi[0] - self.lo[0]) * (self.hi[1] - self.lo[1])
     }
-    // the light itself (seen from below)
-    if dir.y > 0.0 {
-        let t = (LIGHT_Y - origin.y) / dir.y;
+
+    /// The point at `u` on the rectangle.
+    fn point(&self, u: Vec2) -> Vec3 {
+        let (a, b) = other_axes(self.axis);
+        let mut p = Vec3::ZERO;
+        p[self.axis] = self.offset;
+        p[a] = self.lo[0] + u.x * (self.hi[0] - self.lo[0]);
+        p[b] = self.lo[1] + u.y * (self.hi[1] - self.lo[1]);
+        p
+    }
+
+    fn intersect(&self, origin: Vec3, dir: Vec3, best: f32) -> Option<f32> {
+        let d = dir[self.axis];
+        if d.abs() < 1e-9 {
+            return None;
+        }
+        let t = (self.offset - origin[self.axis]) / d;
+        if !(t > 1e-4 && t < best) {
+            return None;
+        }
         let p = origin + dir * t;
-        if t > 1e-3
-            && (p.x - LIGHT_X).abs() < LIGHT_SIZE / 2.0
-            && (p.z - LIGHT_Z).abs() < LIGHT_SIZE / 2.0
-            && best.as_ref().is_none_or(|h| t < h.t)
-        {
-            best = Some(Hit {
-                t,
-                point: p,
-                normal: -Vec3::Y,
-                albedo: Vec3::ZERO,
-                emissive: true,
-            });
-        }
+        let (a, b) = other_axes(self.axis);
+        (p[a] >= self.lo[0] && p[a] <= self.hi[0] && p[b] >= self.lo[1] && p[b] <= self.hi[1])
+            .then_some(t)
     }
-    best
 }
 
-/// Radiance along one camera sample, from the 7 sample dimensions.
-fn radiance(
-    px: u32,
-    py: u32,
-    size: (u32, u32),
-    s: &mut PixelSampler<Sequence>,
-    spheres: &[Sphere; 3],
-) -> Vec3 {
+struct Scene {
+    spheres: Vec<Sphere>,
+    rects: Vec<Rect>,
+    /// Indices into `rects` of the lights, with the probability of choosing each (by power).
+    lights: Vec<(usize, f32)>,
+    camera: Camera,
+    kind: SceneKind,
+}
+
+struct Camera {
+    eye: Vec3,
+    forward: Vec3,
+    right: Vec3,
+    up: Vec3,
+    tan_half: f32,
+    focus: f32,
+    aperture: f32,
+}
+
+impl Camera {
+    fn new(eye: Vec3, target: Vec3, fov_deg: f32, focus: f32, aperture: f32) -> Self {
+        let forward = (target - eye).normalize();
+        let right = forward.cross(Vec3::Y).normalize();
+        let up = right.cross(forward);
+        Camera {
+            eye,
+            forward,
+            right,
+            up,
+            tan_half: (0.5 * fov_deg.to_radians()).tan(),
+            focus,
+            aperture,
+        }
+    }
+
+    /// The camera ray through `film` (position in pixel `(px, py)`) and `lens` (a 2D draw).
+    fn ray(&self, px: u32, py: u32, size: (u32, u32), film: Vec2, lens: Vec2) -> (Vec3, Vec3) {
+        let (w, h) = (size.0 as f32, size.1 as f32);
+        let ndc = Vec2::new(
+            (px as f32 + film.x) / w * 2.0 - 1.0,
+            1.0 - (py as f32 + film.y) / h * 2.0,
+        );
+        let dir = (self.forward
+            + self.right * ndc.x * self.tan_half * w / h
+            + self.up * ndc.y * self.tan_half)
+            .normalize();
+        let disk = warp::concentric_disk(lens) * self.aperture;
+        let offset = self.right * disk.x + self.up * disk.y;
+        let focal_point = self.eye + dir * (self.focus / dir.dot(self.forward));
+        let origin = self.eye + offset;
+        (origin, (focal_point - origin).normalize())
+    }
+}
+
+impl Scene {
+    fn intersect(&self, origin: Vec3, dir: Vec3, time: f32) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let far = |b: &Option<Hit>| b.as_ref().map_or(f32::INFINITY, |h| h.t);
+        for s in &self.spheres {
+            let c = s.centre + s.motion * time;
+            let oc = origin - c;
+            let b = oc.dot(dir);
+            let disc = b * b - (oc.length_squared() - s.radius * s.radius);
+            if disc < 0.0 {
+                continue;
+            }
+            let t = -b - disc.sqrt();
+            if t > 1e-4 && t < far(&best) {
+                let point = origin + dir * t;
+                best = Some(Hit {
+                    t,
+                    point,
+                    normal: (point - c) / s.radius,
+                    material: s.material,
+                });
+            }
+        }
+        for r in &self.rects {
+            if let Some(t) = r.intersect(origin, dir, far(&best)) {
+                best = Some(Hit {
+                    t,
+                    point: origin + dir * t,
+                    normal: r.normal(),
+                    material: r.material,
+                });
+            }
+        }
+        best
+    }
+
+    /// Whether the segment from `p` to `q` is unobstructed.
+    fn visible(&self, p: Vec3, q: Vec3, time: f32) -> bool {
+        let d = q - p;
+        let len = d.length();
+        self.intersect(p, d / len, time)
+            .is_none_or(|h| h.t >= len * (1.0 - 1e-4))
+    }
+}
+
+fn surface(albedo: Vec3) -> Material {
+    Material::Surface {
+        albedo,
+        mirror: 0.0,
+    }
+}
+
+fn rect(axis: usize, offset: f32, lo: [f32; 2], hi: [f32; 2], facing: f32, m: Material) -> Rect {
+    Rect {
+        axis,
+        offset,
+        lo,
+        hi,
+        facing,
+        material: m,
+    }
+}
+
+/// The Cornell box `[0,1]^3`, open at `z = 0` where the camera looks in.
+fn cornell() -> Scene {
+    let white = surface(Vec3::splat(0.73));
+    let red = surface(Vec3::new(0.65, 0.05, 0.05));
+    let green = surface(Vec3::new(0.12, 0.45, 0.15));
+    let ceiling_light = Material::Light {
+        radiance: Vec3::new(17.0, 12.0, 4.0),
+    };
+    let wall_light = Material::Light {
+        radiance: Vec3::new(2.0, 3.0, 6.0),
+    };
+    let rects = vec![
+        rect(1, 0.0, [0.0, 0.0], [1.0, 1.0], 1.0, white), // floor
+        rect(1, 1.0, [0.0, 0.0], [1.0, 1.0], -1.0, white), // ceiling
+        rect(2, 1.0, [0.0, 0.0], [1.0, 1.0], -1.0, white), // back
+        rect(0, 1.0, [0.0, 0.0], [1.0, 1.0], -1.0, red),  // left as the camera sees it
+        rect(0, 0.0, [0.0, 0.0], [1.0, 1.0], 1.0, green), // right
+        rect(1, 0.999, [0.37, 0.42], [0.63, 0.68], -1.0, ceiling_light),
+        rect(2, 0.999, [0.08, 0.55], [0.3, 0.8], -1.0, wall_light),
+    ];
+    let power = |r: &Rect| match r.material {
+        Material::Light { radiance } => r.area() * (radiance.x + radiance.y + radiance.z),
+        Material::Surface { .. } => 0.0,
+    };
+    let total: f32 = rects.iter().map(power).sum();
+    let lights = rects
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| power(r) > 0.0)
+        .map(|(i, r)| (i, power(r) / total))
+        .collect();
+    Scene {
+        spheres: vec![
+            Sphere {
+                centre: Vec3::new(0.3, 0.2, 0.62),
+                radius: 0.2,
+                motion: Vec3::ZERO,
+                material: surface(Vec3::splat(0.8)),
+            },
+            Sphere {
+                centre: Vec3::new(0.72, 0.17, 0.38),
+                radius: 0.17,
+                motion: Vec3::ZERO,
+                material: Material::Surface {
+                    albedo: Vec3::new(0.9, 0.85, 0.7),
+                    mirror: 0.5,
+                },
+            },
+        ],
+        rects,
+        lights,
+        camera: Camera::new(
+            Vec3::new(0.5, 0.5, -1.35),
+            Vec3::new(0.5, 0.5, 0.5),
+            40.0,
+            1.85,
+            0.02,
+        ),
+        kind: SceneKind::Cornell,
+    }
+}
+
+/// Spheres on a checkerboard under one square light; direct lighting only.
+fn spheres() -> Scene {
+    let light = rect(
+        1,
+        4.0,
+        [-1.8, 0.7],
+        [-0.2, 2.3],
+        -1.0,
+        Material::Light {
+            radiance: Vec3::splat(12.0),
+        },
+    );
+    Scene {
+        spheres: vec![
+            Sphere {
+                centre: Vec3::new(-1.2, 0.8, 1.0),
+                radius: 0.8,
+                motion: Vec3::ZERO,
+                material: surface(Vec3::new(0.8, 0.3, 0.25)),
+            },
+            Sphere {
+                centre: Vec3::new(0.6, 0.6, 2.4),
+                radius: 0.6,
+                motion: Vec3::new(0.5, 0.0, 0.0),
+                material: surface(Vec3::new(0.25, 0.5, 0.8)),
+            },
+            Sphere {
+                centre: Vec3::new(1.8, 0.5, -0.5),
+                radius: 0.5,
+                motion: Vec3::ZERO,
+                material: surface(Vec3::new(0.85, 0.8, 0.3)),
+            },
+        ],
+        rects: vec![
+            // the ground (its checkerboard is applied at the hit), then the light
+            rect(
+                1,
+                0.0,
+                [-50.0, -50.0],
+                [50.0, 50.0],
+                1.0,
+                surface(Vec3::ONE),
+            ),
+            light,
+        ],
+        lights: vec![(1, 1.0)],
+        camera: Camera::new(
+            Vec3::new(0.0, 1.6, 7.0),
+            Vec3::new(0.0, 0.6, 0.8),
+            42.0,
+            5.2,
+            0.12,
+        ),
+        kind: SceneKind::Spheres,
+    }
+}
+
+/// The ground's checkerboard in the `spheres` scene.
+fn checker(p: Vec3) -> f32 {
+    let even = ((p.x * 1.5).floor() as i64 + (p.z * 1.5).floor() as i64).rem_euclid(2) == 0;
+    if even { 0.75 } else { 0.2 }
+}
+
+const SKY: Vec3 = Vec3::new(0.05, 0.07, 0.1);
+const MAX_BOUNCES: u32 = 8;
+
+// The dimensions of a bounce, at fixed offsets from `start_bounce`, so that every draw keeps
+// its dimension whatever the path did before (a mirror bounce skips the light draws).
+const LOBE: u32 = 0;
+const LIGHT_CHOICE: u32 = 1;
+const LIGHT_POINT: u32 = 2; // 2-3
+const DIRECTION: u32 = 4; // 4-5
+const ROULETTE: u32 = 6;
+
+/// An orthonormal basis around `n` (Duff et al. 2017).
+fn basis(n: Vec3) -> (Vec3, Vec3) {
+    let sign = 1f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        Vec3::new(b, sign + n.y * n.y * a, -n.y),
+    )
+}
+
+/// Direct light at a diffuse point from one light chosen by `choice`, a point on it by `on`.
+fn next_event(scene: &Scene, p: Vec3, n: Vec3, time: f32, choice: f32, on: Vec2) -> Vec3 {
+    let mut c = 0.0;
+    let (mut index, mut prob) = scene.lights[scene.lights.len() - 1];
+    for &(i, pr) in &scene.lights {
+        c += pr;
+        if choice < c {
+            (index, prob) = (i, pr);
+            break;
+        }
+    }
+    let light = &scene.rects[index];
+    let Material::Light { radiance } = light.material else {
+        return Vec3::ZERO;
+    };
+    let q = light.point(on);
+    let to = q - p;
+    let d2 = to.length_squared();
+    let l = to / d2.sqrt();
+    let (cos_s, cos_l) = (n.dot(l), -light.normal().dot(l));
+    if cos_s <= 0.0 || cos_l <= 0.0 || !scene.visible(p + n * 1e-4, q, time) {
+        return Vec3::ZERO;
+    }
+    radiance * (cos_s * cos_l / d2 * light.area() / prob / std::f32::consts::PI)
+}
+
+/// Radiance along one camera sample.
+fn radiance(px: u32, py: u32, size: (u32, u32), s: &mut PixelSampler, scene: &Scene) -> Vec3 {
     let film = s.get_pixel_2d();
     let lens = s.get_2d();
-    let time = s.get_1d();
-    let light = s.get_2d();
-    // a thin-lens camera looking at the scene, focused on the blue sphere's distance
-    let (w, h) = (size.0 as f32, size.1 as f32);
-    let eye = Vec3::new(0.0, 1.6, 7.0);
-    let target = Vec3::new(0.0, 0.6, 0.8);
-    let forward = (target - eye).normalize();
-    let right = forward.cross(Vec3::Y).normalize();
-    let up = right.cross(forward);
-    let tan_half = (0.5f32 * 42f32.to_radians()).tan();
-    let ndc = Vec2::new(
-        (px as f32 + film.x) / w * 2.0 - 1.0,
-        1.0 - (py as f32 + film.y) / h * 2.0,
-    );
-    let dir = (forward + right * ndc.x * tan_half * w / h + up * ndc.y * tan_half).normalize();
-    let focus = 5.2;
-    let aperture = 0.12;
-    // uniform point on the lens disk (concentric-free polar map)
-    let (r, phi) = (aperture * lens.x.sqrt(), std::f32::consts::TAU * lens.y);
-    let offset = right * (r * phi.cos()) + up * (r * phi.sin());
-    let focal_point = eye + dir * (focus / dir.dot(forward));
-    let origin = eye + offset;
-    let dir = (focal_point - origin).normalize();
-
-    let Some(hit) = intersect(origin, dir, time, spheres) else {
-        return Vec3::new(0.05, 0.07, 0.1); // sky
+    let time = if scene.kind == SceneKind::Spheres {
+        s.get_1d()
+    } else {
+        0.0
     };
-    if hit.emissive {
-        return Vec3::splat(LIGHT_RADIANCE);
+    let (mut origin, mut dir) = scene.camera.ray(px, py, size, film, lens);
+    let (mut throughput, mut sum, mut count_emission) = (Vec3::ONE, Vec3::ZERO, true);
+    for bounce in 0..MAX_BOUNCES {
+        let Some(hit) = scene.intersect(origin, dir, time) else {
+            if scene.kind == SceneKind::Spheres {
+                sum += throughput * SKY;
+            }
+            break;
+        };
+        let (albedo, mirror) = match hit.material {
+            Material::Light { radiance } => {
+                if count_emission && hit.normal.dot(dir) < 0.0 {
+                    sum += throughput * radiance;
+                }
+                break;
+            }
+            Material::Surface { albedo, mirror } => (albedo, mirror),
+        };
+        let albedo = if scene.kind == SceneKind::Spheres && hit.normal == Vec3::Y {
+            albedo * checker(hit.point)
+        } else {
+            albedo
+        };
+        // face the normal towards the incoming ray
+        let n = if hit.normal.dot(dir) < 0.0 {
+            hit.normal
+        } else {
+            -hit.normal
+        };
+        s.start_bounce(bounce);
+        let base = s.dimension();
+        let draw_1d = |s: &mut PixelSampler, k: u32| {
+            s.set_dimension(base + k);
+            s.get_1d()
+        };
+        let draw_2d = |s: &mut PixelSampler, k: u32| {
+            s.set_dimension(base + k);
+            s.get_2d()
+        };
+        if mirror > 0.0 && draw_1d(s, LOBE) < mirror {
+            // the mirror lobe, chosen with its own weight: the weights cancel
+            throughput *= albedo;
+            dir -= 2.0 * dir.dot(n) * n;
+            origin = hit.point + n * 1e-4;
+            // `count_emission` stays as it was: lights seen in the mirror count on the camera's
+            // specular chain only; caustics (diffuse, mirror, light) are left out, in the
+            // reference too, as their variance would drown every sampler's difference
+        } else {
+            let choice = draw_1d(s, LIGHT_CHOICE);
+            let on = draw_2d(s, LIGHT_POINT);
+            sum += throughput * albedo * next_event(scene, hit.point, n, time, choice, on);
+            if scene.kind == SceneKind::Spheres {
+                break; // direct lighting only
+            }
+            let local = warp::cosine_hemisphere(draw_2d(s, DIRECTION));
+            let (t, b) = basis(n);
+            dir = (t * local.x + b * local.y + n * local.z).normalize();
+            origin = hit.point + n * 1e-4;
+            throughput *= albedo; // cosine sampling: f cos / pdf = albedo
+            count_emission = false; // next-event estimation counted the lights
+        }
+        if bounce >= 2 {
+            let q = throughput.max_element().clamp(0.05, 0.95);
+            if draw_1d(s, ROULETTE) >= q {
+                break;
+            }
+            throughput /= q;
+        }
     }
-    // direct lighting: one point on the light
-    let lp = Vec3::new(
-        LIGHT_X + (light.x - 0.5) * LIGHT_SIZE,
-        LIGHT_Y,
-        LIGHT_Z + (light.y - 0.5) * LIGHT_SIZE,
-    );
-    let to_light = lp - hit.point;
-    let d2 = to_light.length_squared();
-    let l = to_light / d2.sqrt();
-    let cos_s = hit.normal.dot(l);
-    let cos_l = l.y; // the light faces down
-    if cos_s <= 0.0 || cos_l <= 0.0 {
-        return Vec3::ZERO;
-    }
-    let occluded = intersect(hit.point + hit.normal * 1e-3, l, time, spheres)
-        .is_some_and(|h| !h.emissive && h.t * h.t < d2);
-    if occluded {
-        return Vec3::ZERO;
-    }
-    let area = LIGHT_SIZE * LIGHT_SIZE;
-    hit.albedo / std::f32::consts::PI * LIGHT_RADIANCE * cos_s * cos_l / d2 * area
+    sum
 }
 
 /// Renders the image (linear radiance, row-major) with `spp` samples of `sequence`.
 fn render(
+    scene: &Scene,
     sequence: Sequence,
     spp: u32,
     size: (u32, u32),
     seed: u64,
 ) -> Result<Vec<Vec3>, strata::Error> {
     let sampler = PixelSampler::new(sequence, spp, seed)?;
-    let scene = spheres();
     let image = (0..size.1)
         .into_par_iter()
         .flat_map_iter(|y| {
             let mut s = sampler.clone();
-            let scene = &scene;
             (0..size.0).map(move |x| {
                 let mut sum = Vec3::ZERO;
                 for i in 0..spp {
@@ -404,10 +740,36 @@ fn error_canvas(img: &[Vec3], reference: &[Vec3], size: (u32, u32)) -> Canvas {
 
 struct Row {
     name: String,
+    spp: u32,
     image: Vec<Vec3>,
     rmse: f64,
     rel_rmse: f64,
     ms: f64,
+}
+
+/// The least-squares slope of `log y` against `log x`.
+fn slope(points: &[(f64, f64)]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    if pts.len() < 2 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let (mx, my) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// A label's width in pixels at `size` (the bundled font averages about 0.55 em per glyph).
+fn label_width(text: &str, size: u32) -> u32 {
+    (text.chars().count() as f32 * size as f32 * 0.56).ceil() as u32
 }
 
 fn main() -> ExitCode {
@@ -419,83 +781,79 @@ fn main() -> ExitCode {
             .map(|n| Ok((n.clone(), Sequence::by_name(n)?)))
             .collect::<Result<_, strata::Error>>()?;
         for (_, seq) in &sequences {
-            seq.check_spp(args.spp)?;
+            for &spp in &args.spp {
+                seq.check_spp(spp)?;
+            }
         }
+        let scene = match args.scene {
+            SceneKind::Cornell => cornell(),
+            SceneKind::Spheres => spheres(),
+        };
         let size = args.size;
-        let ref_spp = args.reference_spp.unwrap_or((args.spp * 64).min(16384));
+        let largest = *args.spp.last().expect("at least one count");
+        let ref_spp = args
+            .reference_spp
+            .unwrap_or((largest * 16).clamp(1024, 65536));
         eprintln!(
             "reference: sobol at {ref_spp} spp, {}x{} ...",
             size.0, size.1
         );
-        let reference = render(Sequence::sobol(), ref_spp, size, 0x5eed_0000_0001)?;
+        let start = Instant::now();
+        let reference = render(&scene, Sequence::sobol(), ref_spp, size, 0x5eed_0000_0001)?;
+        eprintln!("reference: {:.1} s", start.elapsed().as_secs_f64());
         io::write_png(args.out.join("reference.png"), &to_canvas(&reference, size))?;
 
         let mut rows = Vec::new();
-        for (name, seq) in sequences {
-            let start = Instant::now();
-            let image = render(seq, args.spp, size, 1)?;
-            let ms = start.elapsed().as_secs_f64() * 1e3;
-            let n = image.len() as f64;
-            let mse: f64 = image
-                .iter()
-                .zip(&reference)
-                .map(|(a, r)| (*a - *r).length_squared() as f64 / 3.0)
-                .sum::<f64>()
-                / n;
-            let rel: f64 = image
-                .iter()
-                .zip(&reference)
-                .map(|(a, r)| (relative_error(*a, *r) as f64).powi(2))
-                .sum::<f64>()
-                / n;
-            io::write_png(
-                args.out.join(format!("{name}.png")),
-                &to_canvas(&image, size),
-            )?;
-            io::write_png(
-                args.out.join(format!("{name}-error.png")),
-                &error_canvas(&image, &reference, size),
-            )?;
-            rows.push(Row {
-                name,
-                image,
-                rmse: mse.sqrt(),
-                rel_rmse: rel.sqrt(),
-                ms,
-            });
+        for (name, seq) in &sequences {
+            for &spp in &args.spp {
+                let (mut mse, mut rel, mut ms, mut first) = (0.0f64, 0.0f64, 0.0f64, None);
+                for k in 0..args.seeds as u64 {
+                    let start = Instant::now();
+                    let image = render(&scene, seq.clone(), spp, size, args.seed.wrapping_add(k))?;
+                    ms += start.elapsed().as_secs_f64() * 1e3 / args.seeds as f64;
+                    let n = image.len() as f64 * args.seeds as f64;
+                    mse += image
+                        .iter()
+                        .zip(&reference)
+                        .map(|(a, r)| (*a - *r).length_squared() as f64 / 3.0)
+                        .sum::<f64>()
+                        / n;
+                    rel += image
+                        .iter()
+                        .zip(&reference)
+                        .map(|(a, r)| (relative_error(*a, *r) as f64).powi(2))
+                        .sum::<f64>()
+                        / n;
+                    first.get_or_insert(image);
+                }
+                let image = first.expect("at least one seed");
+                eprintln!("{name} at {spp} spp: {ms:.0} ms");
+                io::write_png(
+                    args.out.join(format!("{name}-{spp}.png")),
+                    &to_canvas(&image, size),
+                )?;
+                if spp == largest {
+                    io::write_png(
+                        args.out.join(format!("{name}.png")),
+                        &to_canvas(&image, size),
+                    )?;
+                    io::write_png(
+                        args.out.join(format!("{name}-error.png")),
+                        &error_canvas(&image, &reference, size),
+                    )?;
+                }
+                rows.push(Row {
+                    name: name.clone(),
+                    spp,
+                    image,
+                    rmse: mse.sqrt(),
+                    rel_rmse: rel.sqrt(),
+                    ms,
+                });
+            }
         }
 
-        // compare.png: the reference, then per sampler the image over its error map
-        let label_h = 22u32;
-        let col_w = size.0 + 56 + 8;
-        let width = col_w * (rows.len() as u32 + 1) + 8;
-        let height = label_h + size.1 + 8 + size.1 + 8;
-        let mut compare = Canvas::new(width, height, Rgb::WHITE);
-        compare.paste(&to_canvas(&reference, size), 8, label_h as i64);
-        io::label(
-            &mut compare,
-            &format!("reference ({ref_spp} spp)"),
-            8,
-            4,
-            14,
-        );
-        for (k, r) in rows.iter().enumerate() {
-            let x = 8 + col_w as i64 * (k as i64 + 1);
-            io::label(
-                &mut compare,
-                &format!("{} ({} spp), rel. RMSE {:.3}", r.name, args.spp, r.rel_rmse),
-                x as i32,
-                4,
-                14,
-            );
-            compare.paste(&to_canvas(&r.image, size), x, label_h as i64);
-            compare.paste(
-                &error_canvas(&r.image, &reference, size),
-                x,
-                (label_h + size.1 + 8) as i64,
-            );
-        }
-        io::write_png(args.out.join("compare.png"), &compare)?;
+        write_compare(&args, &rows, &reference, ref_spp)?;
 
         let mut csv = String::from("sampler,spp,rmse,rel_rmse,ms\n");
         println!("| sampler | spp | rmse | rel_rmse | ms |");
@@ -503,15 +861,128 @@ fn main() -> ExitCode {
         for r in &rows {
             csv.push_str(&format!(
                 "{},{},{},{},{}\n",
-                r.name, args.spp, r.rmse, r.rel_rmse, r.ms
+                r.name, r.spp, r.rmse, r.rel_rmse, r.ms
             ));
             println!(
                 "| {} | {} | {:.5} | {:.4} | {:.1} |",
-                r.name, args.spp, r.rmse, r.rel_rmse, r.ms
+                r.name, r.spp, r.rmse, r.rel_rmse, r.ms
             );
         }
         io::write_text(args.out.join("render.csv"), &csv)?;
-        eprintln!("wrote {} into {}", rows.len(), args.out.display());
+
+        // RMSE against spp, with the fitted slope per sampler
+        let mut plot = LinePlot::new(
+            format!(
+                "RMSE against samples per pixel ({} scene)",
+                match args.scene {
+                    SceneKind::Cornell => "cornell",
+                    SceneKind::Spheres => "spheres",
+                }
+            ),
+            "samples per pixel",
+            "RMSE against the reference",
+        );
+        plot.log_x = true;
+        plot.log_y = true;
+        println!("\n| sampler | slope of log RMSE against log spp |");
+        println!("|---|---|");
+        for (k, (name, _)) in sequences.iter().enumerate() {
+            let pts: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| &r.name == name)
+                .map(|r| (r.spp as f64, r.rmse))
+                .collect();
+            let fitted = slope(&pts);
+            let label = match fitted {
+                Some(s) => format!("{name} (slope {s:.2})"),
+                None => name.clone(),
+            };
+            println!(
+                "| {name} | {} |",
+                fitted.map_or("-".to_string(), |s| format!("{s:.2}"))
+            );
+            plot.series
+                .push(Series::new(label, pts, io::PALETTE[k % io::PALETTE.len()]));
+        }
+        io::write_png(args.out.join("convergence.png"), &plot.render(720, 480))?;
+        eprintln!("wrote {} renders into {}", rows.len(), args.out.display());
         Ok(())
     })
+}
+
+/// compare.png: the reference, then one row per sampler: its image at each count, and the
+/// error map at the largest count. Titles are clipped to their cell, so that they stay
+/// legible (and apart) at any image size.
+fn write_compare(
+    args: &Args,
+    rows: &[Row],
+    reference: &[Vec3],
+    ref_spp: u32,
+) -> Result<(), CliError> {
+    let size = args.size;
+    let gap = 8u32;
+    let label_h = 18u32;
+    let names: Vec<&str> = {
+        let mut v: Vec<&str> = rows.iter().map(|r| r.name.as_str()).collect();
+        v.dedup();
+        v
+    };
+    let cols = args.spp.len() as u32 + 1;
+    let cell_w = size.0.max(72) + 56 + gap;
+    let cell_h = label_h + size.1 + gap;
+    let width = gap + cell_w * cols;
+    let height = gap + cell_h * (names.len() as u32 + 1);
+    let mut c = Canvas::new(width, height, Rgb::WHITE);
+    // a label, shortened until it fits `room` pixels
+    let put = |c: &mut Canvas, text: String, x: u32, y: u32, room: u32| {
+        let mut t = text;
+        let size = if room < 120 { 10 } else { 12 };
+        while t.chars().count() > 3 && label_width(&t, size) > room {
+            t.pop();
+        }
+        io::label(c, &t, x as i32, y as i32, size);
+    };
+    put(
+        &mut c,
+        format!("reference ({ref_spp} spp)"),
+        gap,
+        gap / 2,
+        cell_w * 2,
+    );
+    c.paste(
+        &to_canvas(reference, size),
+        gap as i64,
+        (gap / 2 + label_h) as i64,
+    );
+    for (k, name) in names.iter().enumerate() {
+        let y = gap / 2 + cell_h * (k as u32 + 1);
+        for (j, r) in rows.iter().filter(|r| &r.name == name).enumerate() {
+            let x = gap + cell_w * j as u32;
+            put(
+                &mut c,
+                format!("{} {} spp: {:.4}", r.name, r.spp, r.rmse),
+                x,
+                y,
+                cell_w - gap,
+            );
+            c.paste(&to_canvas(&r.image, size), x as i64, (y + label_h) as i64);
+        }
+        if let Some(last) = rows.iter().rfind(|r| &r.name == name) {
+            let x = gap + cell_w * (cols - 1);
+            put(
+                &mut c,
+                format!("{} error at {} spp", last.name, last.spp),
+                x,
+                y,
+                cell_w - gap,
+            );
+            c.paste(
+                &error_canvas(&last.image, reference, size),
+                x as i64,
+                (y + label_h) as i64,
+            );
+        }
+    }
+    io::write_png(args.out.join("compare.png"), &c)?;
+    Ok(())
 }

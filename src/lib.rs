@@ -81,8 +81,8 @@
 
 #![warn(missing_docs)]
 
-#[cfg(feature = "spectrum")]
 pub mod analysis;
+pub mod conformance;
 pub mod error;
 pub mod grid;
 pub mod hash;
@@ -95,6 +95,7 @@ pub mod sampler;
 pub mod samplers;
 #[cfg(feature = "spectrum")]
 pub mod spectrum;
+mod stats;
 
 pub use error::{Error, Result};
 

@@ -249,3 +249,104 @@ fn the_main_job_and_the_study_give_the_same_bytes_with_1_and_2_threads() {
     );
     assert_eq!(one.2, two.2, "the study differs between 1 and 2 threads");
 }
+
+fn run_example(name: &str, args: &[&str]) -> (i32, String, String) {
+    let bin = example_bin(name).unwrap_or_else(|| panic!("the {name} example is built"));
+    let out = Command::new(bin)
+        .args(args)
+        .output()
+        .expect("the example runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+#[test]
+fn conformance_passes_a_sequence_and_refuses_bad_input() {
+    let (code, out, err) = run_example(
+        "conformance",
+        &[
+            "--sampler",
+            "sobol",
+            "--spp",
+            "256",
+            "--seeds",
+            "4",
+            "--pixels",
+            "3",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("| chi-square 31x31 | across draws |"), "{out}");
+    assert!(out.contains("PASS: 256 samples per pixel"), "{out}");
+    for (args, says) in [
+        (vec!["--sampler", "cmj"], "samplers with one: random"),
+        (vec!["--sampler", "sobol", "--spp", "0"], "allowed: 16 to"),
+        (vec!["--spp", "64"], "--sampler is required"),
+        (
+            vec!["--sampler", "sobol", "--spp", "1048576", "--seeds", "1024"],
+            "too many",
+        ),
+        (
+            vec!["--sampler", "sobol", "--false-alarm", "2"],
+            "out of range",
+        ),
+    ] {
+        let (code, out, err) = run_example("conformance", &args);
+        assert_eq!(code, 2, "{args:?}: {out}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn render_sweeps_counts_and_refuses_bad_input() {
+    let dir = std::env::temp_dir().join(format!("strata-render-{}", std::process::id()));
+    let (code, out, err) = run_example(
+        "render",
+        &[
+            "--samplers",
+            "pmj02,jittered",
+            "--spp",
+            "4,1",
+            "--size",
+            "8x8",
+            "--reference-spp",
+            "16",
+            "--seeds",
+            "1",
+            "--out",
+            dir.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(dir.join("render.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows[0], "sampler,spp,rmse,rel_rmse,ms");
+    // one row per sampler and count, counts in increasing order
+    assert_eq!(rows.len(), 5, "{csv}");
+    assert!(rows[1].starts_with("pmj02,1,") && rows[2].starts_with("pmj02,4,"));
+    assert!(rows[4].starts_with("jittered,4,"));
+    for f in [
+        "compare.png",
+        "convergence.png",
+        "pmj02.png",
+        "pmj02-error.png",
+        "pmj02-1.png",
+    ] {
+        assert!(dir.join(f).exists(), "{f}: {out}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    for (args, says) in [
+        (vec!["--spp", "4,x"], "not a whole number"),
+        (vec!["--samplers", "jittered", "--spp", "8"], "square"),
+        (vec!["--scene", "teapot"], "cornell, spheres"),
+        (vec!["--samplers", "cmj"], "samplers with one"),
+    ] {
+        let (code, _, err) = run_example("render", &args);
+        assert_eq!(code, 2, "{args:?}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
+}

@@ -82,7 +82,7 @@ fn revisiting_a_pixel_in_any_order_gives_the_same_bits() {
 }
 
 #[test]
-fn each_pixel_gets_a_stratified_set_in_every_dimension_pair() {
+fn each_pixel_gets_a_stratified_set_in_every_draw() {
     for name in ["pmj02", "sobol"] {
         for spp in [4u32, 16, 64, 256] {
             let s = PixelSampler::new(Sequence::by_name(name).unwrap(), spp, 11).unwrap();
@@ -107,36 +107,106 @@ fn each_pixel_gets_a_stratified_set_in_every_dimension_pair() {
     }
 }
 
+// Independence of draws, pixels and seeds is tested per pixel and per pair of dimensions by
+// the conformance suite (tests/conformance.rs), which also fails the former, tied padding.
+
 #[test]
-fn dimension_pairs_and_pixels_are_decorrelated() {
-    // If padding were broken (one copy for all dimensions), x of pair (0,1) and x of pair
-    // (2,3) would be perfectly correlated; independent copies give correlations near 0.
-    for seq in all() {
-        let s = PixelSampler::new(seq.clone(), 16, 5).unwrap();
-        let (mut sum, mut n) = (0.0f64, 0);
-        for p in 0..400u32 {
-            let xs: Vec<f64> = (0..16)
-                .map(|i| s.sample_2d([p, 0], i, 0).x as f64)
-                .collect();
-            let ys: Vec<f64> = (0..16)
-                .map(|i| s.sample_2d([p, 0], i, 2).x as f64)
-                .collect();
-            let (mx, my) = (xs.iter().sum::<f64>() / 16.0, ys.iter().sum::<f64>() / 16.0);
-            let cov: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-            let vx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
-            let vy: f64 = ys.iter().map(|y| (y - my).powi(2)).sum();
-            sum += cov / (vx * vy).sqrt();
-            n += 1;
+fn halton_blocks_are_stratified_on_their_grid_in_every_draw() {
+    // spp 100: blocks of 108 = 2^2 3^3, one point per cell of 4 x 27
+    let s = PixelSampler::new(Sequence::halton(), 100, 4).unwrap();
+    assert_eq!(s.round_count(100), 108);
+    for pixel in [[0u32, 0], [9, 4]] {
+        for dim in [0u32, 2, 11] {
+            for block in [0u64, 1, 7] {
+                let pts: Vec<_> = (0..108u64)
+                    .map(|i| s.sample_2d(pixel, 108 * block + i, dim))
+                    .collect();
+                common::assert_one_per_cell(&pts, 4, 27, &format!("halton dim {dim}"));
+            }
         }
-        let mean = sum / n as f64;
-        assert!(mean.abs() < 0.05, "{}: mean correlation {mean}", seq.name());
-        // different pixels get different values
-        assert_ne!(
-            s.sample_2d([0, 0], 0, 0),
-            s.sample_2d([1, 0], 0, 0),
-            "{}",
-            seq.name()
+    }
+}
+
+#[test]
+fn past_two_to_the_32_the_draws_stay_stratified() {
+    for name in ["pmj02", "sobol"] {
+        let s = PixelSampler::new(Sequence::by_name(name).unwrap(), 256, 8).unwrap();
+        for start in [1u64 << 32, 5 << 32] {
+            let pts: Vec<_> = (0..256u64)
+                .map(|i| s.sample_2d([3, 3], start + i, 4))
+                .collect();
+            assert!(is_net(&pts), "{name} at {start}");
+        }
+    }
+}
+
+#[test]
+fn progressive_sequences_ignore_the_samples_per_pixel() {
+    for name in ["random", "pmj02", "sobol"] {
+        let a = PixelSampler::new(Sequence::by_name(name).unwrap(), 16, 2).unwrap();
+        let b = PixelSampler::new(Sequence::by_name(name).unwrap(), 1000, 2).unwrap();
+        for i in [0u64, 5, 999, 70_000] {
+            assert_eq!(
+                a.sample_2d([1, 2], i, 6),
+                b.sample_2d([1, 2], i, 6),
+                "{name}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bounces_start_at_fixed_dimensions() {
+    let mut s = PixelSampler::new(Sequence::sobol(), 16, 1).unwrap();
+    s.start_pixel_sample([4, 4], 3, 0);
+    assert_eq!(s.dimension(), 0);
+    let _ = s.get_pixel_2d();
+    let _ = s.get_1d();
+    assert_eq!(s.dimension(), 3);
+    // bounce 2 of the default layout: 8 + 2 * 8, whatever came before
+    s.start_bounce(2);
+    assert_eq!(s.dimension(), 24);
+    assert_eq!(s.get_2d(), s.sample_2d([4, 4], 3, 24));
+    s.set_dimension(7);
+    assert_eq!(s.get_1d(), s.sample([4, 4], 3, 7));
+    let layout = strata::pixel::DimensionLayout {
+        camera: 5,
+        per_bounce: 6,
+    };
+    let mut t = s.clone().with_layout(layout);
+    t.start_bounce(3);
+    assert_eq!(t.dimension(), 23);
+    // saturates instead of wrapping
+    t.start_bounce(u32::MAX);
+    assert_eq!(t.dimension(), u32::MAX);
+}
+
+#[test]
+fn the_rand_bridge_hands_out_successive_dimensions() {
+    use rand::{Rng, RngExt};
+    for seq in all() {
+        let mut s = PixelSampler::new(seq.clone(), 16, 5).unwrap();
+        s.start_pixel_sample([2, 7], 9, 4);
+        let mut bytes = [0u8; 12];
+        let (a, b, c, d) = {
+            let mut rng = s.rng();
+            let a: f32 = rng.random();
+            let b = rng.next_u64();
+            let c = rng.next_u32();
+            let d: f64 = rng.random();
+            rng.fill_bytes(&mut bytes);
+            (a, b, c, d)
+        };
+        // one dimension per word; the value on top, f32 exactly the sequence's value
+        assert_eq!(a, s.sample([2, 7], 9, 4), "{}", seq.name());
+        assert_eq!((b >> 40) as f32 / 16_777_216.0, s.sample([2, 7], 9, 5));
+        assert_eq!((c >> 8) as f32 / 16_777_216.0, s.sample([2, 7], 9, 6));
+        assert_eq!(
+            (d * 16_777_216.0) as u32 as f32 / 16_777_216.0,
+            s.sample([2, 7], 9, 7)
         );
+        assert_eq!(s.dimension(), 4 + 4 + 2);
+        assert!(bytes.iter().any(|&x| x != 0));
     }
 }
 

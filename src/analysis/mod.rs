@@ -1,6 +1,6 @@
-//! Measuring the trade between speed and accuracy (behind the `spectrum` feature): test
-//! integrands with exact values, convergence studies over seeds and counts, slopes, generation
-//! time, discrepancy, and the variance predicted from spectra.
+//! Measuring the trade between speed and accuracy: test integrands with exact values (always
+//! available) and, behind the `spectrum` feature, convergence studies over seeds and counts,
+//! slopes, generation time, discrepancy, and the variance predicted from spectra.
 //!
 //! The study ([`study::run`]): for each sampler, integrand and allowed count `N` between two
 //! bounds, the estimate `(1/N) sum f(x_k)` over `K` seeds (seed `s` uses exactly the points that
@@ -9,9 +9,12 @@
 //! per sample. Seeds run in parallel with rayon; results are reduced in seed order, so every
 //! number but the timings is bit-identical for any thread count.
 
+#[cfg(feature = "spectrum")]
 pub mod discrepancy;
+#[cfg(feature = "spectrum")]
 pub mod fourier;
 mod integrands;
+#[cfg(feature = "spectrum")]
 pub mod study;
 
 pub use integrands::{Integrand, erf};

@@ -139,6 +139,15 @@ fn lookup(t: &[[u32; 256]; 4], i_rev: u32) -> u32 {
         ^ t[3][(i_rev >> 24) as usize]
 }
 
+/// Dimensions 0 and 1 of the plain (unscrambled) sequence at a bit-reversed index, both
+/// bit-reversed: the path-tracer adapter shuffles the index and Owen-scrambles the values
+/// around this, in the reversed domain where both are cheap.
+#[inline]
+pub(crate) fn point01_rev(index_rev: u32) -> [u32; 2] {
+    let t = &tables().bytes;
+    [lookup(&t[0], index_rev), lookup(&t[1], index_rev)]
+}
+
 /// Seeds of one scrambled copy of the sequence: the index shuffle and one value scramble per
 /// dimension are hashed from it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -154,15 +163,6 @@ impl Scramble {
         Scramble {
             shuffle: hash32(s as u32, 0x79c6_8e4a),
             key: (s >> 32) as u32,
-        }
-    }
-
-    /// The scramble for a value that is already well mixed (a hash): no further mixing.
-    #[inline]
-    pub fn from_mixed(mixed: u64) -> Self {
-        Scramble {
-            shuffle: mixed as u32,
-            key: (mixed >> 32) as u32,
         }
     }
 
@@ -187,20 +187,6 @@ impl Scramble {
         [
             self.sample_rev_u32(&t[dim as usize], i, dim),
             self.sample_rev_u32(&t[dim as usize + 1], i, dim + 1),
-        ]
-    }
-
-    /// Dimensions 0 and 1 of point `index` with value seeds taken straight from the scramble's
-    /// bits (no per-dimension hashing): the path-tracer adapter's fast path. Not the same values
-    /// as [`sample2_u32`](Scramble::sample2_u32)`(index, 0)`.
-    #[inline]
-    pub fn sample01_u32(&self, index: u32) -> [u32; 2] {
-        let t = &tables().bytes;
-        let i = self.index_rev(index);
-        let s1 = self.key.rotate_left(16) ^ self.shuffle.wrapping_mul(0x9e37_79b9);
-        [
-            owen_scramble_rev(lookup(&t[0], i), self.key).reverse_bits(),
-            owen_scramble_rev(lookup(&t[1], i), s1).reverse_bits(),
         ]
     }
 

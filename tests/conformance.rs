@@ -1,0 +1,312 @@
+//! The conformance suite passes every adapter sequence, and fails every deliberately broken
+//! sequence on the row that names its fault: a test that cannot fail proves nothing.
+
+use strata::StrataGrid;
+use strata::conformance::{Report, Source, Suite};
+use strata::hash::{GOLDEN_GAMMA, hash_u64, mix64, stream_seed};
+use strata::pixel::{PixelSampler, Sequence};
+use strata::samplers::{Pmj02Stochastic, halton};
+
+fn assert_passes(report: &Report, what: &str) {
+    assert!(report.passed(), "{what} should pass:\n{report}");
+}
+
+/// Asserts that the row `(test, scope)` ran and failed.
+fn assert_fails(report: &Report, test: &str, scope: &str, what: &str) {
+    let row = report
+        .row(test, scope)
+        .unwrap_or_else(|| panic!("{what}: no row {test} / {scope}"));
+    assert!(
+        row.cases > 0,
+        "{what}: {test} / {scope} did not run:\n{report}"
+    );
+    assert!(
+        !row.passed(),
+        "{what}: {test} / {scope} should fail:\n{report}"
+    );
+    assert!(!report.passed());
+}
+
+fn run(name: &str) -> Report {
+    Suite::default()
+        .run_sequence(Sequence::by_name(name).unwrap())
+        .unwrap()
+}
+
+#[test]
+fn random_passes() {
+    assert_passes(&run("random"), "random");
+}
+
+#[test]
+fn jittered_passes() {
+    let r = run("jittered");
+    assert_passes(&r, "jittered");
+    assert!(r.row("stratification", "per draw").unwrap().cases > 0);
+}
+
+#[test]
+fn pmj02_passes() {
+    let r = run("pmj02");
+    assert_passes(&r, "pmj02");
+    // every power of two up to 4096, every elementary shape, every draw of every instance
+    assert_eq!(
+        r.row("stratification", "per draw").unwrap().cases,
+        91 * 4 * 128
+    );
+}
+
+#[test]
+fn sobol_passes() {
+    assert_passes(&run("sobol"), "sobol");
+}
+
+#[test]
+fn halton_passes() {
+    let r = run("halton");
+    assert_passes(&r, "halton");
+    assert!(r.row("stratification", "per draw").unwrap().cases > 0);
+}
+
+#[test]
+fn pmj02_past_its_table_and_halton_at_non_powers_of_two_pass() {
+    // pmj02 indices 2^16.. come from the on-demand path; Halton at 3^5 * 2 uses a mixed grid
+    let suite = Suite {
+        spp: 1 << 17,
+        dimensions: 4,
+        pixels: vec![[5, 9], [6, 9]],
+        seeds: vec![3, 4],
+        ..Suite::default()
+    };
+    assert_passes(
+        &suite.run_sequence(Sequence::pmj02()).unwrap(),
+        "pmj02 2^17",
+    );
+    let suite = Suite {
+        spp: 486,
+        ..Suite::default()
+    };
+    let r = suite.run_sequence(Sequence::halton()).unwrap();
+    assert_passes(&r, "halton 486");
+    assert!(
+        r.row("stratification", "per draw")
+            .unwrap()
+            .worst_case
+            .contains("2x243")
+    );
+}
+
+/// A smaller suite for the broken sources (each fails by a wide margin).
+fn small() -> Suite {
+    Suite {
+        spp: 1024,
+        dimensions: 6,
+        pixels: vec![[0, 0], [1, 0], [0, 1], [17, 4], [300, 200], [7, 7]],
+        seeds: (1..=8).collect(),
+        ..Suite::default()
+    }
+}
+
+/// The key of a draw, as the adapter derives it.
+fn stream(seed: u64, pixel: [u32; 2], dim: u32) -> u64 {
+    let key = stream_seed(seed, (pixel[0] as u64) << 32 | pixel[1] as u64);
+    mix64(key ^ (dim as u64).wrapping_mul(GOLDEN_GAMMA))
+}
+
+fn unit(bits: u32) -> f32 {
+    (bits >> 8) as f32 / 16_777_216.0
+}
+
+#[test]
+fn the_former_pmj02_padding_fails_across_draws() {
+    // Before the fix: one shared table, the index XOR-ed and the values digitally shifted per
+    // draw. Both keep sample i of every draw in corresponding strata.
+    let mut s = Pmj02Stochastic::new(0x706d_6a30_3200);
+    s.reserve(1 << 16);
+    let table = s.generated().to_vec();
+    let source = move |seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
+        let st = stream(seed, pixel, dim & !1);
+        let p = table[(index as u32 ^ (st as u32 & 0xffff)) as usize];
+        let shift = mix64(st);
+        let k = (dim & 1) as usize;
+        unit(p[k] ^ (shift >> (32 * k)) as u32)
+    };
+    let r = small().run(&source).unwrap();
+    assert_fails(&r, "chi-square 31x31", "across draws", "XOR-shuffled pmj02");
+    assert_fails(&r, "products", "across draws", "XOR-shuffled pmj02");
+    assert_fails(
+        &r,
+        "variance over seeds",
+        "across draws",
+        "XOR-shuffled pmj02",
+    );
+}
+
+#[test]
+fn the_former_halton_padding_fails_across_draws() {
+    // Before the fix: every draw the radical inverses of the same index in bases 2 and 3,
+    // digit-scrambled per draw: the digits tie every draw to every other.
+    let source = |seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
+        halton::scrambled_radical_inverse((dim & 1) as usize, index, stream(seed, pixel, dim & !1))
+    };
+    let r = small().run(&source).unwrap();
+    assert_fails(&r, "chi-square 31x31", "across draws", "former Halton");
+}
+
+#[test]
+fn draws_that_share_their_values_fail() {
+    // padding forgotten: every draw reads the same stream
+    let source = |seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
+        let h = hash_u64(stream(seed, pixel, 0), index);
+        unit((h >> (32 * (dim & 1))) as u32)
+    };
+    let r = small().run(&source).unwrap();
+    assert_fails(&r, "products", "across draws", "shared draws");
+    assert_fails(&r, "chi-square 31x31", "across draws", "shared draws");
+}
+
+#[test]
+fn correlations_of_opposite_sign_in_different_pixels_do_not_cancel() {
+    // The old test's blind spot: dimension 2 copies dimension 0 in some pixels and mirrors it
+    // in others. A correlation averaged over pixels is about 0; every pixel is broken.
+    let source = |seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
+        let draw = |d: u32| {
+            let h = hash_u64(stream(seed, pixel, d & !1), index);
+            unit((h >> (32 * (d & 1))) as u32)
+        };
+        match dim {
+            2 if (pixel[0] + pixel[1]).is_multiple_of(2) => draw(0),
+            2 => 1.0 - draw(0) - f32::EPSILON / 2.0,
+            _ => draw(dim),
+        }
+    };
+    let r = small().run(&source).unwrap();
+    assert_fails(&r, "products", "across draws", "mirrored draws");
+    let worst = r.row("products", "across draws").unwrap();
+    assert!(
+        worst.worst_case.contains("dims 0,2"),
+        "{}",
+        worst.worst_case
+    );
+}
+
+#[test]
+fn a_weak_correlation_in_one_pair_of_draws_is_caught() {
+    // One draw in ten of dimension 4 repeats dimension 1: a correlation of 0.1, in one pair.
+    let source = |seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
+        let draw = |d: u32| {
+            let h = hash_u64(stream(seed, pixel, d & !1), index);
+            unit((h >> (32 * (d & 1))) as u32)
+        };
+        if dim == 4 && hash_u64(stream(seed, pixel, 99), index).is_multiple_of(10) {
+            draw(1)
+        } else {
+            draw(dim)
+        }
+    };
+    let suite = Suite {
+        spp: 4096,
+        ..small()
+    };
+    let r = suite.run(&source).unwrap();
+    assert_fails(&r, "chi-square 31x31", "across draws", "weak correlation");
+    assert!(
+        r.row("chi-square 31x31", "across draws")
+            .unwrap()
+            .worst_case
+            .contains("dims 1,4")
+    );
+    // and only that pair: no other row fails
+    assert_eq!(r.failures().count(), 1, "{r}");
+}
+
+#[test]
+fn pixels_and_seeds_that_share_their_values_fail() {
+    let pixel_blind = |seed: u64, _pixel: [u32; 2], index: u64, dim: u32| {
+        unit(hash_u64(stream(seed, [0, 0], dim), index) as u32)
+    };
+    let r = small().run(&pixel_blind).unwrap();
+    assert_fails(&r, "chi-square 31x31", "across pixels", "pixel-blind");
+    assert!(r.row("chi-square 31x31", "across seeds").unwrap().passed());
+
+    let seed_blind = |_seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
+        unit(hash_u64(stream(0, pixel, dim), index) as u32)
+    };
+    let r = small().run(&seed_blind).unwrap();
+    assert_fails(&r, "chi-square 31x31", "across seeds", "seed-blind");
+    assert!(r.row("chi-square 31x31", "across pixels").unwrap().passed());
+}
+
+#[test]
+fn a_biased_sequence_fails_the_mean_tests() {
+    // values pulled towards 0 by 5% at most: a bias, not a correlation
+    let source = |seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
+        let u = unit(hash_u64(stream(seed, pixel, dim), index) as u32);
+        u * (1.0 - 0.05 * u)
+    };
+    let suite = Suite {
+        spp: 4096,
+        seeds: (1..=16).collect(),
+        ..small()
+    };
+    let r = suite.run(&source).unwrap();
+    for scope in ["within draws", "across draws"] {
+        assert_fails(&r, "t-test over seeds", scope, "biased");
+        assert_fails(&r, "variance over seeds", scope, "biased");
+        assert_fails(&r, "integrands", scope, "biased");
+    }
+}
+
+/// Independent values that claim to be (0,m,2)-nets.
+struct FalsePromise;
+
+impl Source for FalsePromise {
+    fn value(&self, seed: u64, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
+        unit(hash_u64(stream(seed, pixel, dim), index) as u32)
+    }
+
+    fn promised_strata(&self, n: u64) -> Vec<StrataGrid> {
+        if n.is_power_of_two() {
+            vec![StrataGrid {
+                columns: n as u32,
+                rows: 1,
+            }]
+        } else {
+            Vec::new()
+        }
+    }
+}
+
+#[test]
+fn a_broken_promise_of_stratification_fails() {
+    let r = small().run(&FalsePromise).unwrap();
+    assert_fails(&r, "stratification", "per draw", "false promise");
+    // everything else about independent values is fine
+    assert_eq!(r.failures().count(), 1, "{r}");
+}
+
+#[test]
+fn a_renderers_own_closure_can_be_checked() {
+    // a renderer that keeps one sampler per seed, behind a closure
+    let samplers: Vec<_> = (1..=4u64)
+        .map(|s| PixelSampler::new(Sequence::pmj02(), 256, s).unwrap())
+        .collect();
+    let suite = Suite {
+        spp: 256,
+        dimensions: 6,
+        pixels: vec![[0, 0], [1, 1], [9, 2]],
+        seeds: (1..=4).collect(),
+        ..Suite::default()
+    };
+    let r = suite
+        .run(&|seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
+            samplers[seed as usize - 1].sample_2d(pixel, index, dim & !1)[(dim & 1) as usize]
+        })
+        .unwrap();
+    assert_passes(&r, "closure over pmj02");
+    // values outside [0, 1) are refused, not tested
+    let e = suite
+        .run(&|_: u64, _: [u32; 2], _: u64, _: u32| 1.0f32)
+        .unwrap_err();
+    assert!(e.to_string().contains("outside [0, 1)"), "{e}");
+}
