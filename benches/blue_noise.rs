@@ -8,8 +8,8 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use strata::grid::relative_radius_max;
 use strata::samplers::{Bridson, Ccvt, DartThrowing, SetGenerator, poisson};
+use strata::spectrum::relative_radius_max;
 
 fn poisson_disk(c: &mut Criterion) {
     for n in [1024u64, 4096] {

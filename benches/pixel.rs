@@ -24,7 +24,8 @@ fn pixel(c: &mut Criterion) {
         .sample_size(30)
         .measurement_time(Duration::from_secs(3));
     for name in ["random", "jittered", "pmj02", "sobol", "halton"] {
-        let mut s = PixelSampler::new(Sequence::by_name(name).unwrap(), SPP, 1).unwrap();
+        let mut s =
+            PixelSampler::new(Sequence::by_name(name).unwrap(), SPP, strata::Seed(1)).unwrap();
         group.bench_function(BenchmarkId::from_parameter(name), |b| {
             b.iter(|| {
                 let mut acc = 0.0f32;

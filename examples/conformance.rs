@@ -15,7 +15,7 @@ use strata::conformance::Suite;
 use strata::pixel::Sequence;
 
 const USAGE: &str = "conformance --sampler NAME|all [--spp N] [--dims D] [--pixels K] [--seeds K] \
-[--false-alarm A]";
+[--false-alarm A] [--markdown FILE]";
 
 const HELP: &str = "\
 conformance: run the statistical conformance suite on a path-tracer sequence: unbiased
@@ -34,6 +34,8 @@ Options:
   --pixels K          pixels tested, 1 to 256 (default 8: neighbours and distant ones)
   --seeds K           seeds, 1 to 1024 (default 16)
   --false-alarm A     family-wise false-alarm rate, 0 < A < 0.5 (default 1e-6)
+  --markdown FILE     also write a summary (one line per sequence) into FILE, as its section
+                      'conformance'
   -h, --help          this text
 
 A run draws spp x dims x pixels x seeds values, at most 2^25 (a few minutes); larger runs
@@ -42,12 +44,14 @@ are refused.";
 struct Args {
     samplers: Vec<String>,
     suite: Suite,
+    markdown: Option<std::path::PathBuf>,
 }
 
 fn parse() -> Result<Option<Args>, CliError> {
     use lexopt::prelude::*;
     let mut samplers = None;
     let mut suite = Suite::default();
+    let mut markdown = None;
     let default_pixels = suite.pixels.clone();
     let mut parser = lexopt::Parser::from_env();
     while let Some(arg) = parser.next()? {
@@ -87,6 +91,7 @@ fn parse() -> Result<Option<Args>, CliError> {
                 let v = string_value("--false-alarm", parser.value()?)?;
                 suite.false_alarm = parse_open_float("--false-alarm", &v, 0.0, 0.5)?;
             }
+            Long("markdown") => markdown = Some(parser.value()?.into()),
             Short('h') | Long("help") => {
                 println!("{HELP}");
                 return Ok(None);
@@ -97,7 +102,11 @@ fn parse() -> Result<Option<Args>, CliError> {
     let samplers =
         samplers.ok_or_else(|| cli_error(format!("--sampler is required; usage: {USAGE}")))?;
     suite.check()?;
-    Ok(Some(Args { samplers, suite }))
+    Ok(Some(Args {
+        samplers,
+        suite,
+        markdown,
+    }))
 }
 
 fn main() -> ExitCode {
@@ -110,6 +119,9 @@ fn main() -> ExitCode {
             .iter()
             .map(|n| Ok((n.clone(), Sequence::by_name(n)?)))
             .collect::<Result<Vec<_>, strata::Error>>()?;
+        let mut summary = String::from(
+            "| sequence | tests | cases | closest to its bound (statistic / bound) | verdict |\n|---|---|---|---|---|\n",
+        );
         for (name, sequence) in sequences {
             eprintln!("conformance: {name} ...");
             let start = Instant::now();
@@ -120,6 +132,36 @@ fn main() -> ExitCode {
                 start.elapsed().as_secs_f64()
             );
             failed |= !report.passed();
+            let closest = report
+                .rows
+                .iter()
+                .filter(|r| r.cases > 0 && r.threshold > 0.0)
+                .max_by(|a, b| (a.worst / a.threshold).total_cmp(&(b.worst / b.threshold)));
+            summary.push_str(&format!(
+                "| {name} | {} | {} | {} | {} |\n",
+                report.rows.iter().filter(|r| r.cases > 0).count(),
+                report.rows.iter().map(|r| r.cases).sum::<usize>(),
+                closest.map_or("-".into(), |r| format!(
+                    "{} {}: {:.3} / {:.3}",
+                    r.test, r.scope, r.worst, r.threshold
+                )),
+                if report.passed() { "pass" } else { "FAIL" }
+            ));
+        }
+        if let Some(path) = &args.markdown {
+            common::write_markdown_section(
+                path,
+                "conformance",
+                &format!(
+                    "The conformance suite ({} samples per pixel, {} dimensions, {} pixels, {} \
+                     seeds, family-wise false-alarm rate {:e}).\n\n{summary}",
+                    args.suite.spp,
+                    args.suite.dimensions,
+                    args.suite.pixels.len(),
+                    args.suite.seeds.len(),
+                    args.suite.false_alarm
+                ),
+            )?;
         }
         Ok(())
     });

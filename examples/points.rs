@@ -4,7 +4,7 @@
 //! cargo run --release --example points -- --sampler NAME -n N [--seed S] [--dims D]
 //!         [--pixel X,Y] [--radius RHO] [--iterations K] [--strength T] [--png FILE] [--list]
 //! ```
-//! See the README and `../shared/CLI.md` (the command-line contract).
+//! See `docs/cli.md` (the command-line contract).
 
 mod common;
 
@@ -141,7 +141,7 @@ fn main() -> ExitCode {
             let sequence = Sequence::by_name(&name)?;
             let spp = u32::try_from(n)
                 .map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
-            let mut sampler = PixelSampler::new(sequence, spp, args.params.seed)?;
+            let mut sampler = PixelSampler::new(sequence, spp, strata::Seed(args.params.seed))?;
             for (index, row) in values.chunks_exact_mut(dims).enumerate() {
                 sampler.start_pixel_sample([px as u32, py as u32], index as u64, 0);
                 let mut d = 0;

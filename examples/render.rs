@@ -30,10 +30,10 @@ use common::{CliError, cli_error, parse_int, string_value};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use strata::io::{self, Canvas, LinePlot, Rgb, Series};
-use strata::pixel::{PixelSampler, PixelSequence, Sequence, warp};
+use strata::pixel::{PixelSampler, Sequence, warp};
 
 const USAGE: &str = "render [--samplers a,b,..|all] [--spp N[,N,..]] [--size WxH] \
-[--scene cornell|spheres] [--reference-spp N] [--seed S] [--seeds K] [--out DIR]";
+[--scene cornell|spheres] [--reference-spp N] [--seed S] [--seeds K] [--out DIR] [--markdown FILE]";
 
 const HELP: &str = "\
 render: a small path tracer rendered with each sampler at one or more sample counts and
@@ -58,6 +58,7 @@ Options:
                          64): rmse and rel_rmse are over all of them (the root of the mean
                          squared error), ms is the mean time; the pictures show seed S
   --out DIR              output directory (default out/render)
+  --markdown FILE        also write the tables into FILE, as its section 'render'
   -h, --help             this text
 
 Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms: one row per sampler and count;
@@ -83,6 +84,7 @@ struct Args {
     seed: u64,
     seeds: u32,
     out: PathBuf,
+    markdown: Option<PathBuf>,
 }
 
 fn parse() -> Result<Option<Args>, CliError> {
@@ -96,6 +98,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         seed: 1,
         seeds: 4,
         out: PathBuf::from("out/render"),
+        markdown: None,
     };
     let mut p = lexopt::Parser::from_env();
     while let Some(arg) = p.next()? {
@@ -159,6 +162,7 @@ fn parse() -> Result<Option<Args>, CliError> {
                 a.seed = parse_int("--seed", &v, 0, u64::MAX)?;
             }
             Long("out") => a.out = p.value()?.into(),
+            Long("markdown") => a.markdown = Some(p.value()?.into()),
             Short('h') | Long("help") => {
                 println!("{HELP}");
                 return Ok(None);
@@ -630,7 +634,7 @@ fn render(
     size: (u32, u32),
     seed: u64,
 ) -> Result<Vec<Vec3>, strata::Error> {
-    let sampler = PixelSampler::new(sequence, spp, seed)?;
+    let sampler = PixelSampler::new(sequence, spp, strata::Seed(seed))?;
     let image = (0..size.1)
         .into_par_iter()
         .flat_map_iter(|y| {
@@ -884,25 +888,53 @@ fn main() -> ExitCode {
         );
         plot.log_x = true;
         plot.log_y = true;
-        println!("\n| sampler | slope of log RMSE against log spp |");
-        println!("|---|---|");
-        for (k, (name, _)) in sequences.iter().enumerate() {
-            let pts: Vec<(f64, f64)> = rows
+        // RMSE per sampler (rows) and count (columns), with the fitted slope
+        let mut table = format!(
+            "| sampler | {} | slope |\n|---|{}---|\n",
+            args.spp
                 .iter()
-                .filter(|r| &r.name == name)
-                .map(|r| (r.spp as f64, r.rmse))
-                .collect();
+                .map(|n| format!("{n} spp"))
+                .collect::<Vec<_>>()
+                .join(" | "),
+            "---|".repeat(args.spp.len())
+        );
+        for (k, (name, _)) in sequences.iter().enumerate() {
+            let mine: Vec<&Row> = rows.iter().filter(|r| &r.name == name).collect();
+            let pts: Vec<(f64, f64)> = mine.iter().map(|r| (r.spp as f64, r.rmse)).collect();
             let fitted = slope(&pts);
+            table.push_str(&format!(
+                "| {name} | {} | {} |\n",
+                mine.iter()
+                    .map(|r| format!("{:.4}", r.rmse))
+                    .collect::<Vec<_>>()
+                    .join(" | "),
+                fitted.map_or("-".to_string(), |s| format!("{s:.2}"))
+            ));
             let label = match fitted {
                 Some(s) => format!("{name} (slope {s:.2})"),
                 None => name.clone(),
             };
-            println!(
-                "| {name} | {} |",
-                fitted.map_or("-".to_string(), |s| format!("{s:.2}"))
-            );
             plot.series
                 .push(Series::new(label, pts, io::PALETTE[k % io::PALETTE.len()]));
+        }
+        println!("\n{table}");
+        if let Some(path) = &args.markdown {
+            common::write_markdown_section(
+                path,
+                "render",
+                &format!(
+                    "RMSE of linear radiance against the reference ({} scene, {}x{}, reference: \
+                     Sobol' at {ref_spp} spp), root of the mean over pixels, channels and {} \
+                     seeds; slope of log RMSE against log spp.\n\n{table}",
+                    match args.scene {
+                        SceneKind::Cornell => "cornell",
+                        SceneKind::Spheres => "spheres",
+                    },
+                    size.0,
+                    size.1,
+                    args.seeds
+                ),
+            )?;
         }
         io::write_png(args.out.join("convergence.png"), &plot.render(720, 480))?;
         eprintln!("wrote {} renders into {}", rows.len(), args.out.display());

@@ -5,7 +5,7 @@
 //! cargo run --release --example spectrum -- [--sampler NAME|all] [-n N] [--realizations R]
 //!         [--seed S] [--resolution K] [--out DIR]
 //! ```
-//! See the README and `../shared/CLI.md`.
+//! See `docs/cli.md` (the command-line contract).
 
 mod common;
 
@@ -21,7 +21,7 @@ use strata::io::{self, Canvas, Rgb};
 use strata::registry::{self, Entry, Params};
 use strata::spectrum::{self, PointSetMeasures, RadialBin, Spectrum};
 
-const USAGE: &str = "spectrum [--sampler NAME|all] [-n N] [--realizations R] [--seed S] [--resolution K] [--out DIR]";
+const USAGE: &str = "spectrum [--sampler NAME|all] [-n N] [--realizations R] [--seed S] [--resolution K] [--out DIR] [--markdown FILE]";
 
 const HELP: &str = "\
 spectrum: expected power spectra of sample patterns, their radial means, anisotropy and PSA
@@ -41,11 +41,14 @@ Options:
   --out DIR           output directory (default out), created when missing
   --radius, --iterations, --strength, --candidates   passed to the samplers that take them
   --no-overview       skip out/overview.png
+  --markdown FILE     also write the table into FILE, as its section 'spectrum'
   -h, --help          this text
 
 For each sampler NAME it writes DIR/NAME-spectrum.png (log scale, DC centred), NAME-spectrum.exr
 (the values, channel Y, f32), NAME-radial.csv (frequency,power,anisotropy), NAME-radial.png and
-NAME-points.png, then DIR/overview.png and a table on stdout.";
+NAME-points.png, then DIR/overview.png and a table on stdout. ms/set is the time to generate
+one set on one core (construction and points; one-time tables, built by a warm-up before
+timing, are not counted).";
 
 struct Args {
     sampler: String,
@@ -56,6 +59,7 @@ struct Args {
     out: PathBuf,
     params: Params,
     overview: bool,
+    markdown: Option<PathBuf>,
 }
 
 fn parse() -> Result<Option<Args>, CliError> {
@@ -69,6 +73,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         out: PathBuf::from("out"),
         params: Params::new(1),
         overview: true,
+        markdown: None,
     };
     let mut p = lexopt::Parser::from_env();
     while let Some(arg) = p.next()? {
@@ -101,6 +106,7 @@ fn parse() -> Result<Option<Args>, CliError> {
                 common::sampler_param(&flag, &mut p, &mut a.params)?
             }
             Long("no-overview") => a.overview = false,
+            Long("markdown") => a.markdown = Some(p.value()?.into()),
             Short('h') | Long("help") => {
                 println!("{HELP}");
                 return Ok(None);
@@ -136,7 +142,7 @@ fn run_one(
     params.count = count;
     // Only pass the optional parameters this sampler takes (with 'all', the others are for
     // other samplers).
-    let takes = |p| entry.parameters.contains(&p);
+    let takes = |p| entry.takes(p);
     if !takes(registry::Parameter::Radius) {
         params.radius = None;
     }
@@ -155,8 +161,12 @@ fn run_one(
         s.fill(&mut v);
         Ok(v)
     };
-    // Time one set on its own (one core), then stream the realizations through the spectrum
-    // (memory: one wave of sets, not all of them).
+    // Build the one-time tables (Sobol' directions, shared sequences) with a small set first,
+    // then time one set on its own (one core), then stream the realizations through the
+    // spectrum (memory: one wave of sets, not all of them).
+    let mut warm = params.clone();
+    warm.count = entry.counts.nearest(4);
+    entry.build(&warm)?.next_sample();
     let start = Instant::now();
     let first = generate(0)?;
     let ms_per_set = start.elapsed().as_secs_f64() * 1e3;
@@ -300,22 +310,28 @@ fn main() -> ExitCode {
         );
         let started = Instant::now();
         let mut outcomes = Vec::new();
-        for (e, count, r) in plan {
+        let planned = plan.len();
+        for (k, (e, count, r)) in plan.into_iter().enumerate() {
             bar.set_message(e.name);
             outcomes.push(run_one(e, count, r, &args, &bar)?);
+            common::progress_line(format!(
+                "spectrum: {} done ({}/{planned}, {:.0} s)",
+                e.name,
+                k + 1,
+                started.elapsed().as_secs_f64()
+            ));
         }
         bar.finish_and_clear();
         if args.overview && outcomes.len() > 1 {
             io::write_png(args.out.join("overview.png"), &overview(&outcomes))?;
         }
-        println!(
-            "| sampler | N | sets | ms/set | low-band power | min dist | avg min dist | nu_eff | oscillations |"
+        let mut table = String::from(
+            "| sampler | N | sets | ms/set | low-band power | min dist | avg min dist | nu_eff | oscillations |\n|---|---|---|---|---|---|---|---|---|\n",
         );
-        println!("|---|---|---|---|---|---|---|---|---|");
         for o in &outcomes {
             let m = &o.measures;
-            println!(
-                "| {} | {} | {} | {:.3} | {:.4} | {:.3} | {:.3} | {} | {} |",
+            table.push_str(&format!(
+                "| {} | {} | {} | {:.3} | {:.4} | {:.3} | {:.3} | {} | {} |\n",
                 o.name,
                 o.count,
                 o.realizations,
@@ -325,7 +341,23 @@ fn main() -> ExitCode {
                 m.average_min_distance,
                 fmt_opt(m.effective_nyquist),
                 fmt_opt(m.oscillations)
-            );
+            ));
+        }
+        print!("{table}");
+        if let Some(path) = &args.markdown {
+            common::write_markdown_section(
+                path,
+                "spectrum",
+                &format!(
+                    "Expected spectra, {} realizations ({} for the slow samplers) of N points, \
+                     K = {}: the mean power in the low band `0 < |w| < sqrt(N)/2`, the PSA \
+                     measures (minimum distances relative to `r_max(N)`, effective Nyquist \
+                     frequency, oscillations) and the time per set on one core.\n\n{table}",
+                    args.realizations.unwrap_or(64),
+                    args.realizations.unwrap_or(16),
+                    args.resolution
+                ),
+            )?;
         }
         println!(
             "\nwrote {} sampler(s) into {} in {:.1} s",

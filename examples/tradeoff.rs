@@ -21,7 +21,7 @@ use strata::analysis::study::{self, Config, Row, Slope};
 use strata::io::{self, LinePlot, PALETTE, Rgb, Series};
 use strata::registry::{self, Entry};
 
-const USAGE: &str = "tradeoff [--samplers a,b,..|all] [--integrands a,b,..|all] [--min-n N] [--max-n N] [--seeds K] [--out DIR]";
+const USAGE: &str = "tradeoff [--samplers a,b,..|all] [--integrands a,b,..|all] [--min-n N] [--max-n N] [--seeds K] [--out DIR] [--markdown FILE]";
 
 const HELP: &str = "\
 tradeoff: the convergence of each sampler on test integrands, speed against accuracy.
@@ -38,6 +38,7 @@ Options:
   --seeds K                 estimates per count (default 32; at least 2)
   --no-predict              skip the variance predicted from the spectrum
   --out DIR                 output directory (default out/tradeoff)
+  --markdown FILE           also write the slopes table into FILE, as its section 'tradeoff'
   -h, --help                this text
 
 Each sampler runs at its allowed counts nearest to the powers of two in [min-n, max-n]. Writes
@@ -59,6 +60,7 @@ struct Args {
     seeds: u32,
     predict: bool,
     out: PathBuf,
+    markdown: Option<PathBuf>,
 }
 
 fn list<T>(
@@ -93,6 +95,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         seeds: 32,
         predict: true,
         out: PathBuf::from("out/tradeoff"),
+        markdown: None,
     };
     let mut p = lexopt::Parser::from_env();
     while let Some(arg) = p.next()? {
@@ -131,6 +134,7 @@ fn parse() -> Result<Option<Args>, CliError> {
             }
             Long("no-predict") => a.predict = false,
             Long("out") => a.out = p.value()?.into(),
+            Long("markdown") => a.markdown = Some(p.value()?.into()),
             Short('h') | Long("help") => {
                 println!("{HELP}");
                 return Ok(None);
@@ -254,6 +258,7 @@ fn main() -> ExitCode {
         let (rows, slopes) = study::run(&config, &|name, n| {
             bar.set_message(format!("{name} N={n}"));
             bar.inc(1);
+            common::progress_line(format!("tradeoff: {name} N={n}"));
         })?;
         bar.finish_and_clear();
 
@@ -290,8 +295,11 @@ fn main() -> ExitCode {
 
         // the slopes as a table: samplers down, integrands across
         let header: Vec<&str> = args.integrands.iter().map(|f| f.name()).collect();
-        println!("| sampler | {} |", header.join(" | "));
-        println!("|---|{}", "---|".repeat(header.len()));
+        let mut table = format!(
+            "| sampler | {} |\n|---|{}\n",
+            header.join(" | "),
+            "---|".repeat(header.len())
+        );
         for e in &args.samplers {
             let cells: Vec<String> = args
                 .integrands
@@ -311,7 +319,19 @@ fn main() -> ExitCode {
                     }
                 })
                 .collect();
-            println!("| {} | {} |", e.name, cells.join(" | "));
+            table.push_str(&format!("| {} | {} |\n", e.name, cells.join(" | ")));
+        }
+        print!("{table}");
+        if let Some(path) = &args.markdown {
+            common::write_markdown_section(
+                path,
+                "tradeoff",
+                &format!(
+                    "Slope of log variance against log N (the published rate in parentheses), \
+                     N = {}..{}, {} seeds.\n\n{table}",
+                    args.min_n, args.max_n, args.seeds
+                ),
+            )?;
         }
         println!(
             "\nslope of log variance against log N (published rate in parentheses); N = {}..{}, {} seeds; {:.1} s; files in {}",

@@ -24,9 +24,11 @@
 //!   uniform sampling plausibly would;
 //! * **products**: the same for `x_a x_b` (exact 1/4): the estimate of `E[x_a x_b]` per pixel
 //!   within `max(6, z*)` sigma of an independent estimate's, `z*` the Bonferroni bound below;
-//! * **chi-square 31 x 31**: Pearson's statistic of the pair's counts on a `31 x 31` grid
-//!   (960 degrees of freedom; 31 is prime, so no dyadic or triadic stratification aligns with
-//!   it), upper tail;
+//! * **chi-square**: Pearson's statistic of the pair's counts on a `P x P` grid, upper tail,
+//!   `P^2 - 1` degrees of freedom. `P` is prime, so that no dyadic or triadic stratification
+//!   aligns with the cells: 31 (the grid of OpenQMC's battery) from 3844 samples on, below that
+//!   the largest prime with at least 4 expected points per cell (13 at 1024, 5 at 128, 2 at
+//!   16), where Pearson's statistic is still close to its chi-square law;
 //! * **t-test over seeds** (with two or more seeds): per pixel, pair and integrand (products
 //!   included), Student's t of the errors over the seeds, two-sided, `seeds - 1` degrees of
 //!   freedom: unbiasedness over the randomization. (The errors' spread gets a floor of `1/n`,
@@ -56,7 +58,7 @@
 //!
 //! ```
 //! use strata::conformance::Suite;
-//! use strata::pixel::{PixelSampler, Sequence};
+//! use strata::{PixelSampler, Seed, Sequence};
 //! let suite = Suite {
 //!     spp: 256,
 //!     dimensions: 6,
@@ -66,7 +68,7 @@
 //! };
 //! // the renderer's sampler behind a closure (seed, pixel, index, dimension) -> value
 //! let report = suite.run(&|seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
-//!     let s = PixelSampler::new(Sequence::sobol(), 256, seed).unwrap();
+//!     let s = PixelSampler::new(Sequence::sobol(), 256, Seed(seed)).unwrap();
 //!     s.sample_2d(pixel, index, dim & !1)[(dim & 1) as usize]
 //! })?;
 //! assert!(report.passed(), "{report}");
@@ -77,13 +79,14 @@ use std::fmt;
 
 use crate::analysis::Integrand;
 use crate::error::{Error, Result};
-use crate::pixel::{PixelSampler, PixelSequence};
+use crate::pixel::{PixelSampler, Sequence};
+use crate::sampler::Seed;
 use crate::sampler::StrataGrid;
 use crate::stats;
 
 /// What the suite draws values from.
 ///
-/// Closures `Fn(seed, pixel, index, dim) -> f32` implement it; for a [`PixelSequence`] use
+/// Closures `Fn(seed, pixel, index, dim) -> f32` implement it; for a [`Sequence`] use
 /// [`SequenceSource`] (which also states the sequence's promised stratification).
 pub trait Source: Sync {
     /// Dimension `dim` of sample `index` of `pixel`, under `seed`, in `[0, 1)`. Dimensions
@@ -118,34 +121,34 @@ impl<F: Fn(u64, [u32; 2], u64, u32) -> f32 + Sync> Source for F {
     }
 }
 
-/// A [`PixelSequence`] as a [`Source`]: the values of a [`PixelSampler`] with the given
+/// A [`Sequence`] as a [`Source`]: the values of a [`PixelSampler`] with the given
 /// samples per pixel, laid out as `points --pixel` prints them (dimensions `2k, 2k+1` from
 /// `get_2d` at dimension `2k`), with the stratification the sequence promises.
 #[derive(Clone, Debug)]
-pub struct SequenceSource<S: PixelSequence> {
-    sampler: PixelSampler<S>,
+pub struct SequenceSource {
+    sampler: PixelSampler,
 }
 
-impl<S: PixelSequence> SequenceSource<S> {
+impl SequenceSource {
     /// The source for `sequence` at `spp` samples per pixel (checked as
     /// [`PixelSampler::new`] checks it).
-    pub fn new(sequence: S, spp: u32) -> Result<Self> {
+    pub fn new(sequence: Sequence, spp: u32) -> Result<Self> {
         Ok(SequenceSource {
-            sampler: PixelSampler::new(sequence, spp, 0)?,
+            sampler: PixelSampler::new(sequence, spp, Seed(0))?,
         })
     }
 
-    fn seeded(&self, seed: u64) -> PixelSampler<S> {
+    fn seeded(&self, seed: u64) -> PixelSampler {
         PixelSampler::new(
             self.sampler.sequence().clone(),
             self.sampler.samples_per_pixel(),
-            seed,
+            Seed(seed),
         )
         .expect("checked in new")
     }
 }
 
-impl<S: PixelSequence> Source for SequenceSource<S> {
+impl Source for SequenceSource {
     fn value(&self, seed: u64, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
         self.seeded(seed).sample_2d(pixel, index, dim & !1)[(dim & 1) as usize]
     }
@@ -214,7 +217,7 @@ impl Default for Suite {
 /// One row of a [`Report`]: one test over all its cases.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Row {
-    /// The test (`integrands`, `products`, `chi-square 31x31`, ...).
+    /// The test (`integrands`, `products`, `chi-square`, ...).
     pub test: &'static str,
     /// Where it looks: `within draws`, `across draws`, `across pixels`, `across seeds`,
     /// `per draw`.
@@ -255,6 +258,8 @@ pub struct Report {
     pub dimensions: u32,
     /// Number of (seed, pixel) instances.
     pub instances: usize,
+    /// The side `P` of the chi-square grid (`P x P` cells).
+    pub chi_square_side: u32,
     /// The family-wise false-alarm rate.
     pub false_alarm: f64,
 }
@@ -320,11 +325,14 @@ impl fmt::Display for Report {
         }
         write!(
             f,
-            "\n{}: {} samples per pixel, {} dimensions, {} instances, family-wise false-alarm rate {:e}",
+            "\n{}: {} samples per pixel, {} dimensions, {} instances, chi-square on {}x{} cells, \
+             family-wise false-alarm rate {:e}",
             if self.passed() { "PASS" } else { "FAIL" },
             self.spp,
             self.dimensions,
             self.instances,
+            self.chi_square_side,
+            self.chi_square_side,
             self.false_alarm
         )
     }
@@ -407,19 +415,30 @@ fn functions() -> Vec<Function> {
     f
 }
 
-/// The chi-square grid's side.
-const GRID: usize = 31;
+/// The side of the chi-square grid for `n` points: 31, or the largest prime below it with at
+/// least 4 expected points per cell (at least 2).
+fn grid_side(n: usize) -> usize {
+    const PRIMES: [usize; 11] = [31, 29, 23, 19, 17, 13, 11, 7, 5, 3, 2];
+    PRIMES
+        .iter()
+        .copied()
+        .find(|&p| n >= 4 * p * p)
+        .unwrap_or(2)
+}
 
-/// Pearson's chi-square of the pairs `(a[i], b[i])` on a `GRID x GRID` grid.
-fn chi_square(n: usize, a: impl Fn(usize) -> f32, b: impl Fn(usize) -> f32) -> f64 {
-    let mut counts = [0u32; GRID * GRID];
+/// Pearson's chi-square of the pairs `(a[i], b[i])` on a `side x side` grid.
+fn chi_square(n: usize, side: usize, a: impl Fn(usize) -> f32, b: impl Fn(usize) -> f32) -> f64 {
+    let mut counts = [0u32; 31 * 31];
     for i in 0..n {
-        let cx = ((a(i) as f64 * GRID as f64) as usize).min(GRID - 1);
-        let cy = ((b(i) as f64 * GRID as f64) as usize).min(GRID - 1);
-        counts[cy * GRID + cx] += 1;
+        let cx = ((a(i) as f64 * side as f64) as usize).min(side - 1);
+        let cy = ((b(i) as f64 * side as f64) as usize).min(side - 1);
+        counts[cy * side + cx] += 1;
     }
-    let e = n as f64 / (GRID * GRID) as f64;
-    counts.iter().map(|&c| (c as f64 - e).powi(2) / e).sum()
+    let e = n as f64 / (side * side) as f64;
+    counts[..side * side]
+        .iter()
+        .map(|&c| (c as f64 - e).powi(2) / e)
+        .sum()
 }
 
 /// One tested case: its statistic, p-value and where it is.
@@ -471,7 +490,7 @@ impl Suite {
 
     /// Checks the configuration; the error says what is allowed.
     pub fn check(&self) -> Result<()> {
-        let ctx = "conformance::Suite";
+        let ctx = "Suite::check";
         if !(16..=Self::MAX_SPP).contains(&self.spp) {
             return Err(Error::parameter(
                 ctx,
@@ -533,8 +552,8 @@ impl Suite {
         Ok(())
     }
 
-    /// Runs a [`PixelSequence`] through the suite, at [`Suite::spp`] samples per pixel.
-    pub fn run_sequence<S: PixelSequence>(&self, sequence: S) -> Result<Report> {
+    /// Runs a [`Sequence`] through the suite, at [`Suite::spp`] samples per pixel.
+    pub fn run_sequence(&self, sequence: Sequence) -> Result<Report> {
         self.run(&SequenceSource::new(sequence, self.spp)?)
     }
 
@@ -561,11 +580,13 @@ impl Suite {
         {
             let (seed, pixel) = instances[k];
             return Err(Error::input(
-                "conformance",
+                "Suite::run",
                 format!("seed {seed} pixel {pixel:?} gave {bad}, outside [0, 1)"),
             ));
         }
 
+        let side = grid_side(n);
+        let chi_df = (side * side - 1) as f64;
         let functions = functions();
         let products = functions.len() - 1;
         let moments: Vec<(f64, f64)> = functions.iter().map(Function::moments).collect();
@@ -585,7 +606,12 @@ impl Suite {
                         .sum();
                     z.push((sum / n as f64 - exact) / (var / n as f64).sqrt());
                 }
-                chi.push(chi_square(n, |i| v[i * dims + a], |i| v[i * dims + b]));
+                chi.push(chi_square(
+                    n,
+                    side,
+                    |i| v[i * dims + a],
+                    |i| v[i * dims + b],
+                ));
             }
             (z, chi)
         });
@@ -601,16 +627,14 @@ impl Suite {
         };
         let chi_case = |c: f64, place: String| Case {
             statistic: c,
-            p: stats::chi_square_upper(c, (GRID * GRID - 1) as f64),
+            p: stats::chi_square_upper(c, chi_df),
             place,
         };
         let normal: fn(f64) -> Box<dyn Fn(f64) -> f64> =
             |_| Box::new(|alpha| stats::critical_value(alpha, stats::normal_two_sided));
-        let chi_critical = || -> Box<dyn Fn(f64) -> f64> {
-            Box::new(|alpha| {
-                stats::critical_value(alpha, |x| {
-                    stats::chi_square_upper(x, (GRID * GRID - 1) as f64)
-                })
+        let chi_critical = move || -> Box<dyn Fn(f64) -> f64> {
+            Box::new(move |alpha| {
+                stats::critical_value(alpha, |x| stats::chi_square_upper(x, chi_df))
             })
         };
 
@@ -658,7 +682,7 @@ impl Suite {
                 note: "no pair of dimensions in this scope",
             });
             families.push(Family {
-                test: "chi-square 31x31",
+                test: "chi-square",
                 scope,
                 statistic: "chi2",
                 cases: chis,
@@ -767,7 +791,7 @@ impl Suite {
                         .map(|i| va[i * dims + d] as f64 * vb[i * dims + d] as f64)
                         .sum();
                     let z = (sum / n as f64 - prod_exact) / (prod_var / n as f64).sqrt();
-                    let chi = chi_square(n, |i| va[i * dims + d], |i| vb[i * dims + d]);
+                    let chi = chi_square(n, side, |i| va[i * dims + d], |i| vb[i * dims + d]);
                     (z, chi)
                 })
                 .collect()
@@ -800,7 +824,7 @@ impl Suite {
                 note,
             });
             families.push(Family {
-                test: "chi-square 31x31",
+                test: "chi-square",
                 scope,
                 statistic: "chi2",
                 cases: chis,
@@ -854,6 +878,7 @@ impl Suite {
             spp: self.spp,
             dimensions: self.dimensions,
             instances: instances.len(),
+            chi_square_side: side as u32,
             false_alarm: self.false_alarm,
         })
     }
@@ -1002,7 +1027,7 @@ mod tests {
             },
         ] {
             let e = bad.check().unwrap_err().to_string();
-            assert!(e.contains("conformance"), "{e}");
+            assert!(e.contains("Suite::check"), "{e}");
         }
     }
 }

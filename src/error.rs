@@ -6,6 +6,7 @@
 //! perfect square (nearest allowed: 9 or 16)`.
 
 use std::fmt;
+use std::sync::Arc;
 
 /// Shorthand for `Result<T, strata::Error>`.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
@@ -14,7 +15,7 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 ///
 /// The [`Display`](fmt::Display) form is one line, meant for end users; match on the variants to
 /// react programmatically.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 #[non_exhaustive]
 pub enum Error {
     /// No sampler is registered under this name.
@@ -63,9 +64,72 @@ pub enum Error {
     Io {
         /// The file involved.
         path: String,
-        /// The operating system's or encoder's message.
-        message: String,
+        /// The operating system's or encoder's error (also given by
+        /// [`source`](std::error::Error::source)).
+        source: Arc<dyn std::error::Error + Send + Sync>,
     },
+}
+
+impl PartialEq for Error {
+    /// Equal variants with equal fields; I/O errors compare by path and message.
+    fn eq(&self, other: &Self) -> bool {
+        use Error::*;
+        match (self, other) {
+            (UnknownSampler { name: a, known: b }, UnknownSampler { name: c, known: d }) => {
+                a == c && b == d
+            }
+            (
+                InvalidCount {
+                    sampler: a,
+                    count: b,
+                    allowed: c,
+                },
+                InvalidCount {
+                    sampler: d,
+                    count: e,
+                    allowed: f,
+                },
+            ) => a == d && b == e && c == f,
+            (
+                InvalidParameter {
+                    context: a,
+                    parameter: b,
+                    value: c,
+                    allowed: d,
+                },
+                InvalidParameter {
+                    context: e,
+                    parameter: f,
+                    value: g,
+                    allowed: h,
+                },
+            ) => a == e && b == f && c == g && d == h,
+            (
+                InvalidInput {
+                    context: a,
+                    message: b,
+                },
+                InvalidInput {
+                    context: c,
+                    message: d,
+                },
+            )
+            | (
+                Unreachable {
+                    context: a,
+                    message: b,
+                },
+                Unreachable {
+                    context: c,
+                    message: d,
+                },
+            ) => a == c && b == d,
+            (Io { path: a, source: b }, Io { path: c, source: d }) => {
+                a == c && b.to_string() == d.to_string()
+            }
+            _ => false,
+        }
+    }
 }
 
 impl Error {
@@ -101,11 +165,15 @@ impl Error {
         }
     }
 
-    /// Shorthand for [`Error::Io`].
-    pub fn io(path: impl AsRef<std::path::Path>, message: impl fmt::Display) -> Self {
+    /// Shorthand for [`Error::Io`]: `source` is the underlying error (an `std::io::Error`, an
+    /// encoder's error, or a message).
+    pub fn io(
+        path: impl AsRef<std::path::Path>,
+        source: impl Into<Box<dyn std::error::Error + Send + Sync>>,
+    ) -> Self {
         Error::Io {
             path: path.as_ref().display().to_string(),
-            message: message.to_string(),
+            source: Arc::from(source.into()),
         }
     }
 }
@@ -136,12 +204,19 @@ impl fmt::Display for Error {
             ),
             Error::InvalidInput { context, message } => write!(f, "{context}: {message}"),
             Error::Unreachable { context, message } => write!(f, "{context}: {message}"),
-            Error::Io { path, message } => write!(f, "{path}: {message}"),
+            Error::Io { path, source } => write!(f, "{path}: {source}"),
         }
     }
 }
 
-impl std::error::Error for Error {}
+impl std::error::Error for Error {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Error::Io { source, .. } => Some(source.as_ref()),
+            _ => None,
+        }
+    }
+}
 
 /// The perfect squares nearest to `n` (one if `n` is a square, else the one below and the one
 /// above), for error messages.
@@ -166,6 +241,22 @@ mod tests {
         assert_eq!(nearest_squares(16), "16");
         assert_eq!(nearest_squares(0), "1");
         assert_eq!(nearest_squares(2), "1 or 4");
+    }
+
+    #[test]
+    fn io_errors_keep_their_source() {
+        use std::error::Error as _;
+        let e = Error::io(
+            "out/x.png",
+            std::io::Error::new(std::io::ErrorKind::PermissionDenied, "denied"),
+        );
+        assert_eq!(e.to_string(), "out/x.png: denied");
+        let source = e.source().expect("a source");
+        let io = source
+            .downcast_ref::<std::io::Error>()
+            .expect("an io::Error");
+        assert_eq!(io.kind(), std::io::ErrorKind::PermissionDenied);
+        assert_eq!(e.clone(), e);
     }
 
     #[test]

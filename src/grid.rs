@@ -75,17 +75,6 @@ impl TorusGrid {
         }
     }
 
-    /// An empty grid whose cells are no smaller than `cell` (so that a disc of radius `cell`
-    /// around a point touches at most the 3 x 3 cells around it).
-    pub fn with_cell_size(cell: f64) -> Self {
-        let res = if cell > 0.0 && cell.is_finite() {
-            (1.0 / cell).floor() as usize
-        } else {
-            4096
-        };
-        Self::new(res.max(1))
-    }
-
     /// A grid holding `points`, with about one point per cell.
     pub fn from_points(points: impl IntoIterator<Item = [f64; 2]>) -> Self {
         let points: Vec<[f64; 2]> = points.into_iter().collect();
@@ -107,11 +96,6 @@ impl TorusGrid {
     /// The number of points held.
     pub fn len(&self) -> usize {
         self.points.len()
-    }
-
-    /// True when no point is held.
-    pub fn is_empty(&self) -> bool {
-        self.points.is_empty()
     }
 
     /// The points, in insertion order.

@@ -13,12 +13,59 @@
 //!   Sampling" (Pixar Technical Memo 13-01, 2013): a pseudo-random bijection on `[0, l)` for *any*
 //!   `l`, evaluated element by element in constant expected time, by hashing within the enclosing
 //!   power of two and *cycle walking* until the value falls below `l`.
-//! * [`DivMod`] divides by a run-time constant with a multiplication (Lemire, Kaser, Kurz,
+//! * `DivMod` divides by a run-time constant with a multiplication (Lemire, Kaser, Kurz,
 //!   "Faster Remainder by Direct Computation", 2019), for the per-point index arithmetic of the
 //!   stateless samplers.
 
 /// The 64-bit golden-ratio increment of SplitMix64, used to separate streams.
 pub const GOLDEN_GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// The named streams of randomness derived from one key. Each use of a key (a permutation, a
+/// scramble, a set of jitters) takes its own stream, so that no two uses see related bits; the
+/// values are fixed forever, since every sampler's output depends on them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u64)]
+pub(crate) enum Stream {
+    /// Multi-jittered: the shuffles of the x sub-columns.
+    MultiJitterX = 0x006d_6a58,
+    /// Multi-jittered: the shuffles of the y sub-rows.
+    MultiJitterY = 0x006d_6a59,
+    /// Correlated multi-jittered: the sample order.
+    CmjOrder = 0x636d_6a53,
+    /// Correlated multi-jittered: the x shuffle.
+    CmjX = 0x636d_6a58,
+    /// Correlated multi-jittered: the y shuffle.
+    CmjY = 0x636d_6a59,
+    /// N-rooks: the column permutation.
+    NRooksX = 0x6c61_7469_6e58,
+    /// N-rooks: the row permutation.
+    NRooksY = 0x6c61_7469_6e59,
+    /// Orthogonal arrays: the sub-stratum permutations.
+    OaSubstrata = 0x5eed,
+    /// Sobol': the scramble of a seed.
+    SobolScramble = 0x50b0,
+    /// Sobol': the index shuffle.
+    SobolShuffle = 0x79c6_8e4a,
+    /// Halton: the digit permutations of dimension 0 (dimension `d` adds `d`).
+    HaltonDigits = 0x4a17,
+    /// Lloyd: the jitter that separates coincident points.
+    #[cfg(feature = "lloyd")]
+    LloydJitter = 0x110d,
+}
+
+impl Stream {
+    /// The stream's number.
+    #[inline]
+    pub(crate) const fn id(self) -> u64 {
+        self as u64
+    }
+
+    /// A 32-bit key for this stream of `key` (for a [`Permutation`]).
+    #[inline]
+    pub(crate) const fn key32(self, key: u64) -> u32 {
+        key32(key ^ self.id())
+    }
+}
 
 /// A bijective 64-bit mixing function (Stafford's Mix13, the SplitMix64 finalizer).
 ///
@@ -101,7 +148,7 @@ pub const fn owen_scramble(x: u32, seed: u32) -> u32 {
 
 /// A 32-bit key derived from a 64-bit one (for [`permute`], whose key is 32 bits).
 #[inline]
-pub const fn key32(key: u64) -> u32 {
+pub(crate) const fn key32(key: u64) -> u32 {
     (mix64(key) >> 32) as u32
 }
 
@@ -167,7 +214,7 @@ impl Permutation {
     /// [`Permutation::new`]`(d, key)` without its division, for code that builds many
     /// permutations of one length (one per row or column).
     #[inline]
-    pub const fn with_divider(len: &DivMod, key: u32) -> Self {
+    pub(crate) const fn with_divider(len: &DivMod, key: u32) -> Self {
         let d = len.divisor();
         let mask = if d == 1 {
             0
@@ -280,7 +327,7 @@ impl Permutation {
 /// Lemire's direct computation: with `M = ceil(2^64 / d)`, `n / d = floor(M n / 2^64)` for every
 /// 32-bit `n`. `d = 1` (where `M` would overflow) is handled separately.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct DivMod {
+pub(crate) struct DivMod {
     d: u32,
     m: u64,
 }

@@ -26,6 +26,7 @@ pub struct Bitset {
 
 impl Bitset {
     /// `len` bits, all clear.
+    #[cfg(test)]
     pub fn new(len: usize) -> Self {
         Bitset {
             words: vec![0; len.div_ceil(64)],
@@ -36,12 +37,6 @@ impl Bitset {
     pub fn reset(&mut self, len: usize) {
         self.words.clear();
         self.words.resize(len.div_ceil(64), 0);
-    }
-
-    /// Bit `i`.
-    #[inline]
-    pub fn get(&self, i: usize) -> bool {
-        self.words[i >> 6] >> (i & 63) & 1 != 0
     }
 
     /// Sets bit `i`.
@@ -125,13 +120,6 @@ pub struct Strata1D {
 }
 
 impl Strata1D {
-    /// Empty strata at level `m`.
-    pub fn new(level: u32) -> Self {
-        let mut s = Strata1D::default();
-        s.reset(level, &[]);
-        s
-    }
-
     /// Clears and moves to level `m`, marking `points`.
     pub fn reset(&mut self, level: u32, points: &[[u32; 2]]) {
         self.level = level;
@@ -142,21 +130,10 @@ impl Strata1D {
         }
     }
 
-    /// The level `m`.
-    pub fn level(&self) -> u32 {
-        self.level
-    }
-
     /// Marks the strata of a point.
     pub fn mark(&mut self, p: [u32; 2]) {
         self.x.set(top_bits(p[0], self.level) as usize);
         self.y.set(top_bits(p[1], self.level) as usize);
-    }
-
-    /// True when the point's x or y stratum is already taken.
-    pub fn collides(&self, p: [u32; 2]) -> bool {
-        self.x.get(top_bits(p[0], self.level) as usize)
-            || self.y.get(top_bits(p[1], self.level) as usize)
     }
 
     /// The free x strata (or y strata, `axis = 1`) in `[lo, hi)`: count, and the `k`-th.
@@ -224,6 +201,7 @@ fn double_bits(x: u32) -> u64 {
 
 impl ElementaryIntervals {
     /// Empty intervals at level `m` (`m <= 32`).
+    #[cfg(test)]
     pub fn new(level: u32) -> Self {
         let mut e = ElementaryIntervals::default();
         e.reset(level, &[]);
@@ -239,11 +217,6 @@ impl ElementaryIntervals {
         for p in points {
             self.mark(*p);
         }
-    }
-
-    /// The level `m`.
-    pub fn level(&self) -> u32 {
-        self.level
     }
 
     /// The bit index of cell (x prefix `xi`, y prefix `yi`) of shape `a`, in that shape's layout.
@@ -280,6 +253,7 @@ impl ElementaryIntervals {
     }
 
     /// True when some interval containing the point is already occupied.
+    #[cfg(test)]
     pub fn collides(&self, p: [u32; 2]) -> bool {
         let m = self.level;
         (0..=m).any(|a| self.occupied_cell(a, top_bits(p[0], a), top_bits(p[1], m - a)))

@@ -3,10 +3,11 @@
 
 mod common;
 
+use common::torus_distance_squared;
 use glam::Vec2;
-use strata::grid::{relative_radius_max, torus_distance_squared};
 use strata::registry::{self, Params};
 use strata::samplers::{Bridson, Ccvt, DartThrowing, SetGenerator};
+use strata::spectrum::relative_radius_max;
 
 fn set(name: &str, n: u64, seed: u64, rho: Option<f64>) -> Vec<Vec2> {
     let mut p = Params::new(n).seed(seed);
@@ -164,7 +165,14 @@ fn ccvt_sites_own_equal_shares() {
     }
     // The capacity constraint: each site's Voronoi region, estimated with independent
     // uniform probes, holds about 1/N of the torus.
-    let grid = strata::grid::TorusGrid::from_points(r.sites.iter().copied());
+    let nearest = |p: [f64; 2]| {
+        (0..r.sites.len())
+            .min_by(|&i, &j| {
+                torus_distance_squared(p, r.sites[i])
+                    .total_cmp(&torus_distance_squared(p, r.sites[j]))
+            })
+            .unwrap()
+    };
     let probes = 200_000u64;
     let mut counts = vec![0u32; 200];
     let mut h = 42u64;
@@ -173,7 +181,7 @@ fn ccvt_sites_own_equal_shares() {
         let a = (h >> 11) as f64 / (1u64 << 53) as f64;
         h = strata::hash::mix64(h);
         let b = (h >> 11) as f64 / (1u64 << 53) as f64;
-        counts[grid.nearest([a, b], None).unwrap().0] += 1;
+        counts[nearest([a, b])] += 1;
     }
     let mean = probes as f64 / 200.0;
     let worst = counts

@@ -4,9 +4,9 @@
 mod common;
 
 use common::take;
+use strata::float::{ONE_MINUS_EPSILON, f32_in_stratum, unit_f32_from_f64, unit_f32_from_u32};
 use strata::hash::{Permutation, permute};
 use strata::registry::{self, Params};
-use strata::sampler::{ONE_MINUS_EPSILON, f32_in_stratum, unit_f32_from_f64, unit_f32_from_u32};
 use strata::{Error, Sampler};
 
 #[test]

@@ -51,7 +51,7 @@ fn subsets(d: usize, k: usize) -> Vec<Vec<usize>> {
 fn latin_hypercube_stratifies_every_axis() {
     for (n, d) in [(1u64, 3u32), (7, 5), (64, 16), (1000, 4)] {
         for seed in [0u64, 9, u64::MAX] {
-            let mut s = LatinHypercube::new(n, d, seed).unwrap();
+            let mut s = LatinHypercube::new(n, d, strata::Seed(seed)).unwrap();
             for block in 0..2 {
                 let pts = points(&mut s, n as usize);
                 for axis in 0..d as usize {
@@ -70,7 +70,7 @@ fn uncorrelated_jitter_stratifies_its_pairs_and_its_last_dimension() {
     for (side, d) in [(4u64, 2u32), (3, 5), (8, 6), (5, 1)] {
         let n = side * side;
         for seed in [1u64, 2] {
-            let mut s = UncorrelatedJitter::new(n, d, seed).unwrap();
+            let mut s = UncorrelatedJitter::new(n, d, strata::Seed(seed)).unwrap();
             let pts = points(&mut s, n as usize);
             let mut k = 0;
             while k + 1 < d as usize {
@@ -90,12 +90,12 @@ fn uncorrelated_jitter_stratifies_its_pairs_and_its_last_dimension() {
         }
     }
     assert!(
-        UncorrelatedJitter::new(10, 3, 1)
+        UncorrelatedJitter::new(10, 3, strata::Seed(1))
             .unwrap_err()
             .to_string()
             .contains("9 or 16")
     );
-    assert!(UncorrelatedJitter::new(10, 1, 1).is_ok());
+    assert!(UncorrelatedJitter::new(10, 1, strata::Seed(1)).is_ok());
 }
 
 #[test]
@@ -104,7 +104,7 @@ fn bose_arrays_stratify_every_axis_and_every_pair() {
         let n = q * q;
         for d in [2u32, q as u32 + 1] {
             for seed in [3u64, 4] {
-                let mut s = Bose::new(n, d, seed).unwrap();
+                let mut s = Bose::new(n, d, strata::Seed(seed)).unwrap();
                 let pts = points(&mut s, n as usize);
                 for axis in 0..d as usize {
                     assert!(
@@ -139,7 +139,7 @@ fn bush_arrays_stratify_every_axis_and_every_t_subset() {
         let n = q.pow(t);
         let d = q as u32;
         for seed in [5u64, 6] {
-            let mut s = Bush::new(n, t, d, seed).unwrap();
+            let mut s = Bush::new(n, t, d, strata::Seed(seed)).unwrap();
             let pts = points(&mut s, n as usize);
             for axis in 0..d as usize {
                 assert!(
@@ -159,29 +159,31 @@ fn bush_arrays_stratify_every_axis_and_every_t_subset() {
 
 #[test]
 fn bad_dimensions_counts_and_strengths_are_refused() {
-    assert!(Bose::new(49, 0, 1).is_err());
+    assert!(Bose::new(49, 0, strata::Seed(1)).is_err());
     assert!(
-        Bose::new(49, 9, 1)
+        Bose::new(49, 9, strata::Seed(1))
             .unwrap_err()
             .to_string()
             .contains("1 to 8")
     );
     assert!(
-        Bush::new(125, 3, 6, 1)
+        Bush::new(125, 3, 6, strata::Seed(1))
             .unwrap_err()
             .to_string()
             .contains("1 to 5")
     );
-    let e = Bush::new(100, 3, 3, 1).unwrap_err().to_string();
+    let e = Bush::new(100, 3, 3, strata::Seed(1))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("64 (4^3) or 125 (5^3)"), "{e}");
     assert!(
-        Bush::new(125, 1, 3, 1)
+        Bush::new(125, 1, 3, strata::Seed(1))
             .unwrap_err()
             .to_string()
             .contains("strength")
     );
-    assert!(LatinHypercube::new(10, 0, 1).is_err());
-    assert!(LatinHypercube::new(0, 3, 1).is_err());
+    assert!(LatinHypercube::new(10, 0, strata::Seed(1)).is_err());
+    assert!(LatinHypercube::new(0, 3, strata::Seed(1)).is_err());
     let mut p = Params::new(125);
     p.strength = Some(3);
     assert!(registry::build_nd("oa-bush", &p, 5).is_ok());
@@ -196,8 +198,8 @@ fn bad_dimensions_counts_and_strengths_are_refused() {
     // billions of candidates); the refusal names the largest counts instead of searching
     for n in [u64::MAX, 9_259_542_122_566_407_766, 1 << 40, (1 << 31) + 1] {
         for e in [
-            Bose::new(n, 3, 1).unwrap_err(),
-            Bush::new(n, 3, 3, 1).unwrap_err(),
+            Bose::new(n, 3, strata::Seed(1)).unwrap_err(),
+            Bush::new(n, 3, 3, strata::Seed(1)).unwrap_err(),
         ] {
             assert!(
                 e.to_string().contains("the largest allowed are about"),

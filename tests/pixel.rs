@@ -5,7 +5,7 @@
 mod common;
 
 use common::is_net;
-use strata::pixel::{PixelSampler, PixelSequence, Sequence};
+use strata::pixel::{PixelSampler, Sequence};
 
 fn all() -> Vec<Sequence> {
     Sequence::NAMES
@@ -17,7 +17,7 @@ fn all() -> Vec<Sequence> {
 #[test]
 fn values_stay_in_the_unit_interval_everywhere() {
     for seq in all() {
-        let s = PixelSampler::new(seq.clone(), 16, u64::MAX).unwrap();
+        let s = PixelSampler::new(seq.clone(), 16, strata::Seed(u64::MAX)).unwrap();
         for pixel in [[0u32, 0], [u32::MAX, u32::MAX], [12345, 0]] {
             for index in [
                 0u64,
@@ -49,7 +49,7 @@ fn values_stay_in_the_unit_interval_everywhere() {
 #[test]
 fn revisiting_a_pixel_in_any_order_gives_the_same_bits() {
     for seq in all() {
-        let mut s = PixelSampler::new(seq.clone(), 16, 3).unwrap();
+        let mut s = PixelSampler::new(seq.clone(), 16, strata::Seed(3)).unwrap();
         let draw = |s: &mut PixelSampler, i: u64| {
             s.start_pixel_sample([1, 5], i, 0);
             let mut v = Vec::new();
@@ -85,7 +85,8 @@ fn revisiting_a_pixel_in_any_order_gives_the_same_bits() {
 fn each_pixel_gets_a_stratified_set_in_every_draw() {
     for name in ["pmj02", "sobol"] {
         for spp in [4u32, 16, 64, 256] {
-            let s = PixelSampler::new(Sequence::by_name(name).unwrap(), spp, 11).unwrap();
+            let s =
+                PixelSampler::new(Sequence::by_name(name).unwrap(), spp, strata::Seed(11)).unwrap();
             for pixel in [[0u32, 0], [7, 3], [1000, 999]] {
                 for dim in [0u32, 2, 9] {
                     let pts: Vec<_> = (0..spp as u64)
@@ -100,7 +101,7 @@ fn each_pixel_gets_a_stratified_set_in_every_draw() {
         }
     }
     // jittered: one point per cell of s x s
-    let s = PixelSampler::new(Sequence::jittered(), 49, 2).unwrap();
+    let s = PixelSampler::new(Sequence::jittered(), 49, strata::Seed(2)).unwrap();
     for dim in [0u32, 4] {
         let pts: Vec<_> = (0..49u64).map(|i| s.sample_2d([3, 4], i, dim)).collect();
         common::assert_one_per_cell(&pts, 7, 7, &format!("jittered dim {dim}"));
@@ -113,7 +114,7 @@ fn each_pixel_gets_a_stratified_set_in_every_draw() {
 #[test]
 fn halton_blocks_are_stratified_on_their_grid_in_every_draw() {
     // spp 100: blocks of 108 = 2^2 3^3, one point per cell of 4 x 27
-    let s = PixelSampler::new(Sequence::halton(), 100, 4).unwrap();
+    let s = PixelSampler::new(Sequence::halton(), 100, strata::Seed(4)).unwrap();
     assert_eq!(s.round_count(100), 108);
     for pixel in [[0u32, 0], [9, 4]] {
         for dim in [0u32, 2, 11] {
@@ -130,7 +131,7 @@ fn halton_blocks_are_stratified_on_their_grid_in_every_draw() {
 #[test]
 fn past_two_to_the_32_the_draws_stay_stratified() {
     for name in ["pmj02", "sobol"] {
-        let s = PixelSampler::new(Sequence::by_name(name).unwrap(), 256, 8).unwrap();
+        let s = PixelSampler::new(Sequence::by_name(name).unwrap(), 256, strata::Seed(8)).unwrap();
         for start in [1u64 << 32, 5 << 32] {
             let pts: Vec<_> = (0..256u64)
                 .map(|i| s.sample_2d([3, 3], start + i, 4))
@@ -143,8 +144,8 @@ fn past_two_to_the_32_the_draws_stay_stratified() {
 #[test]
 fn progressive_sequences_ignore_the_samples_per_pixel() {
     for name in ["random", "pmj02", "sobol"] {
-        let a = PixelSampler::new(Sequence::by_name(name).unwrap(), 16, 2).unwrap();
-        let b = PixelSampler::new(Sequence::by_name(name).unwrap(), 1000, 2).unwrap();
+        let a = PixelSampler::new(Sequence::by_name(name).unwrap(), 16, strata::Seed(2)).unwrap();
+        let b = PixelSampler::new(Sequence::by_name(name).unwrap(), 1000, strata::Seed(2)).unwrap();
         for i in [0u64, 5, 999, 70_000] {
             assert_eq!(
                 a.sample_2d([1, 2], i, 6),
@@ -157,7 +158,7 @@ fn progressive_sequences_ignore_the_samples_per_pixel() {
 
 #[test]
 fn bounces_start_at_fixed_dimensions() {
-    let mut s = PixelSampler::new(Sequence::sobol(), 16, 1).unwrap();
+    let mut s = PixelSampler::new(Sequence::sobol(), 16, strata::Seed(1)).unwrap();
     s.start_pixel_sample([4, 4], 3, 0);
     assert_eq!(s.dimension(), 0);
     let _ = s.get_pixel_2d();
@@ -185,7 +186,7 @@ fn bounces_start_at_fixed_dimensions() {
 fn the_rand_bridge_hands_out_successive_dimensions() {
     use rand::{Rng, RngExt};
     for seq in all() {
-        let mut s = PixelSampler::new(seq.clone(), 16, 5).unwrap();
+        let mut s = PixelSampler::new(seq.clone(), 16, strata::Seed(5)).unwrap();
         s.start_pixel_sample([2, 7], 9, 4);
         let mut bytes = [0u8; 12];
         let (a, b, c, d) = {
@@ -197,14 +198,19 @@ fn the_rand_bridge_hands_out_successive_dimensions() {
             rng.fill_bytes(&mut bytes);
             (a, b, c, d)
         };
-        // one dimension per word; the value on top, f32 exactly the sequence's value
-        assert_eq!(a, s.sample([2, 7], 9, 4), "{}", seq.name());
-        assert_eq!((b >> 40) as f32 / 16_777_216.0, s.sample([2, 7], 9, 5));
-        assert_eq!((c >> 8) as f32 / 16_777_216.0, s.sample([2, 7], 9, 6));
+        // one dimension per word; the value's top 24 bits on top: f32 is the sequence's value
+        // rounded down to a multiple of 2^-24 (exactly it for the nets)
+        let top24 = |v: f32| (v * 16_777_216.0) as u32 as f32 / 16_777_216.0;
+        assert_eq!(a, top24(s.sample([2, 7], 9, 4)), "{}", seq.name());
         assert_eq!(
-            (d * 16_777_216.0) as u32 as f32 / 16_777_216.0,
-            s.sample([2, 7], 9, 7)
+            (b >> 40) as f32 / 16_777_216.0,
+            top24(s.sample([2, 7], 9, 5))
         );
+        assert_eq!(
+            (c >> 8) as f32 / 16_777_216.0,
+            top24(s.sample([2, 7], 9, 6))
+        );
+        assert_eq!(top24(d as f32), top24(s.sample([2, 7], 9, 7)));
         assert_eq!(s.dimension(), 4 + 4 + 2);
         assert!(bytes.iter().any(|&x| x != 0));
     }
@@ -213,7 +219,7 @@ fn the_rand_bridge_hands_out_successive_dimensions() {
 #[test]
 fn indices_past_two_to_the_32_start_a_fresh_copy() {
     for seq in all() {
-        let s = PixelSampler::new(seq.clone(), 16, 1).unwrap();
+        let s = PixelSampler::new(seq.clone(), 16, strata::Seed(1)).unwrap();
         let a = s.sample_2d([2, 2], 3, 0);
         let b = s.sample_2d([2, 2], (1 << 32) + 3, 0);
         assert_ne!(a, b, "{}", seq.name());
@@ -223,19 +229,19 @@ fn indices_past_two_to_the_32_start_a_fresh_copy() {
 
 #[test]
 fn bad_counts_are_refused() {
-    let e = PixelSampler::new(Sequence::jittered(), 10, 1).unwrap_err();
+    let e = PixelSampler::new(Sequence::jittered(), 10, strata::Seed(1)).unwrap_err();
     assert!(e.to_string().contains("9 or 16"), "{e}");
-    assert!(PixelSampler::new(Sequence::sobol(), 0, 1).is_err());
+    assert!(PixelSampler::new(Sequence::sobol(), 0, strata::Seed(1)).is_err());
     assert!(
         Sequence::by_name("cmj")
             .unwrap_err()
             .to_string()
             .contains("sobol")
     );
-    let s = PixelSampler::new(Sequence::pmj02(), 10, 1).unwrap();
+    let s = PixelSampler::new(Sequence::pmj02(), 10, strata::Seed(1)).unwrap();
     assert_eq!(s.round_count(10), 16);
     assert_eq!(
-        PixelSampler::new(Sequence::jittered(), 9, 1)
+        PixelSampler::new(Sequence::jittered(), 9, strata::Seed(1))
             .unwrap()
             .round_count(10),
         16
@@ -246,14 +252,14 @@ fn bad_counts_are_refused() {
 fn the_adapter_is_cheap_to_clone_and_thread_safe() {
     fn send_sync<T: Send + Sync + Clone>() {}
     send_sync::<PixelSampler>();
-    let s = PixelSampler::new(Sequence::pmj02(), 16, 1).unwrap();
+    let s = PixelSampler::new(Sequence::pmj02(), 16, strata::Seed(1)).unwrap();
     let clones: Vec<_> = (0..8).map(|_| s.clone()).collect();
     std::thread::scope(|scope| {
         for c in clones {
             scope.spawn(move || {
                 assert_eq!(
                     c.sample_2d([1, 1], 1, 0),
-                    PixelSampler::new(Sequence::pmj02(), 16, 1)
+                    PixelSampler::new(Sequence::pmj02(), 16, strata::Seed(1))
                         .unwrap()
                         .sample_2d([1, 1], 1, 0)
                 );
@@ -278,5 +284,17 @@ fn sobol_direction_numbers_match_an_independent_implementation() {
                 "dimension {dim}, index {i}"
             );
         }
+    }
+}
+
+#[test]
+#[cfg(debug_assertions)]
+#[should_panic(expected = "past the budget of this bounce")]
+fn a_bounce_that_overruns_its_budget_is_caught_in_debug_builds() {
+    let mut s = PixelSampler::new(Sequence::sobol(), 16, strata::Seed(1)).unwrap();
+    s.start_pixel_sample([0, 0], 0, 0);
+    s.start_bounce(0); // dimensions 8..16
+    for _ in 0..5 {
+        let _ = s.get_2d(); // the fifth pair takes 16-17: bounce 1's
     }
 }

@@ -28,7 +28,8 @@ static GLOBAL: Counting = Counting;
 #[test]
 fn no_allocation_after_construction() {
     for name in Sequence::NAMES {
-        let mut s = PixelSampler::new(Sequence::by_name(name).unwrap(), 16, 9).unwrap();
+        let mut s =
+            PixelSampler::new(Sequence::by_name(name).unwrap(), 16, strata::Seed(9)).unwrap();
         // first use builds the shared tables (pmj02, Sobol'): outside the measured loop
         s.start_pixel_sample([0, 0], 0, 0);
         let _ = (s.get_pixel_2d(), s.get_2d(), s.get_1d());

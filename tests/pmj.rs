@@ -56,11 +56,11 @@ fn fixed_points(s: &mut dyn Sampler, n: usize) -> Vec<[u32; 2]> {
 #[test]
 fn pmj02_prefixes_and_aligned_blocks_are_nets() {
     for seed in [1u64, 2, u64::MAX] {
-        let mut s = Pmj::pmj02(seed);
+        let mut s = Pmj::pmj02(strata::Seed(seed));
         s.reserve(1 << 16).unwrap();
         assert_nets(s.generated(), &format!("pmj02 seed {seed}"));
         // the f32 values the Sampler returns keep it
-        let mut again = Pmj::pmj02(seed);
+        let mut again = Pmj::pmj02(strata::Seed(seed));
         assert_nets(&fixed_points(&mut again, 1 << 12), "pmj02 (f32)");
     }
 }
@@ -68,10 +68,10 @@ fn pmj02_prefixes_and_aligned_blocks_are_nets() {
 #[test]
 fn pmj02_stochastic_prefixes_and_aligned_blocks_are_nets() {
     for seed in [0u64, 1, 99] {
-        let mut s = Pmj02Stochastic::new(seed);
+        let mut s = Pmj02Stochastic::new(strata::Seed(seed));
         s.reserve(1 << 16);
         assert_nets(s.generated(), &format!("pmj02-stochastic seed {seed}"));
-        let mut again = Pmj02Stochastic::new(seed);
+        let mut again = Pmj02Stochastic::new(strata::Seed(seed));
         assert_nets(&fixed_points(&mut again, 1 << 12), "pmj02-stochastic (f32)");
     }
 }
@@ -79,11 +79,11 @@ fn pmj02_stochastic_prefixes_and_aligned_blocks_are_nets() {
 #[test]
 fn pmj02bn_prefixes_and_aligned_blocks_are_nets() {
     for seed in [3u64, 4] {
-        let mut s = Pmj::pmj02bn(seed, 16).unwrap();
+        let mut s = Pmj::pmj02bn(strata::Seed(seed), 16).unwrap();
         s.reserve(1 << 16).unwrap();
         assert_nets(s.generated(), &format!("pmj02bn seed {seed}"));
     }
-    let mut s = Pmj::pmj02bn(5, 100).unwrap();
+    let mut s = Pmj::pmj02bn(strata::Seed(5), 100).unwrap();
     s.reserve(1 << 12).unwrap();
     assert_nets(s.generated(), "pmj02bn, 100 candidates");
 }
@@ -91,9 +91,9 @@ fn pmj02bn_prefixes_and_aligned_blocks_are_nets() {
 #[test]
 fn xor_shuffled_indices_keep_the_nets() {
     // Sample i of the shuffled sequence is sample i ^ r: its prefixes are aligned blocks.
-    let mut a = Pmj::pmj02(8);
+    let mut a = Pmj::pmj02(strata::Seed(8));
     a.reserve(1 << 14).unwrap();
-    let mut b = Pmj02Stochastic::new(8);
+    let mut b = Pmj02Stochastic::new(strata::Seed(8));
     b.reserve(1 << 14);
     for (what, pts) in [
         ("pmj02", a.generated()),
@@ -114,7 +114,7 @@ fn xor_shuffled_indices_keep_the_nets() {
 #[test]
 fn pmj_prefixes_have_distinct_strata_and_the_squarest_grids() {
     for seed in [1u64, 7, 1234] {
-        let mut s = Pmj::new(seed);
+        let mut s = Pmj::new(strata::Seed(seed));
         s.reserve(1 << 14).unwrap();
         let pts = s.generated();
         // Any prefix: no two points share a 1D stratum at the resolution of the next power of 2.
@@ -171,7 +171,7 @@ fn stratified_like(pts: &[[u32; 2]], m: u32) -> (bool, bool) {
 #[test]
 fn stochastic_classes_are_stratified_on_their_own() {
     for seed in [1u64, 2, 3] {
-        let mut s = Pmj02Stochastic::new(seed);
+        let mut s = Pmj02Stochastic::new(strata::Seed(seed));
         s.reserve(1 << 13);
         let pts = s.generated();
         for m in 2..=13u32 {
@@ -215,8 +215,8 @@ fn mean_nn_distance(pts: &[[u32; 2]]) -> f64 {
         .iter()
         .map(|q| {
             glam::Vec2::new(
-                strata::sampler::unit_f32_from_u32(q[0]),
-                strata::sampler::unit_f32_from_u32(q[1]),
+                strata::float::unit_f32_from_u32(q[0]),
+                strata::float::unit_f32_from_u32(q[1]),
             )
         })
         .collect();
@@ -231,7 +231,7 @@ fn distance_to_previous(pts: &[[u32; 2]]) -> f64 {
     (1..pts.len())
         .map(|i| {
             (0..i)
-                .map(|j| strata::grid::torus_distance_squared(f(pts[i]), f(pts[j])))
+                .map(|j| common::torus_distance_squared(f(pts[i]), f(pts[j])))
                 .fold(f64::INFINITY, f64::min)
                 .sqrt()
         })
@@ -244,9 +244,9 @@ fn best_candidate_spreads_points_further() {
     for seed in [11u64, 12, 13] {
         let n = 1 << 12;
         // pmjbn: PMJ leaves about sqrt(N)/4 free strata per axis, so best candidate has room.
-        let mut pmj = Pmj::new(seed);
+        let mut pmj = Pmj::new(strata::Seed(seed));
         pmj.reserve(n).unwrap();
-        let mut pmjbn = Pmj::pmjbn(seed, 100).unwrap();
+        let mut pmjbn = Pmj::pmjbn(strata::Seed(seed), 100).unwrap();
         pmjbn.reserve(n).unwrap();
         let (c, d) = (
             mean_nn_distance(pmj.generated()),
@@ -262,9 +262,9 @@ fn best_candidate_spreads_points_further() {
         // only move a point inside its 2^-m square; what best candidate maximizes, the distance
         // of each point to the points before it, still grows.
         let n = 1 << 10;
-        let mut plain = Pmj::pmj02(seed);
+        let mut plain = Pmj::pmj02(strata::Seed(seed));
         plain.reserve(n).unwrap();
-        let mut bn = Pmj::pmj02bn(seed, 100).unwrap();
+        let mut bn = Pmj::pmj02bn(strata::Seed(seed), 100).unwrap();
         bn.reserve(n).unwrap();
         let (a, b) = (
             distance_to_previous(plain.generated()),
@@ -297,15 +297,17 @@ fn sequences_are_progressive_and_reproducible() {
 #[test]
 fn bad_input_is_refused() {
     assert!(
-        Pmj::pmj02bn(1, 0)
+        Pmj::pmj02bn(strata::Seed(1), 0)
             .unwrap_err()
             .to_string()
             .contains("candidates")
     );
-    assert!(Pmj::pmjbn(1, 0).is_err());
+    assert!(Pmj::pmjbn(strata::Seed(1), 0).is_err());
     let mut p = strata::registry::Params::new(16);
     p.candidates = Some(0);
     assert!(strata::registry::build("pmj02bn", &p).is_err());
-    let e = Pmj::pmj02(1).reserve((1 << 32) + 1).unwrap_err();
+    let e = Pmj::pmj02(strata::Seed(1))
+        .reserve((1 << 32) + 1)
+        .unwrap_err();
     assert!(e.to_string().contains("at most"), "{e}");
 }

@@ -16,8 +16,8 @@ proptest! {
     #[test]
     fn jittered_and_multijittered_fill_every_cell(side in 1u32..24, seed: u64, skip in 0usize..3) {
         let n = side * side;
-        let mut j = Jittered::new(n as u64, seed).unwrap();
-        let mut m = MultiJittered::new(n as u64, seed).unwrap();
+        let mut j = Jittered::new(n as u64, strata::Seed(seed)).unwrap();
+        let mut m = MultiJittered::new(n as u64, strata::Seed(seed)).unwrap();
         for _ in 0..skip { take(&mut j, n as usize); take(&mut m, n as usize); }
         let pj = take(&mut j, n as usize);
         prop_assert!(counts(&pj, side, side).iter().all(|&c| c == 1));
@@ -29,11 +29,11 @@ proptest! {
 
     #[test]
     fn nrooks_and_cmj_are_latin_for_any_count(n in 1u32..600, seed: u64) {
-        let mut r = NRooks::new(n as u64, seed).unwrap();
+        let mut r = NRooks::new(n as u64, strata::Seed(seed)).unwrap();
         let p = take(&mut r, n as usize);
         prop_assert!(counts(&p, n, 1).iter().all(|&c| c == 1));
         prop_assert!(counts(&p, 1, n).iter().all(|&c| c == 1));
-        let mut c = Cmj::new(n as u64, seed).unwrap();
+        let mut c = Cmj::new(n as u64, strata::Seed(seed)).unwrap();
         let (cols, rows) = c.grid();
         let p = take(&mut c, n as usize);
         prop_assert!(counts(&p, cols, rows).iter().all(|&k| k <= 1));
@@ -44,14 +44,14 @@ proptest! {
     #[test]
     fn progressive_nets_at_every_power_of_two(seed: u64, m in 0u32..11, block in 0usize..4) {
         let n = 1usize << m;
-        let mut a = Pmj::pmj02(seed);
+        let mut a = Pmj::pmj02(strata::Seed(seed));
         a.reserve((n * 4) as u64).unwrap();
         prop_assert!(is_net(&a.generated()[..n]));
         prop_assert!(is_net(&a.generated()[block * n..(block + 1) * n]));
-        let mut b = Pmj02Stochastic::new(seed);
+        let mut b = Pmj02Stochastic::new(strata::Seed(seed));
         b.reserve((n * 4) as u64);
         prop_assert!(is_net(&b.generated()[block * n..(block + 1) * n]));
-        let s = Sobol::new(seed);
+        let s = Sobol::new(strata::Seed(seed));
         let pts: Vec<[u32; 2]> = (block * n..(block + 1) * n).map(|i| s.sample_fixed(i as u32)).collect();
         prop_assert!(is_net(&pts));
     }
@@ -61,7 +61,7 @@ proptest! {
         let q = [2u32, 3, 4, 5, 7, 8, 9, 11][qi];
         let dims = (2 + extra).min(q + 1);
         let n = q * q;
-        let mut s = Bose::new(n as u64, dims, seed).unwrap();
+        let mut s = Bose::new(n as u64, dims, strata::Seed(seed)).unwrap();
         let mut v = vec![0f32; (n * dims) as usize];
         s.fill(&mut v);
         for a in 0..dims as usize {

@@ -6,7 +6,7 @@ use glam::Vec2;
 use rand::Rng;
 use rand_pcg::Pcg32;
 use std::hint::black_box;
-use strata::sampler::unit_f32_from_u32;
+use strata::float::unit_f32_from_u32;
 
 /// Benchmarks `baseline-pcg32`: filling `buf` with points of two uniform numbers from PCG32
 /// each, the cheapest honest way to make random 2D points.

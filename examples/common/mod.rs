@@ -113,3 +113,50 @@ pub fn sampler_param(
     }
     Ok(())
 }
+
+/// Writes `body` into the Markdown file `path` as section `name`, between the lines
+/// `<!-- begin NAME -->` and `<!-- end NAME -->`, replacing an earlier version of the section
+/// and keeping the rest of the file (a new section goes at the end; a missing file is
+/// created). The section records the command that wrote it, so that every figure in
+/// `docs/results.md` says which program and arguments produced it.
+pub fn write_markdown_section(
+    path: &std::path::Path,
+    name: &str,
+    body: &str,
+) -> Result<(), CliError> {
+    let (begin, end) = (
+        format!("<!-- begin {name} -->"),
+        format!("<!-- end {name} -->"),
+    );
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let program = std::env::args()
+        .next()
+        .and_then(|p| {
+            std::path::Path::new(&p)
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+        })
+        .unwrap_or_default();
+    let section = format!(
+        "{begin}\n<!-- written by `cargo run --release --example {program} -- {}` -->\n\n{}\n\n{end}",
+        args.join(" "),
+        body.trim_end()
+    );
+    let old = std::fs::read_to_string(path).unwrap_or_default();
+    let new = match (old.find(&begin), old.find(&end)) {
+        (Some(a), Some(b)) if b > a => format!("{}{section}{}", &old[..a], &old[b + end.len()..]),
+        _ if old.is_empty() => format!("{section}\n"),
+        _ => format!("{}\n\n{section}\n", old.trim_end()),
+    };
+    strata::io::write_text(path, &new)?;
+    Ok(())
+}
+
+/// A progress line on stderr when it is not a terminal (where the progress bar is hidden):
+/// logs and CI see how far a long run got.
+pub fn progress_line(text: impl Display) {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        eprintln!("{text}");
+    }
+}

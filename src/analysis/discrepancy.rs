@@ -90,7 +90,7 @@ pub fn star_2d(points: &[f32]) -> Result<f64> {
     let n = check(points, 2)?;
     if n > MAX_EXACT_STAR {
         return Err(Error::input(
-            "discrepancy",
+            "discrepancy::star_2d",
             format!("{n} points; the exact star discrepancy takes at most {MAX_EXACT_STAR}"),
         ));
     }
@@ -147,7 +147,7 @@ mod tests {
         (0..2 * n)
             .map(|_| {
                 h = crate::hash::mix64(h + 1);
-                crate::sampler::unit_f32_from_u32(h as u32)
+                crate::float::unit_f32_from_u32(h as u32)
             })
             .collect()
     }

@@ -63,7 +63,7 @@ impl Integrand {
             .find(|i| i.name() == name)
             .ok_or_else(|| {
                 crate::Error::input(
-                    "tradeoff",
+                    "Integrand::by_name",
                     format!(
                         "unknown integrand '{name}'; known integrands: {}",
                         Self::ALL
@@ -142,7 +142,7 @@ impl Integrand {
 
 /// The error function (Abramowitz and Stegun 7.1.26 is too coarse here; this is the series /
 /// continued-fraction evaluation to double precision for `|x| <= 3`).
-pub fn erf(x: f64) -> f64 {
+pub(crate) fn erf(x: f64) -> f64 {
     // Maclaurin series: erf(x) = 2/sqrt(pi) sum_n (-1)^n x^(2n+1) / (n! (2n+1)); converges fast
     // for the small arguments used here.
     let mut term = x;

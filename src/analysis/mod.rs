@@ -17,4 +17,4 @@ mod integrands;
 #[cfg(feature = "spectrum")]
 pub mod study;
 
-pub use integrands::{Integrand, erf};
+pub use integrands::Integrand;

@@ -75,25 +75,6 @@ pub struct Slope {
     pub expected: Option<f64>,
 }
 
-/// The published variance rate of a sampler's class on an integrand, where one exists (the
-/// lecture's table: random `N^-1`; jittered `N^-1.5` with discontinuities, `N^-2` smooth;
-/// Poisson disk `N^-1`; CCVT `N^-1.5` / `N^-3`; and for Owen-scrambled (0,m,2)-nets, pmj02 and
-/// Sobol', `N^-1.5` / `N^-3`, Owen 1997 and Christensen et al. 2018).
-pub fn expected_rate(sampler: &str, integrand: Integrand) -> Option<f64> {
-    let smooth = integrand.smooth();
-    if integrand.dimensions() != 2 {
-        return (sampler == "random").then_some(-1.0);
-    }
-    match sampler {
-        "random" => Some(-1.0),
-        "jittered" => Some(if smooth { -2.0 } else { -1.5 }),
-        "poisson" | "bridson" => Some(-1.0),
-        "ccvt" => Some(if smooth { -3.0 } else { -1.5 }),
-        "pmj02" | "pmj02-stochastic" | "sobol" => Some(if smooth { -3.0 } else { -1.5 }),
-        _ => None,
-    }
-}
-
 /// The counts a sampler is studied at: powers of two in `[min, max]` (plus `min` and `max`),
 /// each moved to the sampler's nearest allowed count, kept when still in range.
 pub fn counts_for(rule: CountRule, min: u64, max: u64) -> Vec<u64> {
@@ -136,13 +117,13 @@ pub fn fit_slope(points: &[(f64, f64)]) -> Option<f64> {
 pub fn check(config: &Config) -> Result<()> {
     if config.samplers.is_empty() || config.integrands.is_empty() {
         return Err(Error::input(
-            "tradeoff",
+            "study::check",
             "at least one sampler and one integrand are needed",
         ));
     }
     if config.min_n == 0 || config.min_n > config.max_n || config.max_n > MAX_STUDY_COUNT {
         return Err(Error::input(
-            "tradeoff",
+            "study::check",
             format!(
                 "min-n = {} and max-n = {}: allowed 1 <= min-n <= max-n <= {MAX_STUDY_COUNT}",
                 config.min_n, config.max_n
@@ -151,7 +132,7 @@ pub fn check(config: &Config) -> Result<()> {
     }
     if config.seeds < 2 || config.seeds > MAX_SEEDS {
         return Err(Error::parameter(
-            "tradeoff",
+            "study::check",
             "seeds",
             config.seeds,
             format!("2 to {MAX_SEEDS} (a variance needs two estimates)"),
@@ -165,7 +146,7 @@ pub fn check(config: &Config) -> Result<()> {
         .unwrap_or(2) as u64;
     if config.seeds as u64 * config.max_n * dims > MAX_STUDY_VALUES {
         return Err(Error::input(
-            "tradeoff",
+            "study::check",
             format!(
                 "{} seeds of {} points in {dims} dimensions would hold more than {MAX_STUDY_VALUES} coordinates; use fewer seeds or a smaller max-n",
                 config.seeds, config.max_n
@@ -175,7 +156,7 @@ pub fn check(config: &Config) -> Result<()> {
     for e in &config.samplers {
         if counts_for(e.counts, config.min_n, config.max_n).is_empty() {
             return Err(Error::input(
-                "tradeoff",
+                "study::check",
                 format!(
                     "{} has no allowed count between {} and {} (it takes {}; nearest: {})",
                     e.name,
@@ -334,7 +315,7 @@ pub fn run(
                 sampler: entry.name,
                 integrand: f,
                 slope: fit_slope(&pts),
-                expected: expected_rate(entry.name, f),
+                expected: entry.rates.on(f),
             });
         }
     }

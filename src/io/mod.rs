@@ -21,29 +21,30 @@ use crate::sampler::{Point2, StrataGrid};
 #[cfg(feature = "spectrum")]
 use crate::spectrum::{RadialBin, Spectrum};
 
-/// Writes `canvas` as an 8-bit RGB PNG, creating the parent directory when missing.
+/// Writes `canvas` as an 8-bit RGB PNG (through `image`), creating the parent directory when
+/// missing.
 pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
+    use image::ImageEncoder;
     let path = path.as_ref();
     create_parent(path)?;
     let file = std::fs::File::create(path).map_err(|e| crate::Error::io(path, e))?;
-    let mut encoder = png::Encoder::new(
+    use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+    PngEncoder::new_with_quality(
         std::io::BufWriter::new(file),
+        CompressionType::Default,
+        FilterType::Adaptive,
+    )
+    .write_image(
+        canvas.data(),
         canvas.width(),
         canvas.height(),
-    );
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder
-        .write_header()
-        .map_err(|e| crate::Error::io(path, e))?;
-    writer
-        .write_image_data(canvas.data())
-        .map_err(|e| crate::Error::io(path, e))?;
-    writer.finish().map_err(|e| crate::Error::io(path, e))
+        image::ExtendedColorType::Rgb8,
+    )
+    .map_err(|e| crate::Error::io(path, e))
 }
 
 /// Creates the directory `path` will be written into, if it has one and it is missing.
-pub fn create_parent(path: &Path) -> Result<()> {
+pub(crate) fn create_parent(path: &Path) -> Result<()> {
     match path.parent() {
         Some(dir) if !dir.as_os_str().is_empty() => {
             std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))

@@ -23,7 +23,9 @@
 //!   `halton` one per cell of `2^a x 3^b` in each block of `M = 2^a 3^b >= spp` samples. How
 //!   each sequence is randomized is in [`sequence`](self#sequences).
 //! * **Limits.** Sample indices are `u64`; at `2^32` and beyond, a draw uses the index modulo
-//!   `2^32` in a fresh, independently hashed copy (so nothing panics and nothing repeats).
+//!   `2^32` in a fresh, independently hashed copy (so nothing panics and nothing repeats; the
+//!   blocks of `jittered` and `halton` count from each multiple of `2^32`, so the block that
+//!   straddles one is not a full set).
 //!   pmj02 reads a shared table of `2^16` points and computes later points of the same sequence
 //!   on demand, with the same guarantees. Dimensions are unlimited (`u32`), pixels are any
 //!   `(u32, u32)`. Values are `f32` in `[0,1)`, never 1.0. After construction nothing
@@ -31,7 +33,7 @@
 //!
 //! # Sequences
 //!
-//! `random` (hashed uniform), `jittered` (`spp` must be a square), `pmj02` (a stochastic pmj02
+//! [`Sequence`]: `random` (hashed uniform), `jittered` (`spp` must be a square), `pmj02` (a stochastic pmj02
 //! table built once and shared), `sobol` (Owen-scrambled Sobol', Burley 2020), `halton`
 //! (scrambled bases 2 and 3). The samples-per-pixel count given to [`PixelSampler::new`] is
 //! used only by `jittered` (the size of its sets) and `halton` (the size of its blocks); the
@@ -48,6 +50,9 @@
 //! in a [`DimensionLayout`] (by default dimensions 0-7 for the camera, then 8 per bounce);
 //! [`dimension`](PixelSampler::dimension) and [`set_dimension`](PixelSampler::set_dimension)
 //! read and set the position directly.
+//!
+//! A 1D draw at `d` is the first coordinate of the 2D draw at `d`; a renderer that asks for
+//! both at one dimension gets the same value twice.
 //!
 //! **Discrete choices** (which light, which lobe of a mixture, Russian roulette): take the
 //! choice from its own [`get_1d`](PixelSampler::get_1d), and the continuous sample that
@@ -68,9 +73,9 @@
 //! below `n`).
 //!
 //! ```
-//! use strata::pixel::{PixelSampler, Sequence};
+//! use strata::{PixelSampler, Seed, Sequence};
 //! // 16 samples per pixel of padded, scrambled Sobol'
-//! let mut sampler = PixelSampler::new(Sequence::sobol(), 16, 7)?;
+//! let mut sampler = PixelSampler::new(Sequence::sobol(), 16, Seed(7))?;
 //! let mut sum = 0.0;
 //! for index in 0..16 {
 //!     sampler.start_pixel_sample([10, 20], index, 0);
@@ -101,10 +106,12 @@ pub mod warp;
 use glam::Vec2;
 
 pub use rng::PixelRng;
-pub use sequence::{PMJ02_TABLE_LEN, PixelSequence, SampleIndex, SamplesPerPixel, Sequence};
+pub use sequence::{PMJ02_TABLE_LEN, Sequence};
+use sequence::{SampleIndex, SamplesPerPixel};
 
 use crate::error::Result;
 use crate::hash::{GOLDEN_GAMMA, mix64, stream_seed};
+use crate::sampler::Seed;
 
 /// Where each bounce of a path starts in the dimensions of a pixel sample: the camera takes
 /// dimensions `0..camera`, bounce `k` the `per_bounce` dimensions from `camera + k per_bounce`.
@@ -142,8 +149,8 @@ impl DimensionLayout {
 
 /// The per-thread sampler state of a path tracer.
 #[derive(Clone, Debug)]
-pub struct PixelSampler<S: PixelSequence = Sequence> {
-    sequence: S,
+pub struct PixelSampler {
+    sequence: Sequence,
     spp: SamplesPerPixel,
     seed: u64,
     layout: DimensionLayout,
@@ -152,16 +159,19 @@ pub struct PixelSampler<S: PixelSequence = Sequence> {
     sample: SampleIndex,
     epoch: u32,
     dim: u32,
+    /// The end of the current bounce's dimensions (checked in debug builds).
+    limit: u32,
 }
 
-impl<S: PixelSequence> PixelSampler<S> {
+impl PixelSampler {
     /// A sampler over `sequence` with `samples_per_pixel` samples per pixel, seeded by `seed`.
     ///
     /// Only `jittered` (whose sets are `s x s = samples_per_pixel`) and `halton` (whose blocks
     /// are the smallest `2^a 3^b >= samples_per_pixel`) use the count; the other sequences are
     /// progressive and give the same values for any count.
-    pub fn new(sequence: S, samples_per_pixel: u32, seed: u64) -> Result<Self> {
+    pub fn new(sequence: Sequence, samples_per_pixel: u32, seed: Seed) -> Result<Self> {
         sequence.check_spp(samples_per_pixel)?;
+        let seed = seed.0;
         Ok(PixelSampler {
             sequence,
             spp: SamplesPerPixel::new(samples_per_pixel),
@@ -171,6 +181,7 @@ impl<S: PixelSequence> PixelSampler<S> {
             sample: SampleIndex::new(0),
             epoch: 0,
             dim: 0,
+            limit: u32::MAX,
         })
     }
 
@@ -193,7 +204,7 @@ impl<S: PixelSequence> PixelSampler<S> {
     }
 
     /// The underlying sequence.
-    pub fn sequence(&self) -> &S {
+    pub fn sequence(&self) -> &Sequence {
         &self.sequence
     }
 
@@ -215,6 +226,7 @@ impl<S: PixelSequence> PixelSampler<S> {
         self.sample = SampleIndex::new(index as u32);
         self.epoch = (index >> 32) as u32;
         self.dim = dim;
+        self.limit = u32::MAX;
     }
 
     /// The dimension the next draw will use.
@@ -230,14 +242,30 @@ impl<S: PixelSequence> PixelSampler<S> {
     }
 
     /// Moves the next draw to the first dimension of bounce `k` (see [`DimensionLayout`]).
+    /// Debug builds then check that the bounce's draws stay inside its budget (a bounce that
+    /// took more would reuse the next bounce's dimensions, tying the two together).
     #[inline]
     pub fn start_bounce(&mut self, k: u32) {
         self.dim = self.layout.bounce_start(k);
+        self.limit = self.layout.bounce_start(k.saturating_add(1));
+    }
+
+    /// Debug builds: the next `width` dimensions stay inside the current bounce's budget.
+    #[inline]
+    fn check_budget(&self, width: u64) {
+        debug_assert!(
+            self.dim as u64 + width <= self.limit as u64,
+            "dimension {} is past the budget of this bounce (it ends at {}): raise \
+             DimensionLayout::per_bounce",
+            self.dim,
+            self.limit
+        );
     }
 
     /// The next dimension as a 1D value.
     #[inline]
     pub fn get_1d(&mut self) -> f32 {
+        self.check_budget(1);
         let v = self.value_1d(self.pixel_key, self.sample, self.epoch, self.dim);
         self.dim = self.dim.wrapping_add(1);
         v
@@ -246,6 +274,7 @@ impl<S: PixelSequence> PixelSampler<S> {
     /// The next two dimensions as a 2D value.
     #[inline]
     pub fn get_2d(&mut self) -> Vec2 {
+        self.check_budget(2);
         let v = self.value_2d(self.pixel_key, self.sample, self.epoch, self.dim);
         self.dim = self.dim.wrapping_add(2);
         v
@@ -260,7 +289,7 @@ impl<S: PixelSequence> PixelSampler<S> {
     /// A `rand::Rng` over the current pixel sample: each `next_u32` / `next_u64` is the next
     /// dimension (see the [module docs](self#dimensions-in-a-renderer-that-bounces) for which
     /// `rand` calls keep their dimension).
-    pub fn rng(&mut self) -> PixelRng<'_, S> {
+    pub fn rng(&mut self) -> PixelRng<'_> {
         PixelRng::new(self)
     }
 

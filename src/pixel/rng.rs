@@ -5,21 +5,23 @@ use std::convert::Infallible;
 
 use rand::TryRng;
 
-use super::{PixelSampler, PixelSequence, Sequence};
+use super::PixelSampler;
 
 /// `rand::Rng` over the current pixel sample of a [`PixelSampler`]: every `next_u32` or
 /// `next_u64` is the next dimension ([`PixelSampler::get_1d`]).
 ///
-/// The sequence's value fills the top 24 bits of the word (all an `f32` holds, so
-/// `random::<f32>()` returns exactly `get_1d()`); the bits below are hashed from the pixel,
-/// sample and dimension, so that every word is uniform. `fill_bytes` takes one dimension per
+/// The sequence's value, rounded down to a multiple of `2^-24`, fills the top 24 bits of the
+/// word (so `random::<f32>()` returns `get_1d()` to 24 bits: exactly for the nets, whose
+/// values are 24-bit fixed point; jittered and Halton values carry finer bits near 0, which
+/// the word drops); the bits below are hashed from the pixel, sample and dimension, so that
+/// every word is uniform. `fill_bytes` takes one dimension per
 /// 8 bytes. Which `rand` calls keep their dimension, and which to replace by mappings of 2D
 /// draws, is in the [module docs](super#dimensions-in-a-renderer-that-bounces).
 ///
 /// ```
 /// use rand::RngExt;
-/// use strata::pixel::{PixelSampler, Sequence};
-/// let mut sampler = PixelSampler::new(Sequence::sobol(), 16, 1)?;
+/// use strata::{PixelSampler, Seed, Sequence};
+/// let mut sampler = PixelSampler::new(Sequence::sobol(), 16, Seed(1))?;
 /// sampler.start_pixel_sample([3, 4], 0, 2);
 /// let u: f32 = sampler.rng().random(); // dimension 2
 /// assert_eq!(u, sampler.sample([3, 4], 0, 2));
@@ -27,13 +29,13 @@ use super::{PixelSampler, PixelSequence, Sequence};
 /// # Ok::<(), strata::Error>(())
 /// ```
 #[derive(Debug)]
-pub struct PixelRng<'a, S: PixelSequence = Sequence> {
-    sampler: &'a mut PixelSampler<S>,
+pub struct PixelRng<'a> {
+    sampler: &'a mut PixelSampler,
 }
 
-impl<'a, S: PixelSequence> PixelRng<'a, S> {
+impl<'a> PixelRng<'a> {
     /// The bridge over `sampler`'s current pixel sample.
-    pub fn new(sampler: &'a mut PixelSampler<S>) -> Self {
+    pub fn new(sampler: &'a mut PixelSampler) -> Self {
         PixelRng { sampler }
     }
 
@@ -46,7 +48,7 @@ impl<'a, S: PixelSequence> PixelRng<'a, S> {
     }
 }
 
-impl<S: PixelSequence> TryRng for PixelRng<'_, S> {
+impl TryRng for PixelRng<'_> {
     type Error = Infallible;
 
     #[inline]

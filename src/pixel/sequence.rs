@@ -30,8 +30,9 @@
 use std::sync::{Arc, OnceLock};
 
 use crate::error::{Error, Result};
+use crate::float::{Strata, unit_f32_from_u32};
 use crate::hash::{DivMod, GOLDEN_GAMMA, Permutation, hash_u64, mix64, owen_scramble_rev};
-use crate::sampler::{Strata, StrataGrid, unit_f32_from_u32};
+use crate::sampler::{Seed, StrataGrid};
 use crate::samplers::{Pmj02Stochastic, halton, pmj, sobol};
 
 /// Bits of the shared pmj02 table's index: `2^16` points (512 KB, lookups stay in cache).
@@ -42,16 +43,22 @@ const PMJ02_TABLE_BITS: u32 = 16;
 pub const PMJ02_TABLE_LEN: usize = 1 << PMJ02_TABLE_BITS;
 
 /// The seed of the shared pmj02 sequence.
-const PMJ02_SEED: u64 = 0x706d_6a30_3200;
+const PMJ02_SEED: Seed = Seed(0x706d_6a30_3200);
 
 /// The first [`PMJ02_TABLE_LEN`] points of the shared pmj02 sequence, in index order (a
-/// pixel's draw reads an aligned block of it: a few cache lines).
+/// pixel's draw reads an aligned block of it: a few cache lines), both coordinates
+/// bit-reversed (the domain of the Owen scramble that follows the lookup).
 fn pmj02_table() -> &'static Arc<Vec<[u32; 2]>> {
     static TABLE: OnceLock<Arc<Vec<[u32; 2]>>> = OnceLock::new();
     TABLE.get_or_init(|| {
         let mut s = Pmj02Stochastic::new(PMJ02_SEED);
         s.reserve(PMJ02_TABLE_LEN as u64);
-        Arc::new(s.generated().to_vec())
+        let table = s
+            .generated()
+            .iter()
+            .map(|p| [p[0].reverse_bits(), p[1].reverse_bits()])
+            .collect();
+        Arc::new(table)
     })
 }
 
@@ -82,7 +89,7 @@ fn halton_block(n: u32) -> (u32, u32, u32) {
 /// sampler is built rather than on every draw. Only `jittered` (its `s x s` sets) and `halton`
 /// (its blocks) use it; `random`, `pmj02` and `sobol` are progressive and ignore it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SamplesPerPixel {
+pub(crate) struct SamplesPerPixel {
     spp: u32,
     /// Jittered: the `s^2 <= spp` cells of a set, and the side `s`.
     cells: DivMod,
@@ -95,7 +102,7 @@ pub struct SamplesPerPixel {
 
 impl SamplesPerPixel {
     /// The derived values of `spp` (0 is treated as 1).
-    pub fn new(spp: u32) -> Self {
+    pub(crate) fn new(spp: u32) -> Self {
         let s = spp.isqrt().max(1);
         let (m, a, b) = halton_block(spp);
         SamplesPerPixel {
@@ -109,7 +116,7 @@ impl SamplesPerPixel {
     }
 
     /// The count.
-    pub fn get(&self) -> u32 {
+    pub(crate) fn get(&self) -> u32 {
         self.spp
     }
 }
@@ -117,7 +124,7 @@ impl SamplesPerPixel {
 /// A sample index below `2^32` with its bit reversal, which the nets-based sequences need
 /// and which is the same for every draw of a pixel sample: computed once per sample.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SampleIndex {
+pub(crate) struct SampleIndex {
     index: u32,
     reversed: u32,
 }
@@ -125,7 +132,7 @@ pub struct SampleIndex {
 impl SampleIndex {
     /// The index `index`.
     #[inline]
-    pub fn new(index: u32) -> Self {
+    pub(crate) fn new(index: u32) -> Self {
         SampleIndex {
             index,
             reversed: index.reverse_bits(),
@@ -134,48 +141,14 @@ impl SampleIndex {
 
     /// The index.
     #[inline]
-    pub fn get(&self) -> u32 {
+    pub(crate) fn get(&self) -> u32 {
         self.index
     }
 
     /// The index with its 32 bits reversed.
     #[inline]
-    pub fn reversed(&self) -> u32 {
+    pub(crate) fn reversed(&self) -> u32 {
         self.reversed
-    }
-}
-
-/// A 2D sequence the adapter draws from: point `index` of the independently scrambled copy
-/// selected by `stream` (a well-mixed 64-bit value).
-pub trait PixelSequence: Clone + Send + Sync {
-    /// The registered name of the underlying sampler.
-    fn name(&self) -> &'static str;
-
-    /// The 2D point `index` of copy `stream` (`spp` is the samples per pixel).
-    fn sample_2d(&self, stream: u64, index: SampleIndex, spp: &SamplesPerPixel) -> [f32; 2];
-
-    /// A 1D value: the first coordinate of [`sample_2d`](PixelSequence::sample_2d).
-    fn sample_1d(&self, stream: u64, index: SampleIndex, spp: &SamplesPerPixel) -> f32 {
-        self.sample_2d(stream, index, spp)[0]
-    }
-
-    /// The sample count nearest above `n` at which the sequence is best stratified.
-    fn round_count(&self, n: u32) -> u32;
-
-    /// Checks a samples-per-pixel count.
-    fn check_spp(&self, spp: u32) -> Result<()> {
-        if spp == 0 {
-            return Err(Error::count(self.name(), 0, "at least 1 sample per pixel"));
-        }
-        Ok(())
-    }
-
-    /// The grids on which the first `n` samples of every draw lie, each cell holding the same
-    /// number of points (empty where the sequence promises none at `n`): what the conformance
-    /// suite counts cell by cell.
-    fn promised_strata(&self, spp: &SamplesPerPixel, n: u64) -> Vec<StrataGrid> {
-        let _ = (spp, n);
-        Vec::new()
     }
 }
 
@@ -231,7 +204,7 @@ impl Sequence {
             "halton" => Self::halton(),
             other => {
                 return Err(Error::input(
-                    "pixel",
+                    "Sequence::by_name",
                     format!(
                         "no path-tracer adapter for '{other}'; samplers with one: {}",
                         Self::NAMES.join(", ")
@@ -254,7 +227,7 @@ impl Sequence {
 /// their draws then differ by little more than an XOR. Measured on 196,608 pairs of draws at
 /// 4096 samples (chi-square on 31 x 31 cells), one round gave chi2 up to 1363 (p ~ 1e-25),
 /// two rounds at most 1239, the same as an ideal random nested shuffle (a hash per bit; 1232).
-/// The value seeds come from `mix64(stream)`.
+/// The value seeds are the two halves of `stream` XOR-ed (and that rotated for `y`).
 #[inline]
 fn owen_scrambled(
     stream: u64,
@@ -297,15 +270,19 @@ fn pmj02_block(stream: u64) -> u32 {
 fn block_permuted(stream: u64, index: u32, block: &DivMod) -> (u32, u32, u64) {
     let (b, i) = block.div_rem(index);
     let key = mix64(stream ^ (b as u64).wrapping_mul(GOLDEN_GAMMA));
+    // two keyed rounds: one of Kensler's hashed permutations leaves some pairs of draws
+    // structured at power-of-two lengths (the conformance suite sees them); two do not
+    let once = Permutation::with_divider(block, key as u32).apply(i);
     (
         b,
-        Permutation::with_divider(block, key as u32).apply(i),
+        Permutation::with_divider(block, (key >> 32) as u32).apply(once),
         key,
     )
 }
 
-impl PixelSequence for Sequence {
-    fn name(&self) -> &'static str {
+impl Sequence {
+    /// The registered name of the underlying sampler.
+    pub fn name(&self) -> &'static str {
         match self {
             Sequence::Random => "random",
             Sequence::Jittered => "jittered",
@@ -315,8 +292,15 @@ impl PixelSequence for Sequence {
         }
     }
 
+    /// The 2D point `index` of the copy of the sequence selected by `stream` (a well-mixed
+    /// 64-bit value).
     #[inline]
-    fn sample_2d(&self, stream: u64, index: SampleIndex, spp: &SamplesPerPixel) -> [f32; 2] {
+    pub(crate) fn sample_2d(
+        &self,
+        stream: u64,
+        index: SampleIndex,
+        spp: &SamplesPerPixel,
+    ) -> [f32; 2] {
         let (i, i_rev) = (index.get(), index.reversed());
         match self {
             Sequence::Random => {
@@ -334,20 +318,16 @@ impl PixelSequence for Sequence {
                     .place2([col, row], [h as u32, (h >> 32) as u32])
                     .to_array()
             }
-            Sequence::Pmj02(table) => {
-                let j = shuffle_rev(stream, i_rev).reverse_bits();
-                let p = if (i as usize) < PMJ02_TABLE_LEN {
+            Sequence::Pmj02(table) => owen_scrambled(stream, i_rev, |r| {
+                let j = r.reverse_bits();
+                if (i as usize) < PMJ02_TABLE_LEN {
                     // the shuffle sends [0, 2^16) to an aligned block: its low bits index it
                     table[j as usize & (PMJ02_TABLE_LEN - 1)]
                 } else {
-                    Pmj02Stochastic::point_at_fixed(PMJ02_SEED, j ^ pmj02_block(stream))
-                };
-                let shift = mix64(stream);
-                [
-                    unit_f32_from_u32(p[0] ^ shift as u32),
-                    unit_f32_from_u32(p[1] ^ (shift >> 32) as u32),
-                ]
-            }
+                    let p = Pmj02Stochastic::point_at_fixed(PMJ02_SEED, j ^ pmj02_block(stream));
+                    [p[0].reverse_bits(), p[1].reverse_bits()]
+                }
+            }),
             Sequence::Sobol => owen_scrambled(stream, i_rev, sobol::point01_rev),
             Sequence::Halton => {
                 let (b, j, _) = block_permuted(stream, i, &spp.block);
@@ -360,8 +340,9 @@ impl PixelSequence for Sequence {
         }
     }
 
+    /// A 1D value: the first coordinate of [`sample_2d`](Sequence::sample_2d).
     #[inline]
-    fn sample_1d(&self, stream: u64, index: SampleIndex, spp: &SamplesPerPixel) -> f32 {
+    pub(crate) fn sample_1d(&self, stream: u64, index: SampleIndex, spp: &SamplesPerPixel) -> f32 {
         match self {
             // the second coordinate (base 3) is most of the cost: skip it
             Sequence::Halton => {
@@ -373,7 +354,9 @@ impl PixelSequence for Sequence {
         }
     }
 
-    fn round_count(&self, n: u32) -> u32 {
+    /// The sample count nearest above `n` at which the sequence is best stratified (a square
+    /// for jittered, a power of two for pmj02 and Sobol', `2^a 3^b` for Halton).
+    pub fn round_count(&self, n: u32) -> u32 {
         let n = n.max(1);
         match self {
             Sequence::Random => n,
@@ -388,7 +371,8 @@ impl PixelSequence for Sequence {
         }
     }
 
-    fn check_spp(&self, spp: u32) -> Result<()> {
+    /// Checks a samples-per-pixel count: at least 1, a square for jittered.
+    pub fn check_spp(&self, spp: u32) -> Result<()> {
         if spp == 0 {
             return Err(Error::count(self.name(), 0, "at least 1 sample per pixel"));
         }
@@ -408,7 +392,9 @@ impl PixelSequence for Sequence {
         Ok(())
     }
 
-    fn promised_strata(&self, spp: &SamplesPerPixel, n: u64) -> Vec<StrataGrid> {
+    /// The grids on which the first `n` samples of every draw lie, each cell holding the same
+    /// number of points (empty where the sequence promises none at `n`).
+    pub(crate) fn promised_strata(&self, spp: &SamplesPerPixel, n: u64) -> Vec<StrataGrid> {
         let whole_blocks = |m: u32| n > 0 && n.is_multiple_of(m as u64);
         match self {
             Sequence::Random => Vec::new(),
@@ -471,7 +457,10 @@ mod tests {
                     "index {index} left the table: {j}"
                 );
                 let p = Pmj02Stochastic::point_at_fixed(PMJ02_SEED, j);
-                assert_eq!(table[j as usize], p);
+                assert_eq!(
+                    table[j as usize],
+                    [p[0].reverse_bits(), p[1].reverse_bits()]
+                );
             }
         }
     }

@@ -4,16 +4,19 @@
 //! Progressive: point `n` (counting from 0) is the farthest, toroidally, from the points so far
 //! among `k n` uniform candidates (at least one). Every prefix is an approximate Poisson-disk
 //! set, so the spectrum is blue noise at every count, at a cost that grows with the count.
-//! Candidates are scored with the neighbour grid ([`TorusGrid`]): a candidate that has a point
+//! Candidates are scored with the neighbour grid (a uniform grid on the torus): a candidate that has a point
 //! closer than the best score so far is dropped without computing its nearest distance.
 
 use rand_pcg::Pcg32;
 
+use super::Epochs;
 use super::poisson::uniform;
 use crate::error::{Error, Result};
+use crate::float::unit_f32_from_f64;
 use crate::grid::TorusGrid;
 use crate::hash::stream_seed;
-use crate::sampler::{Point2, Progression, Sampler, unit_f32_from_f64};
+use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::sampler::{Point2, Progression, Sampler, Seed};
 
 /// The default candidate factor `k`.
 pub const DEFAULT_FACTOR: u32 = 1;
@@ -25,11 +28,33 @@ pub const MAX_FACTOR: u32 = 1024;
 /// `k n` candidates).
 pub const MAX_LEN: usize = 1 << 24;
 
+/// The registry entry of `best-candidate`.
+pub(crate) const ENTRY: Entry = Entry {
+    name: "best-candidate",
+    description: "Mitchell's best candidate, progressive (--candidates K per existing point, default 1)",
+    paper: "Mitchell 1991",
+    progressive: true,
+    counts: CountRule::Any,
+    parameters: &[ParameterSpec {
+        parameter: Parameter::Candidates,
+        default: DEFAULT_FACTOR as f64,
+        allowed: "1 to 1024",
+    }],
+    promise: "farthest of `k n` candidates",
+    rates: Rates::NONE,
+    expensive: true,
+    build: |p| {
+        let k = p.candidates.unwrap_or(DEFAULT_FACTOR);
+        Ok(Box::new(BestCandidate::new(p.sampler_seed(), k)?))
+    },
+    nd: None,
+};
+
 /// The best-candidate sequence (progressive).
 ///
 /// ```
-/// use strata::{Sampler, samplers::BestCandidate};
-/// let mut s = BestCandidate::new(1, 1).unwrap();
+/// use strata::{Sampler, Seed, samplers::BestCandidate};
+/// let mut s = BestCandidate::new(Seed(1), 1).unwrap();
 /// let a = s.next_sample();
 /// let b = s.next_sample();
 /// assert!(a.distance(b) > 0.1); // the second point is far from the first
@@ -37,38 +62,36 @@ pub const MAX_LEN: usize = 1 << 24;
 #[derive(Clone, Debug)]
 pub struct BestCandidate {
     factor: u32,
-    seed: u64,
-    epoch: u64,
+    epochs: Epochs,
     rng: Pcg32,
     grid: TorusGrid,
-    next: usize,
 }
 
 impl BestCandidate {
     /// The sequence seeded by `seed` with `factor` (1 to [`MAX_FACTOR`]) candidates per existing
     /// point.
-    pub fn new(seed: u64, factor: u32) -> Result<Self> {
+    pub fn new(seed: Seed, factor: u32) -> Result<Self> {
         if factor == 0 || factor > MAX_FACTOR {
             return Err(Error::parameter(
-                "best-candidate",
+                ENTRY.name,
                 "candidates",
                 factor,
                 format!("1 to {MAX_FACTOR} candidates per existing point"),
             ));
         }
-        Ok(Self::start(seed, 0, factor))
+        let epochs = Epochs::new(seed, MAX_LEN as u64);
+        let rng = Self::rng(epochs.key(0));
+        Ok(BestCandidate {
+            factor,
+            epochs,
+            rng,
+            grid: TorusGrid::new(1),
+        })
     }
 
-    fn start(seed: u64, epoch: u64, factor: u32) -> Self {
-        let key = stream_seed(seed, epoch);
-        BestCandidate {
-            factor,
-            seed,
-            epoch,
-            rng: Pcg32::new(stream_seed(key, 9), stream_seed(key, 10)),
-            grid: TorusGrid::new(1),
-            next: 0,
-        }
+    /// The candidates' generator of the epoch keyed by `key`.
+    fn rng(key: u64) -> Pcg32 {
+        Pcg32::new(stream_seed(key, 9), stream_seed(key, 10))
     }
 
     /// The points generated so far.
@@ -110,7 +133,7 @@ impl BestCandidate {
 
 impl Sampler for BestCandidate {
     fn name(&self) -> &'static str {
-        "best-candidate"
+        ENTRY.name
     }
 
     fn progression(&self) -> Progression {
@@ -118,15 +141,15 @@ impl Sampler for BestCandidate {
     }
 
     fn next_sample(&mut self) -> Point2 {
-        if self.next == MAX_LEN {
-            *self = Self::start(self.seed, self.epoch + 1, self.factor);
+        let (i, new_epoch) = self.epochs.advance();
+        if let Some(key) = new_epoch {
+            self.rng = Self::rng(key);
+            self.grid = TorusGrid::new(1);
         }
-        let p = if self.next < self.grid.len() {
-            self.grid.points()[self.next]
-        } else {
-            self.grow()
+        let p = match self.grid.points().get(i as usize) {
+            Some(&p) => p,
+            None => self.grow(),
         };
-        self.next += 1;
         Point2::new(unit_f32_from_f64(p[0]), unit_f32_from_f64(p[1]))
     }
 }

@@ -24,6 +24,7 @@ use super::{SetGenerator, Sets};
 use crate::error::{Error, Result};
 use crate::grid::{TorusGrid, torus_distance_squared, wrap_unit};
 use crate::hash::stream_seed;
+use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
 
 /// Discrete points per site.
 pub const DEFAULT_CAPACITY: u32 = 256;
@@ -36,6 +37,35 @@ pub const MAX_ITERATIONS: u32 = 100_000;
 
 /// The most sites per set (memory: `16 m` bytes per site).
 pub const MAX_CCVT_COUNT: u64 = 1 << 16;
+
+/// The registry entry of `ccvt`.
+pub(crate) const ENTRY: Entry = Entry {
+    name: "ccvt",
+    description: "capacity-constrained Voronoi tessellation, 256 points per site (--iterations K, default 200)",
+    paper: "Balzer, Schlömer, Deussen 2009",
+    progressive: false,
+    counts: CountRule::Any,
+    parameters: &[ParameterSpec {
+        parameter: Parameter::Iterations,
+        default: DEFAULT_ITERATIONS as f64,
+        allowed: "1 to 100000",
+    }],
+    promise: "equal-capacity Voronoi cells (blue noise)",
+    rates: Rates {
+        discontinuous: Some(-1.5),
+        smooth: Some(-3.0),
+        higher: None,
+    },
+    expensive: true,
+    build: |p| {
+        let k = p.iterations.unwrap_or(DEFAULT_ITERATIONS);
+        Ok(Box::new(CcvtSets::new(
+            Ccvt::new(p.count, k)?,
+            p.sampler_seed(),
+        )?))
+    },
+    nd: None,
+};
 
 /// CCVT sets of `count` sites.
 #[derive(Clone, Debug)]
@@ -73,14 +103,14 @@ impl Ccvt {
     pub fn with_capacity(count: u64, iterations: u32, capacity: u32) -> Result<Self> {
         if count == 0 || count > MAX_CCVT_COUNT {
             return Err(Error::count(
-                "ccvt",
+                ENTRY.name,
                 count,
                 format!("the count must be between 1 and {MAX_CCVT_COUNT}"),
             ));
         }
         if iterations == 0 || iterations > MAX_ITERATIONS {
             return Err(Error::parameter(
-                "ccvt",
+                ENTRY.name,
                 "iterations",
                 iterations,
                 format!("1 to {MAX_ITERATIONS}"),
@@ -88,7 +118,7 @@ impl Ccvt {
         }
         if capacity == 0 || capacity > 4096 {
             return Err(Error::parameter(
-                "ccvt",
+                ENTRY.name,
                 "capacity",
                 capacity,
                 "1 to 4096 points per site",
@@ -257,9 +287,7 @@ fn total_energy(sites: &[[f64; 2]], points: &[[f64; 2]], m: usize) -> f64 {
 }
 
 impl SetGenerator for Ccvt {
-    fn name(&self) -> &'static str {
-        "ccvt"
-    }
+    const NAME: &'static str = ENTRY.name;
 
     fn count(&self) -> u32 {
         self.count

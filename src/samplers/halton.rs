@@ -13,10 +13,10 @@
 //! are uniform. The stratification above is kept.
 
 use crate::error::Result;
-use crate::hash::{GOLDEN_GAMMA, Permutation, hash32, mix64, owen_scramble, stream_seed};
-use crate::sampler::{
-    Point2, Progression, Sampler, SamplerNd, Strata, StrataGrid, unit_f32_from_u32,
-};
+use crate::float::{Strata, unit_f32_from_u32};
+use crate::hash::{GOLDEN_GAMMA, Permutation, Stream, hash32, mix64, owen_scramble, stream_seed};
+use crate::registry::{CountRule, Entry, Rates};
+use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 
 /// The number of prime bases (dimensions) available.
 pub const MAX_DIMENSIONS: usize = 1000;
@@ -42,10 +42,25 @@ pub const PRIMES: [u32; MAX_DIMENSIONS] = {
     primes
 };
 
+/// The registry entry of `halton`.
+pub(crate) const ENTRY: Entry = Entry {
+    name: "halton",
+    description: "Halton, Owen-scrambled digits, progressive, any --dims up to 1000",
+    paper: "Halton 1960",
+    progressive: true,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "one point per cell of `2^a x 3^b` at `N = 2^a 3^b`; 1000 dims",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| Ok(Box::new(Halton::new(p.sampler_seed()))),
+    nd: Some(|p, d| Ok(Box::new(HaltonNd::new(d, p.sampler_seed())?))),
+};
+
 /// Dimension `dim` of point `index` of the Halton sequence scrambled by `seed`.
 pub fn scrambled_radical_inverse(dim: usize, index: u64, seed: u64) -> f32 {
     let base = PRIMES[dim] as u64;
-    let key = stream_seed(seed, 0x4a17 + dim as u64);
+    let key = stream_seed(seed, Stream::HaltonDigits.id() + dim as u64);
     if base == 2 {
         let bits = (index as u32).reverse_bits(); // indices beyond 2^32 wrap (documented)
         return unit_f32_from_u32(owen_scramble(bits, hash32(key as u32, (key >> 32) as u32)));
@@ -77,8 +92,8 @@ pub fn scrambled_radical_inverse(dim: usize, index: u64, seed: u64) -> f32 {
 /// The scrambled Halton sequence in 2D (bases 2 and 3), progressive.
 ///
 /// ```
-/// use strata::{Sampler, samplers::Halton};
-/// let mut s = Halton::new(3);
+/// use strata::{Sampler, Seed, samplers::Halton};
+/// let mut s = Halton::new(Seed(3));
 /// // the first 6 points: one per cell of the 2 x 3 grid
 /// let mut cells: Vec<_> = (0..6).map(|_| { let p = s.next_sample(); ((p.x * 2.0) as u32, (p.y * 3.0) as u32) }).collect();
 /// cells.sort();
@@ -93,8 +108,11 @@ pub struct Halton {
 
 impl Halton {
     /// The sequence for `seed`.
-    pub fn new(seed: u64) -> Self {
-        Halton { seed, next: 0 }
+    pub fn new(seed: Seed) -> Self {
+        Halton {
+            seed: seed.0,
+            next: 0,
+        }
     }
 
     /// Point `index` (2D).
@@ -108,7 +126,7 @@ impl Halton {
 
 impl Sampler for Halton {
     fn name(&self) -> &'static str {
-        "halton"
+        ENTRY.name
     }
 
     fn progression(&self) -> Progression {
@@ -152,15 +170,15 @@ pub struct HaltonNd {
 
 impl HaltonNd {
     /// `dims` dimensions (1 to [`MAX_DIMENSIONS`]) seeded by `seed`.
-    pub fn new(dims: u32, seed: u64) -> Result<Self> {
+    pub fn new(dims: u32, seed: Seed) -> Result<Self> {
         super::check_dims(
-            "halton",
+            ENTRY.name,
             dims,
             MAX_DIMENSIONS as u32,
             " (one prime base per dimension)",
         )?;
         Ok(HaltonNd {
-            seed,
+            seed: seed.0,
             dims,
             next: 0,
         })
@@ -169,7 +187,7 @@ impl HaltonNd {
 
 impl SamplerNd for HaltonNd {
     fn name(&self) -> &'static str {
-        "halton"
+        ENTRY.name
     }
 
     fn dimensions(&self) -> u32 {

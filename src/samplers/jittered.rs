@@ -6,15 +6,36 @@
 //! `1 - sinc^2(u/s) sinc^2(v/s)` away from the lattice of multiples of `s` (Subr and Kautz 2013):
 //! low power near DC, no peaks. The cost is a count fixed in advance, and a square one.
 
-use super::{BlockCursor, check_square, fixed_count_sampler};
+use super::{BlockCursor, Blocks};
+use crate::float::Strata;
 use crate::hash::{DivMod, hash_u64};
-use crate::sampler::{Point2, Strata, StrataGrid};
+use crate::registry::{CountRule, Entry, Rates};
+use crate::sampler::{Point2, Seed, StrataGrid};
+
+/// The registry entry of `jittered`.
+pub(crate) const ENTRY: Entry = Entry {
+    name: "jittered",
+    description: "one uniform point per cell of an s x s grid (N = s^2)",
+    paper: "Cook 1986",
+    progressive: false,
+    counts: CountRule::Square,
+    parameters: &[],
+    promise: "one point per cell of `s x s`",
+    rates: Rates {
+        discontinuous: Some(-1.5),
+        smooth: Some(-2.0),
+        higher: None,
+    },
+    expensive: false,
+    build: |p| Ok(Box::new(Jittered::new(p.count, p.sampler_seed())?)),
+    nd: None,
+};
 
 /// One uniform point per cell of an `s x s` grid (`N = s^2`), cells in row-major order.
 ///
 /// ```
-/// use strata::{Sampler, samplers::Jittered};
-/// let mut s = Jittered::new(9, 1).unwrap();
+/// use strata::{Sampler, Seed, samplers::Jittered};
+/// let mut s = Jittered::new(9, Seed(1)).unwrap();
 /// let p = s.next_sample(); // the first cell is [0, 1/3) x [0, 1/3)
 /// assert!(p.x < 1.0 / 3.0 && p.y < 1.0 / 3.0);
 /// ```
@@ -28,19 +49,32 @@ pub struct Jittered {
 
 impl Jittered {
     /// Jittered sets of `count` points seeded by `seed`; `count` must be a perfect square.
-    pub fn new(count: u64, seed: u64) -> crate::Result<Self> {
-        let s = check_square("jittered", count)?;
+    pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
+        let n = ENTRY.counts.check(ENTRY.name, count)?;
+        let s = n.isqrt();
         Ok(Jittered {
             side: DivMod::new(s).expect("side >= 1"),
             strata: Strata::new(s as u64),
             key: 0,
-            cursor: BlockCursor::new(seed, s * s),
+            cursor: BlockCursor::new(seed, n),
         })
     }
 
     /// The number of points in a set.
     pub fn count(&self) -> u32 {
         self.side.divisor() * self.side.divisor()
+    }
+}
+
+impl Blocks for Jittered {
+    const NAME: &'static str = ENTRY.name;
+
+    fn set_len(&self) -> u32 {
+        self.count()
+    }
+
+    fn cursor(&mut self) -> &mut BlockCursor {
+        &mut self.cursor
     }
 
     fn begin_block(&mut self, key: u64) {
@@ -62,5 +96,3 @@ impl Jittered {
         }]
     }
 }
-
-fixed_count_sampler!(Jittered, "jittered");

@@ -6,12 +6,41 @@
 //! stratified for any `N`, but 2D can show large gaps; its spectrum has the dark cross along the
 //! axes (low power at `u = 0` or `v = 0`) and is white elsewhere.
 
-use super::{
-    BlockCursor, MAX_DIMENSIONS, block_permutations, check_count, check_dims, fixed_count_sampler,
-    fixed_count_sampler_nd,
+use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
+use crate::float::Strata;
+use crate::hash::{Permutation, Stream, hash_u64};
+use crate::registry::{CountRule, Entry, Rates};
+use crate::sampler::{Point2, Seed, StrataGrid};
+
+/// The registry entry of `nrooks`.
+pub(crate) const NROOKS: Entry = Entry {
+    name: "nrooks",
+    description: "N-rooks / 2D Latin hypercube, one point per row and column",
+    paper: "Shirley 1991",
+    progressive: false,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "one point per row and column",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| Ok(Box::new(NRooks::new(p.count, p.sampler_seed())?)),
+    nd: None,
 };
-use crate::hash::{Permutation, hash_u64, key32};
-use crate::sampler::{Point2, Strata, StrataGrid};
+
+/// The registry entry of `latin`.
+pub(crate) const LATIN: Entry = Entry {
+    name: "latin",
+    description: "Latin hypercube in D dimensions (--dims D): one point per 1/N stratum of every axis",
+    paper: "McKay et al. 1979",
+    progressive: false,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "every 1D projection into `N` strata",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| Ok(Box::new(LatinHypercube::new(p.count, 2, p.sampler_seed())?)),
+    nd: Some(|p, d| Ok(Box::new(LatinHypercube::new(p.count, d, p.sampler_seed())?))),
+};
 
 /// N-rooks (2D Latin hypercube): any `N >= 1`, one point per `1/N` column and per `1/N` row.
 ///
@@ -20,8 +49,8 @@ use crate::sampler::{Point2, Strata, StrataGrid};
 /// O(1) without tables.
 ///
 /// ```
-/// use strata::{Sampler, samplers::NRooks};
-/// let mut s = NRooks::new(7, 3).unwrap(); // any count
+/// use strata::{Sampler, Seed, samplers::NRooks};
+/// let mut s = NRooks::new(7, Seed(3)).unwrap(); // any count
 /// let mut cols = vec![false; 7];
 /// for _ in 0..7 {
 ///     cols[(s.next_sample().x * 7.0) as usize] = true;
@@ -40,8 +69,8 @@ pub struct NRooks {
 
 impl NRooks {
     /// N-rooks sets of `count >= 1` points seeded by `seed`.
-    pub fn new(count: u64, seed: u64) -> crate::Result<Self> {
-        let n = check_count("nrooks", count)?;
+    pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
+        let n = NROOKS.counts.check(NROOKS.name, count)?;
         let identity = Permutation::new(n, 0).expect("n >= 1");
         Ok(NRooks {
             count: n,
@@ -57,11 +86,23 @@ impl NRooks {
     pub fn count(&self) -> u32 {
         self.count
     }
+}
+
+impl Blocks for NRooks {
+    const NAME: &'static str = NROOKS.name;
+
+    fn set_len(&self) -> u32 {
+        self.count()
+    }
+
+    fn cursor(&mut self) -> &mut BlockCursor {
+        &mut self.cursor
+    }
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
-        self.px = Permutation::new(self.count, key32(key ^ 0x6c61_7469_6e58)).expect("n >= 1");
-        self.py = Permutation::new(self.count, key32(key ^ 0x6c61_7469_6e59)).expect("n >= 1");
+        self.px = Permutation::new(self.count, Stream::NRooksX.key32(key)).expect("n >= 1");
+        self.py = Permutation::new(self.count, Stream::NRooksY.key32(key)).expect("n >= 1");
     }
 
     #[inline]
@@ -87,15 +128,13 @@ impl NRooks {
     }
 }
 
-fixed_count_sampler!(NRooks, "nrooks");
-
 /// Latin hypercube sampling in `D` dimensions (McKay, Beckman, Conover 1979; Shirley 1991): any
 /// `N >= 1`, each coordinate a jittered set of `N` strata, the coordinates paired by independent
 /// hashed permutations; every 1D projection has one point per `1/N` stratum.
 ///
 /// ```
-/// use strata::{SamplerNd, samplers::LatinHypercube};
-/// let mut s = LatinHypercube::new(10, 4, 1).unwrap();
+/// use strata::{SamplerNd, Seed, samplers::LatinHypercube};
+/// let mut s = LatinHypercube::new(10, 4, Seed(1)).unwrap();
 /// let mut p = [0.0f32; 4];
 /// s.next_point(&mut p);
 /// assert!(p.iter().all(|&x| (0.0..1.0).contains(&x)));
@@ -112,9 +151,9 @@ pub struct LatinHypercube {
 
 impl LatinHypercube {
     /// Sets of `count >= 1` points in `dims` (1 to [`MAX_DIMENSIONS`]) dimensions.
-    pub fn new(count: u64, dims: u32, seed: u64) -> crate::Result<Self> {
-        let n = check_count("latin", count)?;
-        check_dims("latin", dims, MAX_DIMENSIONS, "")?;
+    pub fn new(count: u64, dims: u32, seed: Seed) -> crate::Result<Self> {
+        let n = LATIN.counts.check(LATIN.name, count)?;
+        check_dims(LATIN.name, dims, MAX_DIMENSIONS, "")?;
         Ok(LatinHypercube {
             count: n,
             dims,
@@ -129,6 +168,22 @@ impl LatinHypercube {
     pub fn count(&self) -> u32 {
         self.count
     }
+}
+
+impl Blocks for LatinHypercube {
+    const NAME: &'static str = LATIN.name;
+
+    fn set_len(&self) -> u32 {
+        self.count()
+    }
+
+    fn set_dims(&self) -> u32 {
+        self.dims
+    }
+
+    fn cursor(&mut self) -> &mut BlockCursor {
+        &mut self.cursor
+    }
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
@@ -141,12 +196,10 @@ impl LatinHypercube {
         None
     }
 
-    fn point(&self, i: u32, out: &mut [f32]) {
+    fn point_into(&self, i: u32, out: &mut [f32]) {
         for (d, (o, perm)) in out.iter_mut().zip(&self.perms).enumerate() {
             let h = hash_u64(self.key, (i as u64) << 16 | d as u64);
             *o = self.strata.place(perm.apply(i), h as u32);
         }
     }
 }
-
-fixed_count_sampler_nd!(LatinHypercube, "latin");

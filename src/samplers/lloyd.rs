@@ -17,9 +17,10 @@ use spade::{DelaunayTriangulation, HasPosition, Point2 as SPoint, Triangulation}
 
 use super::{SetGenerator, Sets};
 use crate::error::{Error, Result};
+use crate::float::{unit_f64_from_u32, unit_f64_from_u64};
 use crate::grid::{relative_radius_max, wrap_unit as wrap};
-use crate::hash::{hash_u64, stream_seed};
-use crate::sampler::{unit_f64_from_u32, unit_f64_from_u64};
+use crate::hash::{Stream, hash_u64, stream_seed};
+use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
 
 /// The default number of iterations: enough, from random points, for the mean distance from a
 /// point to its cell's centroid to fall below 1% of `r_max(N)` (tested).
@@ -33,6 +34,31 @@ pub const DUPLICATE: f64 = 1e-10;
 
 /// The most points per relaxed set.
 pub const MAX_LLOYD_COUNT: u64 = 1 << 22;
+
+/// The registry entry of `lloyd`.
+pub(crate) const ENTRY: Entry = Entry {
+    name: "lloyd",
+    description: "Lloyd relaxation on the periodic Voronoi diagram from random points (--iterations K, default 64)",
+    paper: "Lloyd 1982",
+    progressive: false,
+    counts: CountRule::Any,
+    parameters: &[ParameterSpec {
+        parameter: Parameter::Iterations,
+        default: DEFAULT_ITERATIONS as f64,
+        allowed: "0 to 100000",
+    }],
+    promise: "a centroidal Voronoi tessellation (near-hexagonal)",
+    rates: Rates::NONE,
+    expensive: true,
+    build: |p| {
+        let k = p.iterations.unwrap_or(DEFAULT_ITERATIONS);
+        Ok(Box::new(LloydSets::new(
+            Lloyd::new(p.count, k)?,
+            p.sampler_seed(),
+        )?))
+    },
+    nd: None,
+};
 
 #[derive(Clone, Copy, Debug)]
 struct Site {
@@ -64,14 +90,17 @@ pub struct Cell {
 pub fn voronoi_cells(points: &[[f64; 2]]) -> Result<Vec<Option<Cell>>> {
     let n = points.len();
     if n == 0 {
-        return Err(Error::input("lloyd", "no points; at least one is needed"));
+        return Err(Error::input(
+            "lloyd::voronoi_cells",
+            "no points; at least one is needed",
+        ));
     }
     if let Some(i) = points
         .iter()
         .position(|p| !(0.0..1.0).contains(&p[0]) || !(0.0..1.0).contains(&p[1]))
     {
         return Err(Error::input(
-            "lloyd",
+            "lloyd::voronoi_cells",
             format!(
                 "point {i} is {:?}; coordinates must be in [0, 1)",
                 points[i]
@@ -120,8 +149,13 @@ pub fn voronoi_cells(points: &[[f64; 2]]) -> Result<Vec<Option<Cell>>> {
                 }
             }
         }
-        let dt: DelaunayTriangulation<Site> = DelaunayTriangulation::bulk_load(sites)
-            .map_err(|e| Error::input("lloyd", format!("the triangulation failed: {e:?}")))?;
+        let dt: DelaunayTriangulation<Site> =
+            DelaunayTriangulation::bulk_load(sites).map_err(|e| {
+                Error::input(
+                    "lloyd::voronoi_cells",
+                    format!("the triangulation failed: {e:?}"),
+                )
+            })?;
         let mut cells = vec![None; n];
         let mut exact = true;
         let mut polygon = Vec::new();
@@ -158,7 +192,7 @@ pub fn voronoi_cells(points: &[[f64; 2]]) -> Result<Vec<Option<Cell>>> {
         if full {
             // Cannot happen with 3 x 3 copies of at least one point; fail loudly, not silently.
             return Err(Error::input(
-                "lloyd",
+                "lloyd::voronoi_cells",
                 "a Voronoi cell stayed unbounded with full periodic copies",
             ));
         }
@@ -220,7 +254,7 @@ pub fn relax(points: &mut [[f64; 2]], iterations: u32) -> Result<Vec<LloydStep>>
                 }
                 None => {
                     // a duplicate: nudge it by up to 1e-3 r_max in a hashed direction
-                    let h = hash_u64(0x11_0d, (it as u64) << 32 | i as u64);
+                    let h = hash_u64(Stream::LloydJitter.id(), (it as u64) << 32 | i as u64);
                     let (dx, dy) = (
                         unit_f64_from_u32(h as u32) - 0.5,
                         unit_f64_from_u32((h >> 32) as u32) - 0.5,
@@ -253,14 +287,14 @@ impl Lloyd {
     pub fn new(count: u64, iterations: u32) -> Result<Self> {
         if count == 0 || count > MAX_LLOYD_COUNT {
             return Err(Error::count(
-                "lloyd",
+                ENTRY.name,
                 count,
                 format!("the count must be between 1 and {MAX_LLOYD_COUNT}"),
             ));
         }
         if iterations > MAX_ITERATIONS {
             return Err(Error::parameter(
-                "lloyd",
+                ENTRY.name,
                 "iterations",
                 iterations,
                 format!("0 to {MAX_ITERATIONS}"),
@@ -287,9 +321,7 @@ pub(crate) fn random_start(count: usize, key: u64) -> Vec<[f64; 2]> {
 }
 
 impl SetGenerator for Lloyd {
-    fn name(&self) -> &'static str {
-        "lloyd"
-    }
+    const NAME: &'static str = ENTRY.name;
 
     fn count(&self) -> u32 {
         self.count

@@ -13,9 +13,41 @@
 //!
 //! Both are computed point by point from hashed permutations ([`Permutation`]), with no tables.
 
-use super::{BlockCursor, check_count, check_square, fixed_count_sampler};
-use crate::hash::{DivMod, Permutation, hash_u64, hash32, key32};
-use crate::sampler::{Point2, Strata, StrataGrid};
+use super::{BlockCursor, Blocks};
+use crate::float::Strata;
+use crate::hash::{DivMod, Permutation, Stream, hash_u64, hash32};
+use crate::registry::{CountRule, Entry, Rates};
+use crate::sampler::{Point2, Seed, StrataGrid};
+
+/// The registry entry of `multijittered`.
+pub(crate) const MULTIJITTERED: Entry = Entry {
+    name: "multijittered",
+    description: "jittered and N-rooks at once (N = n^2)",
+    paper: "Chiu, Shirley, Wang 1994",
+    progressive: false,
+    counts: CountRule::Square,
+    parameters: &[],
+    promise: "jittered on `n x n` and N-rooks",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| Ok(Box::new(MultiJittered::new(p.count, p.sampler_seed())?)),
+    nd: None,
+};
+
+/// The registry entry of `cmj`.
+pub(crate) const CMJ: Entry = Entry {
+    name: "cmj",
+    description: "correlated multi-jittered, any N",
+    paper: "Kensler 2013",
+    progressive: false,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "multi-jittered on `m x n`, correlated shuffles",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| Ok(Box::new(Cmj::new(p.count, p.sampler_seed())?)),
+    nd: None,
+};
 
 /// The point of cell `(col, row)` of an `m x n` grid whose x lies in sub-column `sub_x` (of `n`)
 /// and y in sub-row `sub_y` (of `m`), jittered by the two halves of `h`; `fine` holds the
@@ -59,8 +91,8 @@ fn multi_jittered_grids(m: u32, n: u32) -> Vec<StrataGrid> {
 /// Chiu et al.'s multi-jittered sets of `N = n^2` points, in row-major cell order.
 ///
 /// ```
-/// use strata::{Sampler, samplers::MultiJittered};
-/// let mut s = MultiJittered::new(16, 5).unwrap();
+/// use strata::{Sampler, Seed, samplers::MultiJittered};
+/// let mut s = MultiJittered::new(16, Seed(5)).unwrap();
 /// let mut rows = vec![0; 16];
 /// for _ in 0..16 {
 ///     rows[(s.next_sample().y * 16.0) as usize] += 1;
@@ -79,8 +111,11 @@ pub struct MultiJittered {
 
 impl MultiJittered {
     /// Multi-jittered sets of `count` points seeded by `seed`; `count` must be a perfect square.
-    pub fn new(count: u64, seed: u64) -> crate::Result<Self> {
-        let n = check_square("multijittered", count)?;
+    pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
+        let n = MULTIJITTERED
+            .counts
+            .check(MULTIJITTERED.name, count)?
+            .isqrt();
         Ok(MultiJittered {
             side: DivMod::new(n).expect("side >= 1"),
             fine: Strata::new(n as u64 * n as u64),
@@ -95,11 +130,23 @@ impl MultiJittered {
     pub fn count(&self) -> u32 {
         self.side.divisor() * self.side.divisor()
     }
+}
+
+impl Blocks for MultiJittered {
+    const NAME: &'static str = MULTIJITTERED.name;
+
+    fn set_len(&self) -> u32 {
+        self.count()
+    }
+
+    fn cursor(&mut self) -> &mut BlockCursor {
+        &mut self.cursor
+    }
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
-        self.key_x = key32(key ^ 0x006d_6a58);
-        self.key_y = key32(key ^ 0x006d_6a59);
+        self.key_x = Stream::MultiJitterX.key32(key);
+        self.key_y = Stream::MultiJitterY.key32(key);
     }
 
     #[inline]
@@ -127,14 +174,12 @@ impl MultiJittered {
     }
 }
 
-fixed_count_sampler!(MultiJittered, "multijittered");
-
 /// Kensler's correlated multi-jittered sets: any `N >= 1`, on an `m x n` grid with
 /// `m = floor(sqrt(N))` columns and `n = ceil(N / m)` rows.
 ///
 /// ```
-/// use strata::{Sampler, samplers::Cmj};
-/// let mut s = Cmj::new(12, 9).unwrap(); // a 3 x 4 grid
+/// use strata::{Sampler, Seed, samplers::Cmj};
+/// let mut s = Cmj::new(12, Seed(9)).unwrap(); // a 3 x 4 grid
 /// let mut cells = vec![0; 12];
 /// for _ in 0..12 {
 ///     let p = s.next_sample();
@@ -157,8 +202,8 @@ pub struct Cmj {
 
 impl Cmj {
     /// Correlated multi-jittered sets of `count >= 1` points seeded by `seed`.
-    pub fn new(count: u64, seed: u64) -> crate::Result<Self> {
-        let count = check_count("cmj", count)?;
+    pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
+        let count = CMJ.counts.check(CMJ.name, count)?;
         let m = (count as u64).isqrt() as u32;
         let n = count.div_ceil(m);
         let identity = |len| Permutation::new(len, 0).expect("len >= 1");
@@ -183,34 +228,6 @@ impl Cmj {
     /// The grid: `(m, n)` columns and rows.
     pub fn grid(&self) -> (u32, u32) {
         (self.columns.divisor(), self.rows)
-    }
-
-    fn begin_block(&mut self, key: u64) {
-        let (m, n) = self.grid();
-        self.key = key;
-        self.order = Permutation::new(self.count, key32(key ^ 0x636d_6a53)).expect("count >= 1");
-        // x sub-columns are indexed by row (n of them), y sub-rows by column (m of them).
-        self.shuffle_x = Permutation::new(n, key32(key ^ 0x636d_6a58)).expect("n >= 1");
-        self.shuffle_y = Permutation::new(m, key32(key ^ 0x636d_6a59)).expect("m >= 1");
-    }
-
-    #[inline]
-    fn point(&self, i: u32) -> Point2 {
-        let s = self.order.apply(i);
-        let (row, col) = self.columns.div_rem(s);
-        let sub_x = self.shuffle_x.apply(row);
-        let sub_y = self.shuffle_y.apply(col);
-        let (m, n) = self.grid();
-        multi_jittered_point(
-            &self.fine,
-            col,
-            row,
-            sub_x,
-            sub_y,
-            m,
-            n,
-            hash_u64(self.key, i as u64),
-        )
     }
 
     /// Points `i` and `i + 1`, with the permutations evaluated in lockstep.
@@ -245,6 +262,59 @@ impl Cmj {
             ),
         ]
     }
+}
+
+impl Blocks for Cmj {
+    const NAME: &'static str = CMJ.name;
+
+    fn set_len(&self) -> u32 {
+        self.count()
+    }
+
+    fn cursor(&mut self) -> &mut BlockCursor {
+        &mut self.cursor
+    }
+
+    fn begin_block(&mut self, key: u64) {
+        let (m, n) = self.grid();
+        self.key = key;
+        self.order = Permutation::new(self.count, Stream::CmjOrder.key32(key)).expect("count >= 1");
+        // x sub-columns are indexed by row (n of them), y sub-rows by column (m of them).
+        self.shuffle_x = Permutation::new(n, Stream::CmjX.key32(key)).expect("n >= 1");
+        self.shuffle_y = Permutation::new(m, Stream::CmjY.key32(key)).expect("m >= 1");
+    }
+
+    #[inline]
+    fn point(&self, i: u32) -> Point2 {
+        let s = self.order.apply(i);
+        let (row, col) = self.columns.div_rem(s);
+        let sub_x = self.shuffle_x.apply(row);
+        let sub_y = self.shuffle_y.apply(col);
+        let (m, n) = self.grid();
+        multi_jittered_point(
+            &self.fine,
+            col,
+            row,
+            sub_x,
+            sub_y,
+            m,
+            n,
+            hash_u64(self.key, i as u64),
+        )
+    }
+
+    /// Two points at a time, so that their dependency chains overlap.
+    fn fill_run(&self, start: u32, out: &mut [Point2]) {
+        let mut pairs = out.chunks_exact_mut(2);
+        let mut i = start;
+        for pair in &mut pairs {
+            pair.copy_from_slice(&self.point2(i));
+            i += 2;
+        }
+        if let [last] = pairs.into_remainder() {
+            *last = self.point(i);
+        }
+    }
 
     fn grids(&self) -> Vec<StrataGrid> {
         let (m, n) = self.grid();
@@ -255,5 +325,3 @@ impl Cmj {
         }
     }
 }
-
-fixed_count_sampler!(Cmj, "cmj", paired);

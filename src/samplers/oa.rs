@@ -23,17 +23,59 @@
 //! permutation of `i / q`, the index without its lowest digit (for fixed high digits the column
 //! is a bijection of the lowest one). Everything is computed sample by sample, as in the paper.
 
-use super::{BlockCursor, MAX_FIXED_COUNT, check_dims, fixed_count_sampler_nd};
+use super::{BlockCursor, Blocks, MAX_FIXED_COUNT, check_dims};
 use crate::error::{Error, Result};
-use crate::hash::{DivMod, Permutation, hash_u64, hash32, key32, stream_seed};
-use crate::sampler::{Strata, StrataGrid};
+use crate::float::Strata;
+use crate::hash::{DivMod, Permutation, Stream, hash_u64, hash32, key32, stream_seed};
+use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::sampler::{Seed, StrataGrid};
+
+/// The registry entry of `oa-bose`.
+pub(crate) const BOSE: Entry = Entry {
+    name: "oa-bose",
+    description: "orthogonal array, strength 2 (N = q^2, up to q+1 dims), multi-jittered",
+    paper: "Jarosz et al. 2019",
+    progressive: false,
+    counts: CountRule::OaPower(2),
+    parameters: &[],
+    promise: "every 2D projection on `q x q`, every 1D into `N`",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| Ok(Box::new(Bose::new(p.count, 2, p.sampler_seed())?)),
+    nd: Some(|p, d| Ok(Box::new(Bose::new(p.count, d, p.sampler_seed())?))),
+};
+
+/// The registry entry of `oa-bush`.
+pub(crate) const BUSH: Entry = Entry {
+    name: "oa-bush",
+    description: "orthogonal array, strength T (--strength T; N = q^T, up to q dims), multi-jittered",
+    paper: "Jarosz et al. 2019",
+    progressive: false,
+    counts: CountRule::OaPower(3),
+    parameters: &[ParameterSpec {
+        parameter: Parameter::Strength,
+        default: 3.0,
+        allowed: "2 to 16",
+    }],
+    promise: "every t-D projection on `q^t`, every 1D into `N`",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| Ok(Box::new(bush(p, 2)?)),
+    nd: Some(|p, d| Ok(Box::new(bush(p, d)?))),
+};
+
+/// The Bush array the registry builds: strength from the parameters (default 3).
+fn bush(p: &crate::registry::Params, dims: u32) -> Result<Bush> {
+    let strength = p.strength.unwrap_or(BUSH.parameters[0].default as u32);
+    Bush::new(p.count, strength, dims, p.sampler_seed())
+}
 
 /// The largest prime power (not prime) supported as the number of symbols.
 pub const MAX_PRIME_POWER: u32 = 256;
 
 /// A finite field `GF(q)`: arithmetic modulo a prime, or tables for a prime power.
 #[derive(Clone, Debug)]
-pub struct Field {
+pub(crate) struct Field {
     q: u32,
     /// For prime powers: `q x q` addition and multiplication tables.
     add: Vec<u16>,
@@ -41,7 +83,7 @@ pub struct Field {
 }
 
 /// `(p, n)` when `q = p^n` with `p` prime, `n >= 1` (trial division up to `sqrt q`).
-pub fn prime_power(q: u32) -> Option<(u32, u32)> {
+pub(crate) fn prime_power(q: u32) -> Option<(u32, u32)> {
     if q < 2 {
         return None;
     }
@@ -141,11 +183,6 @@ impl Field {
         Some(Field { q, add, mul })
     }
 
-    /// The number of elements.
-    pub fn order(&self) -> u32 {
-        self.q
-    }
-
     /// `a + b`.
     #[inline]
     pub fn add(&self, a: u32, b: u32) -> u32 {
@@ -170,7 +207,7 @@ impl Field {
 
 /// True when `q` is a supported number of symbols: a prime, or a prime power up to
 /// [`MAX_PRIME_POWER`].
-pub fn supported_symbols(q: u32) -> bool {
+pub(crate) fn supported_symbols(q: u32) -> bool {
     prime_power(q).is_some_and(|(_, n)| n == 1 || q <= MAX_PRIME_POWER)
 }
 
@@ -196,7 +233,7 @@ fn nearest_counts(count: u64, t: u32) -> String {
 }
 
 /// Checks `count = q^t` for a supported `q`, returning `q`.
-fn check_oa_count(name: &'static str, count: u64, t: u32) -> Result<u32> {
+pub(crate) fn check_oa_count(name: &'static str, count: u64, t: u32) -> Result<u32> {
     let rule = || {
         format!(
             "the count must be q^{t} for a prime q, or a prime power q <= {MAX_PRIME_POWER}, at most {MAX_FIXED_COUNT}"
@@ -227,7 +264,7 @@ fn check_oa_count(name: &'static str, count: u64, t: u32) -> Result<u32> {
 fn dim_keys(key: u64, dims: u32) -> impl Iterator<Item = (u32, u32)> {
     (0..dims as u64).map(move |j| {
         let k = stream_seed(key, j);
-        (key32(k), key32(k ^ 0x5eed))
+        (key32(k), Stream::OaSubstrata.key32(k))
     })
 }
 
@@ -246,10 +283,10 @@ pub struct Bose {
 
 impl Bose {
     /// `count = q^2` samples in `dims` dimensions (`dims <= q + 1`), seeded by `seed`.
-    pub fn new(count: u64, dims: u32, seed: u64) -> Result<Self> {
-        let q = check_oa_count("oa-bose", count, 2)?;
+    pub fn new(count: u64, dims: u32, seed: Seed) -> Result<Self> {
+        let q = check_oa_count(BOSE.name, count, 2)?;
         check_dims(
-            "oa-bose",
+            BOSE.name,
             dims,
             q + 1,
             " (a Bose array has at most q + 1 columns)",
@@ -271,15 +308,6 @@ impl Bose {
         self.q.divisor() * self.q.divisor()
     }
 
-    /// Every pair of dimensions is stratified on the `q x q` grid (strength 2).
-    fn pair_strata(&self, _x: u32, _y: u32) -> Option<StrataGrid> {
-        let q = self.q.divisor();
-        Some(StrataGrid {
-            columns: q,
-            rows: q,
-        })
-    }
-
     /// Symbol `j` of row `i`: `a0`, `a1`, then `a0 + (j - 1) a1`.
     #[inline]
     fn symbol(&self, j: u32, a0: u32, a1: u32) -> u32 {
@@ -288,6 +316,31 @@ impl Bose {
             1 => a1,
             _ => self.field.add(a0, self.field.mul(j - 1, a1)),
         }
+    }
+}
+
+impl Blocks for Bose {
+    const NAME: &'static str = BOSE.name;
+
+    fn set_len(&self) -> u32 {
+        self.count()
+    }
+
+    fn set_dims(&self) -> u32 {
+        self.dims
+    }
+
+    fn cursor(&mut self) -> &mut BlockCursor {
+        &mut self.cursor
+    }
+
+    /// Every pair of dimensions is stratified on the `q x q` grid (strength 2).
+    fn pair_strata(&self, _x: u32, _y: u32) -> Option<StrataGrid> {
+        let q = self.q.divisor();
+        Some(StrataGrid {
+            columns: q,
+            rows: q,
+        })
     }
 
     fn begin_block(&mut self, key: u64) {
@@ -298,7 +351,7 @@ impl Bose {
         );
     }
 
-    fn point(&self, i: u32, out: &mut [f32]) {
+    fn point_into(&self, i: u32, out: &mut [f32]) {
         let q = self.q.divisor();
         let (a1, a0) = self.q.div_rem(i);
         for (j, o) in out.iter_mut().enumerate().take(self.dims as usize) {
@@ -332,12 +385,12 @@ pub struct Bush {
 
 impl Bush {
     /// `count = q^strength` samples in `dims` dimensions (`dims <= q`), strength `>= 2`.
-    pub fn new(count: u64, strength: u32, dims: u32, seed: u64) -> Result<Self> {
+    pub fn new(count: u64, strength: u32, dims: u32, seed: Seed) -> Result<Self> {
         if !(2..=16).contains(&strength) {
-            return Err(Error::parameter("oa-bush", "strength", strength, "2 to 16"));
+            return Err(Error::parameter(BUSH.name, "strength", strength, "2 to 16"));
         }
-        let q = check_oa_count("oa-bush", count, strength)?;
-        check_dims("oa-bush", dims, q, " (a Bush array has at most q columns)")?;
+        let q = check_oa_count(BUSH.name, count, strength)?;
+        check_dims(BUSH.name, dims, q, " (a Bush array has at most q columns)")?;
         Ok(Bush {
             field: Field::new(q).expect("checked"),
             q: DivMod::new(q).expect("q >= 2"),
@@ -354,6 +407,22 @@ impl Bush {
     /// Samples per set.
     pub fn count(&self) -> u32 {
         self.q.divisor().pow(self.t)
+    }
+}
+
+impl Blocks for Bush {
+    const NAME: &'static str = BUSH.name;
+
+    fn set_len(&self) -> u32 {
+        self.count()
+    }
+
+    fn set_dims(&self) -> u32 {
+        self.dims
+    }
+
+    fn cursor(&mut self) -> &mut BlockCursor {
+        &mut self.cursor
     }
 
     /// Every pair of dimensions is stratified on the `q x q` grid (`q^(t-2)` points per cell:
@@ -378,7 +447,7 @@ impl Bush {
         }));
     }
 
-    fn point(&self, i: u32, out: &mut [f32]) {
+    fn point_into(&self, i: u32, out: &mut [f32]) {
         let sub_count = self.sub_count;
         let (high, _) = self.q.div_rem(i); // i / q: the index without its lowest digit
         let mut digits = [0u32; 16];
@@ -403,9 +472,6 @@ impl Bush {
         }
     }
 }
-
-fixed_count_sampler_nd!(Bose, "oa-bose");
-fixed_count_sampler_nd!(Bush, "oa-bush");
 
 #[cfg(test)]
 mod tests {

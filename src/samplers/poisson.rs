@@ -13,8 +13,8 @@
 //! every active cell is split into four and the quarters covered by a single disk are dropped.
 //! Darts stay uniform over the uncovered area (cells of a round have equal size; misses are
 //! rejected), so the result is unbiased dart throwing, and the work is bounded (at most
-//! [`MAX_LEVELS`] refinements): a radius the set cannot reach stops with
-//! [`Error::Unreachable`](crate::Error::Unreachable) after bounded work. Random sequential
+//! `MAX_LEVELS` (12) refinements): a radius the set cannot reach stops with
+//! [`Error::Unreachable`] after bounded work. Random sequential
 //! adsorption jams at `rho` about 0.77; above [`MAX_DART_RHO`] the request is refused at once.
 //!
 //! **Bridson** ([`Bridson`]) grows the set from a random seed point: each active point tries 30
@@ -28,12 +28,69 @@ use rand_pcg::Pcg32;
 
 use super::{SetGenerator, Sets};
 use crate::error::{Error, Result};
+use crate::float::unit_f64_from_u64;
 use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared, wrap_unit as wrap};
 use crate::hash::stream_seed;
-use crate::sampler::unit_f64_from_u64;
+use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
 
 /// The default relative radius.
 pub const DEFAULT_RHO: f64 = 0.7;
+
+/// The radius parameter of both Poisson-disk samplers.
+const RADIUS: ParameterSpec = ParameterSpec {
+    parameter: Parameter::Radius,
+    default: DEFAULT_RHO,
+    allowed: "0 < RHO <= 0.78 (dart throwing), < 1 (Bridson)",
+};
+
+/// Poisson disk: random sampling's rate (Pilleboue et al. 2015), for 2D integrands.
+const POISSON_RATES: Rates = Rates {
+    discontinuous: Some(-1.0),
+    smooth: Some(-1.0),
+    higher: None,
+};
+
+/// The registry entry of `poisson`.
+pub(crate) const POISSON: Entry = Entry {
+    name: "poisson",
+    description: "Poisson disk by dart throwing to exactly N points (--radius RHO, default 0.7)",
+    paper: "Cook 1986; Ebeida et al. 2011",
+    progressive: false,
+    counts: CountRule::Any,
+    parameters: &[RADIUS],
+    promise: "exactly `N` points at least `rho r_max(N)` apart",
+    rates: POISSON_RATES,
+    expensive: false,
+    build: |p| {
+        let rho = p.radius.unwrap_or(DEFAULT_RHO);
+        Ok(Box::new(PoissonDisk::new(
+            DartThrowing::new(p.count, rho)?,
+            p.sampler_seed(),
+        )?))
+    },
+    nd: None,
+};
+
+/// The registry entry of `bridson`.
+pub(crate) const BRIDSON: Entry = Entry {
+    name: "bridson",
+    description: "Poisson disk by Bridson's algorithm, periodic, N points (--radius RHO, default 0.7)",
+    paper: "Bridson 2007",
+    progressive: false,
+    counts: CountRule::Any,
+    parameters: &[RADIUS],
+    promise: "exactly `N` points at least `rho r_max(N)` apart",
+    rates: POISSON_RATES,
+    expensive: false,
+    build: |p| {
+        let rho = p.radius.unwrap_or(DEFAULT_RHO);
+        Ok(Box::new(BridsonDisk::new(
+            Bridson::new(p.count, rho)?,
+            p.sampler_seed(),
+        )?))
+    },
+    nd: None,
+};
 
 /// The largest relative radius dart throwing accepts (random sequential adsorption jams near
 /// 0.77, so larger radii cannot be reached at the requested count).
@@ -43,10 +100,10 @@ pub const MAX_DART_RHO: f64 = 0.78;
 pub const MAX_POISSON_COUNT: u64 = 1 << 22;
 
 /// How many times dart throwing refines its active cells before giving up.
-pub const MAX_LEVELS: u32 = 12;
+pub(crate) const MAX_LEVELS: u32 = 12;
 
 /// Bridson's candidates per active point.
-pub const BRIDSON_CANDIDATES: u32 = 30;
+pub(crate) const BRIDSON_CANDIDATES: u32 = 30;
 
 /// Slack added to the radius so that the guarantee survives rounding coordinates to `f32`
 /// (each coordinate moves by less than `2^-24`).
@@ -103,7 +160,7 @@ pub struct DartThrowing {
 impl DartThrowing {
     /// `count` points (1 to [`MAX_POISSON_COUNT`]) at relative radius `0 < rho <= MAX_DART_RHO`.
     pub fn new(count: u64, rho: f64) -> Result<Self> {
-        let count = check("poisson", count, rho, MAX_DART_RHO)?;
+        let count = check(POISSON.name, count, rho, MAX_DART_RHO)?;
         Ok(DartThrowing { count, rho })
     }
 
@@ -114,9 +171,7 @@ impl DartThrowing {
 }
 
 impl SetGenerator for DartThrowing {
-    fn name(&self) -> &'static str {
-        "poisson"
-    }
+    const NAME: &'static str = POISSON.name;
 
     fn count(&self) -> u32 {
         self.count
@@ -129,13 +184,13 @@ impl SetGenerator for DartThrowing {
             // A radius so small that one cell per r / sqrt 2 would not fit: the disks cover
             // almost nothing, so plain darts checked on the general neighbour grid suffice.
             return tiny_radius_darts(self.count as usize, r, &mut rng)
-                .ok_or_else(|| saturated("poisson", 0, self.count, self.rho));
+                .ok_or_else(|| saturated(POISSON.name, 0, self.count, self.rho));
         }
-        let mut grid = disk_grid("poisson", r)?;
+        let mut grid = disk_grid(POISSON.name, r)?;
         let mut points = Vec::with_capacity(self.count as usize);
         throw_darts(&mut points, &mut grid, self.count as usize, r, &mut rng);
         if points.len() < self.count as usize {
-            return Err(saturated("poisson", points.len(), self.count, self.rho));
+            return Err(saturated(POISSON.name, points.len(), self.count, self.rho));
         }
         Ok(points)
     }
@@ -264,7 +319,7 @@ fn disk_grid(name: &'static str, r: f64) -> Result<DiskGrid> {
 
 /// The most grid cells a Poisson-disk set may use (16 bytes each): enough for
 /// [`MAX_POISSON_COUNT`] points at relative radius 0.3.
-pub const MAX_GRID_CELLS: usize = 1 << 26;
+pub(crate) const MAX_GRID_CELLS: usize = 1 << 26;
 
 /// Bridson's algorithm, periodic, at relative radius `rho`, adjusted to exactly `count` points.
 #[derive(Clone, Debug)]
@@ -276,7 +331,7 @@ pub struct Bridson {
 impl Bridson {
     /// `count` points (1 to [`MAX_POISSON_COUNT`]) at relative radius `0 < rho <= MAX_DART_RHO`.
     pub fn new(count: u64, rho: f64) -> Result<Self> {
-        let count = check("bridson", count, rho, MAX_DART_RHO)?;
+        let count = check(BRIDSON.name, count, rho, MAX_DART_RHO)?;
         Ok(Bridson { count, rho })
     }
 
@@ -289,10 +344,10 @@ impl Bridson {
 /// Bridson's algorithm at absolute radius `r` on the unit torus: the raw set (its size is
 /// whatever the algorithm reaches), grown from one random point.
 ///
-/// Returns an error when `r` is so small that the grid would exceed [`MAX_GRID_CELLS`].
+/// Returns an error when `r` is so small that the grid would exceed `2^26` cells.
 pub fn bridson(r: f64, key: u64) -> Result<Vec<[f64; 2]>> {
     let mut rng = Pcg32::new(stream_seed(key, 3), stream_seed(key, 4));
-    let mut grid = disk_grid("bridson", r)?;
+    let mut grid = disk_grid(BRIDSON.name, r)?;
     let mut points = Vec::new();
     grow_bridson(&mut points, &mut grid, r, &mut rng);
     Ok(points)
@@ -335,9 +390,7 @@ fn grow_bridson(points: &mut Vec<[f64; 2]>, grid: &mut DiskGrid, r: f64, rng: &m
 }
 
 impl SetGenerator for Bridson {
-    fn name(&self) -> &'static str {
-        "bridson"
-    }
+    const NAME: &'static str = BRIDSON.name;
 
     fn count(&self) -> u32 {
         self.count
@@ -347,13 +400,13 @@ impl SetGenerator for Bridson {
         let n = self.count as usize;
         let r = self.radius() + F32_SLACK;
         let mut rng = Pcg32::new(stream_seed(key, 3), stream_seed(key, 4));
-        let mut grid = disk_grid("bridson", r)?;
+        let mut grid = disk_grid(BRIDSON.name, r)?;
         let mut points = Vec::new();
         grow_bridson(&mut points, &mut grid, r, &mut rng);
         if points.len() < n {
             throw_darts(&mut points, &mut grid, n, r, &mut rng);
             if points.len() < n {
-                return Err(saturated("bridson", points.len(), self.count, self.rho));
+                return Err(saturated(BRIDSON.name, points.len(), self.count, self.rho));
             }
         }
         if points.len() > n {

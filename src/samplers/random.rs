@@ -9,14 +9,36 @@
 use rand::Rng;
 use rand_pcg::Pcg32;
 
+use crate::float::unit_f32_from_u32;
 use crate::hash::stream_seed;
-use crate::sampler::{Point2, Progression, Sampler, SamplerNd, unit_f32_from_u32};
+use crate::registry::{CountRule, Entry, Rates};
+use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed};
+
+/// The registry entry of `random`.
+pub(crate) const ENTRY: Entry = Entry {
+    name: "random",
+    description: "independent uniform points (PCG32); progressive",
+    paper: "-",
+    progressive: true,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "nothing (i.i.d. uniform)",
+    rates: Rates::RANDOM,
+    expensive: false,
+    build: |p| Ok(Box::new(Random::new(p.sampler_seed()))),
+    nd: Some(|p, d| Ok(Box::new(RandomNd::new(d, p.sampler_seed())?))),
+};
+
+/// The generator of a seed.
+fn pcg(seed: Seed) -> Pcg32 {
+    Pcg32::new(stream_seed(seed.0, 0), stream_seed(seed.0, 1))
+}
 
 /// Independent uniform points in `[0,1)^2` (progressive: every prefix is an i.i.d. sample).
 ///
 /// ```
-/// use strata::{Sampler, samplers::Random};
-/// let mut s = Random::new(42);
+/// use strata::{Sampler, Seed, samplers::Random};
+/// let mut s = Random::new(Seed(42));
 /// let p = s.next_sample();
 /// assert!((0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y));
 /// ```
@@ -27,16 +49,14 @@ pub struct Random {
 
 impl Random {
     /// A stream seeded by `seed`.
-    pub fn new(seed: u64) -> Self {
-        Random {
-            rng: Pcg32::new(stream_seed(seed, 0), stream_seed(seed, 1)),
-        }
+    pub fn new(seed: Seed) -> Self {
+        Random { rng: pcg(seed) }
     }
 }
 
 impl Sampler for Random {
     fn name(&self) -> &'static str {
-        "random"
+        ENTRY.name
     }
 
     fn progression(&self) -> Progression {
@@ -67,18 +87,18 @@ pub struct RandomNd {
 impl RandomNd {
     /// `dims >= 1` dimensions seeded by `seed` (the first two coordinates of each point are
     /// those of [`Random`] with the same seed only for `dims = 2`).
-    pub fn new(dims: u32, seed: u64) -> crate::Result<Self> {
-        super::check_dims("random", dims, super::MAX_DIMENSIONS, "")?;
+    pub fn new(dims: u32, seed: Seed) -> crate::Result<Self> {
+        super::check_dims(ENTRY.name, dims, super::MAX_DIMENSIONS, "")?;
         Ok(RandomNd {
             dims,
-            rng: Pcg32::new(stream_seed(seed, 0), stream_seed(seed, 1)),
+            rng: pcg(seed),
         })
     }
 }
 
 impl SamplerNd for RandomNd {
     fn name(&self) -> &'static str {
-        "random"
+        ENTRY.name
     }
 
     fn dimensions(&self) -> u32 {

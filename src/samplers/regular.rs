@@ -5,9 +5,26 @@
 //! the multiples of `s = sqrt(N)` in each axis (aliasing). It is here as the lecture's reference
 //! point, not as a sampler to render with.
 
-use super::{BlockCursor, check_square, fixed_count_sampler};
+use super::{BlockCursor, Blocks};
+use crate::float::Strata;
 use crate::hash::DivMod;
-use crate::sampler::{Point2, Strata, StrataGrid};
+use crate::registry::{CountRule, Entry, Rates};
+use crate::sampler::{Point2, Seed, StrataGrid};
+
+/// The registry entry of `regular`.
+pub(crate) const ENTRY: Entry = Entry {
+    name: "regular",
+    description: "cell centres of an s x s grid (N = s^2); deterministic",
+    paper: "-",
+    progressive: false,
+    counts: CountRule::Square,
+    parameters: &[],
+    promise: "cell centres (aliasing, zero variance, biased)",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| Ok(Box::new(Regular::new(p.count)?)),
+    nd: None,
+};
 
 /// The `N = s^2` cell centres `((i + 1/2) / s, (j + 1/2) / s)`, in row-major order.
 ///
@@ -27,17 +44,30 @@ pub struct Regular {
 impl Regular {
     /// A regular grid of `count` points; `count` must be a perfect square.
     pub fn new(count: u64) -> crate::Result<Self> {
-        let s = check_square("regular", count)?;
+        let n = ENTRY.counts.check(ENTRY.name, count)?;
+        let s = n.isqrt();
         Ok(Regular {
             side: DivMod::new(s).expect("side >= 1"),
             strata: Strata::new(s as u64),
-            cursor: BlockCursor::new(0, s * s),
+            cursor: BlockCursor::new(Seed(0), n),
         })
     }
 
     /// The number of points in a set.
     pub fn count(&self) -> u32 {
         self.side.divisor() * self.side.divisor()
+    }
+}
+
+impl Blocks for Regular {
+    const NAME: &'static str = ENTRY.name;
+
+    fn set_len(&self) -> u32 {
+        self.count()
+    }
+
+    fn cursor(&mut self) -> &mut BlockCursor {
+        &mut self.cursor
     }
 
     fn begin_block(&mut self, _key: u64) {}
@@ -57,5 +87,3 @@ impl Regular {
         }]
     }
 }
-
-fixed_count_sampler!(Regular, "regular");

@@ -20,9 +20,13 @@
 
 use std::sync::OnceLock;
 
+use super::Epochs;
+use super::pmj::MAX_SEQUENCE_LEN;
 use crate::error::Result;
-use crate::hash::{hash32, owen_scramble_rev, stream_seed};
-use crate::sampler::{Point2, Progression, Sampler, SamplerNd, StrataGrid, unit_f32_from_u32};
+use crate::float::unit_f32_from_u32;
+use crate::hash::{Stream, hash32, owen_scramble_rev, stream_seed};
+use crate::registry::{CountRule, Entry, Rates};
+use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 
 /// Direction vectors of one dimension: column `k` (for index bit `k`) as a 32-bit fixed-point
 /// value, most significant bit first.
@@ -47,7 +51,7 @@ fn first_two() -> [Matrix; 2] {
 /// The matrix of a dimension with primitive polynomial of degree `s`, inner coefficients `a`
 /// (bit `s - 1 - l` is `a_l`) and initial direction integers `m` (odd, `m_k < 2^k`), by the
 /// recurrence `V_k = V_{k-s} ^ (V_{k-s} >> s) ^ sum_{l=1}^{s-1} a_l V_{k-l}`.
-pub fn direction_matrix(s: usize, a: u32, m: &[u32]) -> [u32; 32] {
+pub(crate) fn direction_matrix(s: usize, a: u32, m: &[u32]) -> [u32; 32] {
     let mut v = [0u32; 33]; // 1-based
     for k in 1..=32 {
         if k <= s {
@@ -120,7 +124,8 @@ pub fn max_dimensions() -> u32 {
 }
 
 /// The generator matrix of dimension `dim` (columns for index bits 0..32, MSB-first values).
-pub fn matrix(dim: u32) -> Option<[u32; 32]> {
+#[cfg(test)]
+pub(crate) fn matrix(dim: u32) -> Option<[u32; 32]> {
     tables().matrices.get(dim as usize).copied()
 }
 
@@ -151,7 +156,7 @@ pub(crate) fn point01_rev(index_rev: u32) -> [u32; 2] {
 /// Seeds of one scrambled copy of the sequence: the index shuffle and one value scramble per
 /// dimension are hashed from it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Scramble {
+pub(crate) struct Scramble {
     shuffle: u32,
     key: u32,
 }
@@ -159,9 +164,9 @@ pub struct Scramble {
 impl Scramble {
     /// The scramble for a 64-bit seed.
     pub fn new(seed: u64) -> Self {
-        let s = stream_seed(seed, 0x50b0);
+        let s = stream_seed(seed, Stream::SobolScramble.id());
         Scramble {
-            shuffle: hash32(s as u32, 0x79c6_8e4a),
+            shuffle: hash32(s as u32, Stream::SobolShuffle.id() as u32),
             key: (s >> 32) as u32,
         }
     }
@@ -190,12 +195,6 @@ impl Scramble {
         ]
     }
 
-    /// Dimension `dim` of point `index`, as 32-bit fixed point (`dim < max_dimensions()`).
-    #[inline]
-    pub fn sample_u32(&self, index: u32, dim: u32) -> u32 {
-        self.sample_rev_u32(&tables().bytes[dim as usize], self.index_rev(index), dim)
-    }
-
     /// Dimension `dim` (byte tables `t`) at an already shuffled index `i_rev`.
     #[inline]
     fn sample_rev_u32(&self, t: &[[u32; 256]; 4], i_rev: u32, dim: u32) -> u32 {
@@ -203,11 +202,26 @@ impl Scramble {
     }
 }
 
+/// The registry entry of `sobol`.
+pub(crate) const ENTRY: Entry = Entry {
+    name: "sobol",
+    description: "Sobol' (Joe-Kuo directions), Owen-scrambled by hashing, progressive, any --dims",
+    paper: "Sobol' 1967; Joe, Kuo 2008; Burley 2020",
+    progressive: true,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "(0,m,2)-nets in dims 0-1 at every `2^m`; up to 1000 dims",
+    rates: Rates::NETS,
+    expensive: false,
+    build: |p| Ok(Box::new(Sobol::new(p.sampler_seed()))),
+    nd: Some(|p, d| Ok(Box::new(SobolNd::new(d, p.sampler_seed())?))),
+};
+
 /// The scrambled Sobol' sequence in 2D (dimensions 0 and 1: a (0,2)-sequence), progressive.
 ///
 /// ```
-/// use strata::{Sampler, samplers::Sobol};
-/// let mut s = Sobol::new(7);
+/// use strata::{Sampler, Seed, samplers::Sobol};
+/// let mut s = Sobol::new(Seed(7));
 /// let pts: Vec<_> = (0..4).map(|_| s.next_sample()).collect();
 /// // the first 4 points: one in each quadrant
 /// let mut q: Vec<_> = pts.iter().map(|p| (p.x >= 0.5, p.y >= 0.5)).collect();
@@ -217,20 +231,16 @@ impl Scramble {
 /// ```
 #[derive(Clone, Debug)]
 pub struct Sobol {
-    seed: u64,
-    epoch: u64,
+    epochs: Epochs,
     scramble: Scramble,
-    next: u64,
 }
 
 impl Sobol {
     /// The sequence for `seed`.
-    pub fn new(seed: u64) -> Self {
+    pub fn new(seed: Seed) -> Self {
         Sobol {
-            seed,
-            epoch: 0,
-            scramble: Scramble::new(seed),
-            next: 0,
+            epochs: Epochs::new(seed, MAX_SEQUENCE_LEN),
+            scramble: Scramble::new(seed.0),
         }
     }
 
@@ -246,21 +256,18 @@ impl Sobol {
     }
 }
 
-/// Advances a progressive 32-bit sequence, starting a new epoch (re-seeded) every `2^32`.
-fn advance(next: &mut u64, epoch: &mut u64, seed: u64, scramble: &mut Scramble) -> u32 {
-    if *next == 1 << 32 {
-        *epoch += 1;
-        *next = 0;
-        *scramble = Scramble::new(stream_seed(seed, *epoch));
+/// The index of the next point, re-scrambling when a new epoch starts.
+fn advance(epochs: &mut Epochs, scramble: &mut Scramble) -> u32 {
+    let (i, new_epoch) = epochs.advance();
+    if let Some(key) = new_epoch {
+        *scramble = Scramble::new(key);
     }
-    let i = *next as u32;
-    *next += 1;
-    i
+    i as u32
 }
 
 impl Sampler for Sobol {
     fn name(&self) -> &'static str {
-        "sobol"
+        ENTRY.name
     }
 
     fn progression(&self) -> Progression {
@@ -268,12 +275,7 @@ impl Sampler for Sobol {
     }
 
     fn next_sample(&mut self) -> Point2 {
-        let i = advance(
-            &mut self.next,
-            &mut self.epoch,
-            self.seed,
-            &mut self.scramble,
-        );
+        let i = advance(&mut self.epochs, &mut self.scramble);
         self.sample(i)
     }
 
@@ -285,36 +287,32 @@ impl Sampler for Sobol {
 /// The scrambled Sobol' sequence in `D` dimensions, progressive.
 #[derive(Clone, Debug)]
 pub struct SobolNd {
-    seed: u64,
-    epoch: u64,
+    epochs: Epochs,
     dims: u32,
     scramble: Scramble,
-    next: u64,
 }
 
 impl SobolNd {
     /// `dims` dimensions (1 to [`max_dimensions`]) seeded by `seed`.
-    pub fn new(dims: u32, seed: u64) -> Result<Self> {
+    pub fn new(dims: u32, seed: Seed) -> Result<Self> {
         let max = max_dimensions();
         let why = if cfg!(feature = "joe-kuo") {
             ""
         } else {
             " (enable the `joe-kuo` feature for 1000)"
         };
-        super::check_dims("sobol", dims, max, why)?;
+        super::check_dims(ENTRY.name, dims, max, why)?;
         Ok(SobolNd {
-            seed,
-            epoch: 0,
+            epochs: Epochs::new(seed, MAX_SEQUENCE_LEN),
             dims,
-            scramble: Scramble::new(seed),
-            next: 0,
+            scramble: Scramble::new(seed.0),
         })
     }
 }
 
 impl SamplerNd for SobolNd {
     fn name(&self) -> &'static str {
-        "sobol"
+        ENTRY.name
     }
 
     fn dimensions(&self) -> u32 {
@@ -326,12 +324,7 @@ impl SamplerNd for SobolNd {
     }
 
     fn next_point(&mut self, out: &mut [f32]) {
-        let i = advance(
-            &mut self.next,
-            &mut self.epoch,
-            self.seed,
-            &mut self.scramble,
-        );
+        let i = advance(&mut self.epochs, &mut self.scramble);
         // one index shuffle for all dimensions of the point
         let (t, ir) = (&tables().bytes, self.scramble.index_rev(i));
         for (d, (o, table)) in out.iter_mut().zip(t).take(self.dims as usize).enumerate() {

@@ -8,18 +8,44 @@
 //! trailing dimension stratified; across pairs the samples are uncorrelated, like Latin
 //! hypercube sampling (of which this is a special case).
 
-use super::{
-    BlockCursor, MAX_DIMENSIONS, block_permutations, check_count, check_dims, check_square,
-    fixed_count_sampler_nd,
-};
+use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
+use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, hash_u64};
-use crate::sampler::{Strata, StrataGrid};
+use crate::registry::{CountRule, Entry, Rates};
+use crate::sampler::{Seed, StrataGrid};
+
+/// The registry entry of `uncorrelated`.
+pub(crate) const ENTRY: Entry = Entry {
+    name: "uncorrelated",
+    description: "uncorrelated jitter: jittered pairs (0,1), (2,3), ... in random orders (N = s^2)",
+    paper: "Cook 1986",
+    progressive: false,
+    counts: CountRule::Square,
+    parameters: &[],
+    promise: "every pair `(2k, 2k+1)` jittered on `s x s`",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| {
+        Ok(Box::new(UncorrelatedJitter::new(
+            p.count,
+            2,
+            p.sampler_seed(),
+        )?))
+    },
+    nd: Some(|p, d| {
+        Ok(Box::new(UncorrelatedJitter::new(
+            p.count,
+            d,
+            p.sampler_seed(),
+        )?))
+    }),
+};
 
 /// Uncorrelated jitter in `D` dimensions: `N = s^2` (any `N` when `D = 1`).
 ///
 /// ```
-/// use strata::{SamplerNd, samplers::UncorrelatedJitter};
-/// let mut s = UncorrelatedJitter::new(16, 5, 1).unwrap();
+/// use strata::{SamplerNd, Seed, samplers::UncorrelatedJitter};
+/// let mut s = UncorrelatedJitter::new(16, 5, Seed(1)).unwrap();
 /// let mut p = [0.0f32; 5];
 /// s.next_point(&mut p);
 /// assert!(p.iter().all(|&x| (0.0..1.0).contains(&x)));
@@ -39,13 +65,13 @@ pub struct UncorrelatedJitter {
 impl UncorrelatedJitter {
     /// Sets of `count` points in `dims` (1 to [`MAX_DIMENSIONS`]) dimensions; `count` must be a
     /// perfect square when `dims >= 2`.
-    pub fn new(count: u64, dims: u32, seed: u64) -> crate::Result<Self> {
-        check_dims("uncorrelated", dims, MAX_DIMENSIONS, "")?;
+    pub fn new(count: u64, dims: u32, seed: Seed) -> crate::Result<Self> {
+        check_dims(ENTRY.name, dims, MAX_DIMENSIONS, "")?;
         let (n, side) = if dims >= 2 {
-            let s = check_square("uncorrelated", count)?;
-            (s * s, s)
+            let n = ENTRY.counts.check(ENTRY.name, count)?;
+            (n, n.isqrt())
         } else {
-            (check_count("uncorrelated", count)?, 1)
+            (CountRule::Any.check(ENTRY.name, count)?, 1)
         };
         Ok(UncorrelatedJitter {
             count: n,
@@ -63,6 +89,22 @@ impl UncorrelatedJitter {
     pub fn count(&self) -> u32 {
         self.count
     }
+}
+
+impl Blocks for UncorrelatedJitter {
+    const NAME: &'static str = ENTRY.name;
+
+    fn set_len(&self) -> u32 {
+        self.count()
+    }
+
+    fn set_dims(&self) -> u32 {
+        self.dims
+    }
+
+    fn cursor(&mut self) -> &mut BlockCursor {
+        &mut self.cursor
+    }
 
     /// The pairs (0,1), (2,3), ... are jittered on the `s x s` grid; other pairs are not
     /// stratified together.
@@ -79,20 +121,21 @@ impl UncorrelatedJitter {
         block_permutations(&mut self.perms, self.count, key, self.dims.div_ceil(2));
     }
 
-    fn point(&self, i: u32, out: &mut [f32]) {
-        for (g, perm) in self.perms.iter().enumerate() {
+    fn point_into(&self, i: u32, out: &mut [f32]) {
+        let groups = out.len().min(self.dims as usize).div_ceil(2);
+        for (g, perm) in self.perms.iter().enumerate().take(groups) {
             let cell = perm.apply(i);
             let h = hash_u64(self.key, (i as u64) << 16 | g as u64);
             let d = 2 * g;
             if d + 1 < self.dims as usize {
                 let (row, col) = self.side.div_rem(cell);
                 out[d] = self.pairs.place(col, h as u32);
-                out[d + 1] = self.pairs.place(row, (h >> 32) as u32);
+                if let Some(o) = out.get_mut(d + 1) {
+                    *o = self.pairs.place(row, (h >> 32) as u32);
+                }
             } else {
                 out[d] = self.single.place(cell, h as u32);
             }
         }
     }
 }
-
-fixed_count_sampler_nd!(UncorrelatedJitter, "uncorrelated");

@@ -29,7 +29,7 @@ use crate::sampler::Point2;
 
 /// The largest point count per set for which [`point_set_measures`] computes the spectral
 /// measures (the pair counting is quadratic).
-pub const MAX_SPECTRAL_MEASURE_POINTS: usize = 1 << 16;
+pub(crate) const MAX_SPECTRAL_MEASURE_POINTS: usize = 1 << 16;
 
 /// The PSA measures of a point set (averaged over realizations).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,7 +43,7 @@ pub struct PointSetMeasures {
     /// sets; NaN for single points).
     pub average_min_distance: f64,
     /// Effective Nyquist frequency in units of `sqrt(N)` (`None` above
-    /// [`MAX_SPECTRAL_MEASURE_POINTS`] or below 2 points).
+    /// `2^16` points or below 2 points).
     pub effective_nyquist: Option<f64>,
     /// Oscillations `Omega` (`None` as for `effective_nyquist`).
     pub oscillations: Option<f64>,
@@ -88,7 +88,7 @@ pub fn nearest_neighbour_distances(points: &[Point2]) -> Option<Vec<f64>> {
 pub fn point_set_measures(sets: &[Vec<Point2>]) -> Result<PointSetMeasures> {
     let Some(first) = sets.first() else {
         return Err(Error::input(
-            "measures",
+            "point_set_measures",
             "no point set given; at least one is needed",
         ));
     };
@@ -97,7 +97,7 @@ pub fn point_set_measures(sets: &[Vec<Point2>]) -> Result<PointSetMeasures> {
         check_points(s)?;
         if s.len() != n {
             return Err(Error::input(
-                "measures",
+                "point_set_measures",
                 format!(
                     "set {i} has {} points, set 0 has {n}; all must have the same count",
                     s.len()
@@ -254,7 +254,7 @@ impl RadialPower {
 
 /// The Bessel function `J0`, by the polynomial approximations of Abramowitz and Stegun 9.4.1
 /// and 9.4.3 (absolute error below `1e-7`).
-pub fn bessel_j0(x: f64) -> f64 {
+pub(crate) fn bessel_j0(x: f64) -> f64 {
     let x = x.abs();
     if x <= 3.0 {
         let t = (x / 3.0) * (x / 3.0);

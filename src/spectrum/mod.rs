@@ -37,10 +37,7 @@ mod measures;
 mod nufft;
 
 pub use crate::grid::relative_radius_max;
-pub use measures::{
-    MAX_SPECTRAL_MEASURE_POINTS, PointSetMeasures, bessel_j0, nearest_neighbour_distances,
-    point_set_measures,
-};
+pub use measures::{PointSetMeasures, nearest_neighbour_distances, point_set_measures};
 
 use rayon::prelude::*;
 
@@ -75,7 +72,7 @@ impl Spectrum {
         let side = resolution as usize + 1;
         if values.len() != side * side {
             return Err(Error::input(
-                "spectrum",
+                "Spectrum::from_values",
                 format!(
                     "{} values given; resolution {resolution} needs {}",
                     values.len(),
@@ -85,7 +82,7 @@ impl Spectrum {
         }
         if let Some(bad) = values.iter().position(|v| !v.is_finite()) {
             return Err(Error::input(
-                "spectrum",
+                "Spectrum::from_values",
                 format!("value {bad} is {}; values must be finite", values[bad]),
             ));
         }
@@ -179,7 +176,7 @@ pub struct RadialBin {
 pub fn check_resolution(resolution: u32) -> Result<()> {
     if resolution < 2 || !resolution.is_multiple_of(2) || resolution > MAX_RESOLUTION {
         return Err(Error::parameter(
-            "spectrum",
+            "spectrum::check_resolution",
             "resolution",
             resolution,
             format!(
@@ -191,16 +188,16 @@ pub fn check_resolution(resolution: u32) -> Result<()> {
 }
 
 /// Checks a point set: not empty, at most [`MAX_POINTS`], every coordinate finite and in `[0, 1)`.
-pub fn check_points(points: &[Point2]) -> Result<()> {
+pub(crate) fn check_points(points: &[Point2]) -> Result<()> {
     if points.is_empty() {
         return Err(Error::input(
-            "spectrum",
+            "spectrum::check_points",
             "the point set is empty; at least one point is needed",
         ));
     }
     if points.len() > MAX_POINTS {
         return Err(Error::input(
-            "spectrum",
+            "spectrum::check_points",
             format!(
                 "{} points given; at most {MAX_POINTS} are accepted",
                 points.len()
@@ -211,7 +208,7 @@ pub fn check_points(points: &[Point2]) -> Result<()> {
         for c in [p.x, p.y] {
             if !(0.0..1.0).contains(&c) {
                 return Err(Error::input(
-                    "spectrum",
+                    "spectrum::check_points",
                     format!(
                         "point {i} is ({}, {}); coordinates must be finite and in [0, 1)",
                         p.x, p.y
@@ -274,7 +271,7 @@ where
     check_resolution(resolution)?;
     if realizations == 0 || realizations > MAX_REALIZATIONS {
         return Err(Error::parameter(
-            "spectrum",
+            "spectrum::expected_spectrum",
             "realizations",
             realizations,
             format!("1 to {MAX_REALIZATIONS}"),
@@ -295,7 +292,7 @@ where
         let n = plan.as_ref().map_or(sets[0].len(), |(n, _)| *n);
         if let Some(bad) = sets.iter().position(|s| s.len() != n) {
             return Err(Error::input(
-                "spectrum",
+                "spectrum::expected_spectrum",
                 format!(
                     "realization {} has {} points, realization 0 has {n}; all must have the same count",
                     wave[bad],

@@ -82,3 +82,13 @@ pub fn is_net(pts: &[Vec2]) -> bool {
     pts.len().is_power_of_two()
         && (0..=m).all(|a| counts(pts, 1 << a, 1 << (m - a)).iter().all(|&c| c == 1))
 }
+
+/// The squared distance of two points on the unit torus, written here independently of the
+/// crate's own.
+pub fn torus_distance_squared(a: [f64; 2], b: [f64; 2]) -> f64 {
+    let d = |u: f64, v: f64| {
+        let t = (u - v).abs() % 1.0;
+        t.min(1.0 - t)
+    };
+    d(a[0], b[0]).powi(2) + d(a[1], b[1]).powi(2)
+}

@@ -3,10 +3,10 @@
 use rand::Rng;
 use rand_pcg::Pcg32;
 
+use crate::float::unit_f64_from_u32;
 use crate::grid::{TorusGrid, torus_distance_squared};
 use crate::hash::{hash_u64, stream_seed};
 use crate::occupancy::{ElementaryIntervals, Strata1D, top_bits};
-use crate::sampler::unit_f64_from_u32;
 
 /// Which constraints a new point obeys, and how many best-candidate candidates it draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -10,7 +10,7 @@
 //!   grid (`2^k x 2^k` at `4^k` points, both `2^(k+1) x 2^k` and `2^k x 2^(k+1)` at `2 4^k`).
 //! * `pmj02`: the same skeleton with every base-2 elementary interval (`2^a x 2^(m-a)`, all `a`)
 //!   enforced at every power of two: each prefix of `2^m` points is a (0,m,2)-net. The valid
-//!   strata are enumerated with Pharr's method (JCGT 2019; see [`crate::occupancy`]). In the
+//!   strata are enumerated with Pharr's method (JCGT 2019; the bitsets of the crate's occupancy module). In the
 //!   odd step one coin decides, for the whole pass, whether the third points flip the x half or
 //!   the y half of the sub-quadrant (Simon Brown's rule): with it every *aligned block*
 //!   `[k 2^m, (k+1) 2^m)` is a (0,m,2)-net too, so XOR-shuffling indices keeps the guarantees.
@@ -45,9 +45,11 @@ pub mod stochastic;
 use construct::{Construction, Variant};
 pub use stochastic::Pmj02Stochastic;
 
+use super::Epochs;
 use crate::error::{Error, Result};
-use crate::hash::stream_seed;
-use crate::sampler::{Point2, Progression, Sampler, StrataGrid, unit_f32_from_u32};
+use crate::float::unit_f32_from_u32;
+use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 
 /// The most samples a progressive PMJ sequence holds before it starts over with a new seed.
 pub const MAX_SEQUENCE_LEN: u64 = 1 << 32;
@@ -57,6 +59,79 @@ pub const DEFAULT_CANDIDATES: u32 = 100;
 
 /// The largest candidate count accepted.
 pub const MAX_CANDIDATES: u32 = 1 << 16;
+
+/// The candidates parameter of the best-candidate variants.
+const CANDIDATES: ParameterSpec = ParameterSpec {
+    parameter: Parameter::Candidates,
+    default: DEFAULT_CANDIDATES as f64,
+    allowed: "1 to 65536",
+};
+
+/// The registry entry of `pmj`.
+pub(crate) const PMJ: Entry = Entry {
+    name: "pmj",
+    description: "progressive multi-jittered: 1D strata and squarest grid at every power of two",
+    paper: "Christensen, Kensler, Kilpatrick 2018",
+    progressive: true,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "1D strata and squarest grid at every `2^m` prefix",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| Ok(Box::new(Pmj::new(p.sampler_seed()))),
+    nd: None,
+};
+
+/// The registry entry of `pmjbn`.
+pub(crate) const PMJBN: Entry = Entry {
+    name: "pmjbn",
+    description: "pmj with best-candidate blue noise (--candidates K, default 100)",
+    paper: "Christensen et al. 2018; Mitchell 1991",
+    progressive: true,
+    counts: CountRule::Any,
+    parameters: &[CANDIDATES],
+    promise: "`pmj` + best-candidate blue noise",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| {
+        let k = p.candidates.unwrap_or(DEFAULT_CANDIDATES);
+        Ok(Box::new(Pmj::pmjbn(p.sampler_seed(), k)?))
+    },
+    nd: None,
+};
+
+/// The registry entry of `pmj02`.
+pub(crate) const PMJ02: Entry = Entry {
+    name: "pmj02",
+    description: "progressive (0,m,2)-nets at every power of two (Pharr's strata enumeration)",
+    paper: "Christensen et al. 2018; Pharr 2019",
+    progressive: true,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "(0,m,2)-net at every `2^m` prefix and aligned block",
+    rates: Rates::NETS,
+    expensive: false,
+    build: |p| Ok(Box::new(Pmj::pmj02(p.sampler_seed()))),
+    nd: None,
+};
+
+/// The registry entry of `pmj02bn`.
+pub(crate) const PMJ02BN: Entry = Entry {
+    name: "pmj02bn",
+    description: "pmj02 with best-candidate placement (--candidates K, default 100)",
+    paper: "Christensen et al. 2018",
+    progressive: true,
+    counts: CountRule::Any,
+    parameters: &[CANDIDATES],
+    promise: "`pmj02` + best candidate in the valid strata",
+    rates: Rates::NONE,
+    expensive: false,
+    build: |p| {
+        let k = p.candidates.unwrap_or(DEFAULT_CANDIDATES);
+        Ok(Box::new(Pmj::pmj02bn(p.sampler_seed(), k)?))
+    },
+    nd: None,
+};
 
 /// The 4-class label of sample `index`: the XOR of its base-4 digits.
 pub fn class4(index: u64) -> u8 {
@@ -101,8 +176,8 @@ pub(crate) fn pmj_grids(n: u64, all_shapes: bool) -> Vec<StrataGrid> {
 /// A PMJ-family sequence built by construction (pmj, pmjbn, pmj02, pmj02bn).
 ///
 /// ```
-/// use strata::{Sampler, samplers::Pmj};
-/// let mut s = Pmj::pmj02(7);
+/// use strata::{Sampler, Seed, samplers::Pmj};
+/// let mut s = Pmj::pmj02(Seed(7));
 /// let pts: Vec<_> = (0..16).map(|_| s.next_sample()).collect();
 /// // a (0,4,2)-net: one point in each 4 x 4 cell, and in each 16 x 1 and 1 x 16 stratum
 /// let mut cells = vec![0; 16];
@@ -113,52 +188,49 @@ pub(crate) fn pmj_grids(n: u64, all_shapes: bool) -> Vec<StrataGrid> {
 /// ```
 #[derive(Clone, Debug)]
 pub struct Pmj {
-    seed: u64,
-    epoch: u64,
+    epochs: Epochs,
     variant: Variant,
     construction: Construction,
     points: Vec<[u32; 2]>,
-    next: u64,
 }
 
 impl Pmj {
-    fn with_variant(variant: Variant, seed: u64) -> Self {
+    fn with_variant(variant: Variant, seed: Seed) -> Self {
+        let epochs = Epochs::new(seed, MAX_SEQUENCE_LEN);
         Pmj {
-            seed,
-            epoch: 0,
+            construction: Construction::new(variant, epochs.key(0)),
+            epochs,
             variant,
-            construction: Construction::new(variant, stream_seed(seed, 0)),
             points: Vec::new(),
-            next: 0,
         }
     }
 
     /// `pmj`: progressive multi-jittered (1D strata and the squarest 2D grid at every power of
     /// two).
-    pub fn new(seed: u64) -> Self {
+    pub fn new(seed: Seed) -> Self {
         Self::with_variant(Variant::Pmj { candidates: 1 }, seed)
     }
 
     /// pmj02: a (0,m,2)-net at every power-of-two prefix and every aligned power-of-two block.
-    pub fn pmj02(seed: u64) -> Self {
+    pub fn pmj02(seed: Seed) -> Self {
         Self::with_variant(Variant::Pmj02 { candidates: 1 }, seed)
     }
 
     /// pmj with best-candidate placement among `candidates` (>= 1) per point.
-    pub fn pmjbn(seed: u64, candidates: u32) -> Result<Self> {
+    pub fn pmjbn(seed: Seed, candidates: u32) -> Result<Self> {
         Ok(Self::with_variant(
             Variant::Pmj {
-                candidates: check_candidates("pmjbn", candidates)?,
+                candidates: check_candidates(PMJBN.name, candidates)?,
             },
             seed,
         ))
     }
 
     /// pmj02 with best-candidate placement among `candidates` (>= 1) per point.
-    pub fn pmj02bn(seed: u64, candidates: u32) -> Result<Self> {
+    pub fn pmj02bn(seed: Seed, candidates: u32) -> Result<Self> {
         Ok(Self::with_variant(
             Variant::Pmj02 {
-                candidates: check_candidates("pmj02bn", candidates)?,
+                candidates: check_candidates(PMJ02BN.name, candidates)?,
             },
             seed,
         ))
@@ -215,10 +287,10 @@ fn check_candidates(name: &'static str, candidates: u32) -> Result<u32> {
 impl Sampler for Pmj {
     fn name(&self) -> &'static str {
         match self.variant {
-            Variant::Pmj { candidates: 1 } => "pmj",
-            Variant::Pmj { .. } => "pmjbn",
-            Variant::Pmj02 { candidates: 1 } => "pmj02",
-            Variant::Pmj02 { .. } => "pmj02bn",
+            Variant::Pmj { candidates: 1 } => PMJ.name,
+            Variant::Pmj { .. } => PMJBN.name,
+            Variant::Pmj02 { candidates: 1 } => PMJ02.name,
+            Variant::Pmj02 { .. } => PMJ02BN.name,
         }
     }
 
@@ -227,16 +299,13 @@ impl Sampler for Pmj {
     }
 
     fn next_sample(&mut self) -> Point2 {
-        if self.next == MAX_SEQUENCE_LEN {
-            // A new, independent sequence: never run out.
-            self.epoch += 1;
-            self.construction = Construction::new(self.variant, stream_seed(self.seed, self.epoch));
+        let (i, new_epoch) = self.epochs.advance();
+        if let Some(key) = new_epoch {
+            // a new, independent sequence: never run out
+            self.construction = Construction::new(self.variant, key);
             self.points = Vec::new();
-            self.next = 0;
         }
-        let p = self.sample(self.next as u32);
-        self.next += 1;
-        p
+        self.sample(i as u32)
     }
 
     fn strata(&self, n: u64) -> Vec<StrataGrid> {

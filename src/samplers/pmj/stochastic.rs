@@ -22,10 +22,13 @@
 //! GF(2), and read the XOR values off the inverse's columns. (The inverse is the matrix of
 //! Stirling numbers of the second kind mod 2, which the tests check independently.)
 
+use crate::float::unit_f32_from_u32;
 use crate::hash::{hash_u64, stream_seed};
-use crate::sampler::{Point2, Progression, Sampler, StrataGrid, unit_f32_from_u32};
+use crate::registry::{CountRule, Entry, Rates};
+use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 
 use super::{MAX_SEQUENCE_LEN, pmj_grids};
+use crate::samplers::Epochs;
 
 /// Number of digits (and XOR values) per dimension: 32-bit fixed point.
 const DIGITS: usize = 32;
@@ -106,35 +109,47 @@ const fn xor_values(dim: usize) -> [u32; DIGITS] {
 }
 
 /// The XOR values of pmj02's two dimensions, computed at compile time.
-pub const XORS: [[u32; DIGITS]; 2] = [xor_values(0), xor_values(1)];
+pub(crate) const XORS: [[u32; DIGITS]; 2] = [xor_values(0), xor_values(1)];
 
 /// The stochastic pmj02 sequence (progressive; O(1) per sample, 8 bytes per stored sample).
 ///
 /// ```
-/// use strata::{Sampler, samplers::Pmj02Stochastic};
-/// let mut s = Pmj02Stochastic::new(3);
+/// use strata::{Sampler, Seed, samplers::Pmj02Stochastic};
+/// let mut s = Pmj02Stochastic::new(Seed(3));
 /// let a = s.next_sample();
 /// // any sample can also be computed on its own
-/// assert_eq!(Pmj02Stochastic::point_at(3, 0), a);
+/// assert_eq!(Pmj02Stochastic::point_at(Seed(3), 0), a);
 /// ```
 #[derive(Clone, Debug)]
 pub struct Pmj02Stochastic {
-    seed: u64,
-    epoch: u64,
+    epochs: Epochs,
     key: u64,
     points: Vec<[u32; 2]>,
-    next: u64,
 }
+
+/// The registry entry of `pmj02-stochastic`.
+pub(crate) const ENTRY: Entry = Entry {
+    name: "pmj02-stochastic",
+    description: "pmj02 by stochastic generation, O(1) per sample",
+    paper: "Helmer, Christensen, Kensler 2021",
+    progressive: true,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "as `pmj02`, O(1) per sample, stratified classes",
+    rates: Rates::NETS,
+    expensive: false,
+    build: |p| Ok(Box::new(Pmj02Stochastic::new(p.sampler_seed()))),
+    nd: None,
+};
 
 impl Pmj02Stochastic {
     /// The sequence seeded by `seed`.
-    pub fn new(seed: u64) -> Self {
+    pub fn new(seed: Seed) -> Self {
+        let epochs = Epochs::new(seed, MAX_SEQUENCE_LEN);
         Pmj02Stochastic {
-            seed,
-            epoch: 0,
-            key: stream_seed(seed, 0),
+            key: epochs.key(0),
+            epochs,
             points: Vec::new(),
-            next: 0,
         }
     }
 
@@ -198,14 +213,14 @@ impl Pmj02Stochastic {
 
     /// Sample `index` of the sequence seeded by `seed`, computed without storing the sequence:
     /// O(log index) by walking the partner chain. Bit-identical to the stored sequence.
-    pub fn point_at(seed: u64, index: u32) -> Point2 {
+    pub fn point_at(seed: Seed, index: u32) -> Point2 {
         let p = Self::point_at_fixed(seed, index);
         Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]))
     }
 
     /// [`point_at`](Pmj02Stochastic::point_at) as 32-bit fixed point.
-    pub fn point_at_fixed(seed: u64, index: u32) -> [u32; 2] {
-        let key = stream_seed(seed, 0);
+    pub fn point_at_fixed(seed: Seed, index: u32) -> [u32; 2] {
+        let key = stream_seed(seed.0, 0);
         [
             Self::coordinate_at(key, index, 0),
             Self::coordinate_at(key, index, 1),
@@ -240,7 +255,7 @@ impl Pmj02Stochastic {
 
 impl Sampler for Pmj02Stochastic {
     fn name(&self) -> &'static str {
-        "pmj02-stochastic"
+        ENTRY.name
     }
 
     fn progression(&self) -> Progression {
@@ -249,36 +264,27 @@ impl Sampler for Pmj02Stochastic {
 
     #[inline]
     fn next_sample(&mut self) -> Point2 {
-        if self.next == MAX_SEQUENCE_LEN {
-            self.epoch += 1;
-            self.key = stream_seed(self.seed, self.epoch);
-            self.points = Vec::new();
-            self.next = 0;
-        }
-        let p = self.sample(self.next as u32);
-        self.next += 1;
-        p
+        let mut p = [Point2::ZERO];
+        self.fill(&mut p);
+        p[0]
     }
 
     fn fill(&mut self, out: &mut [Point2]) {
         let mut rest = out;
         while !rest.is_empty() {
-            if self.next == MAX_SEQUENCE_LEN {
-                rest[0] = self.next_sample();
-                rest = &mut rest[1..];
-                continue;
+            let (start, k, new_epoch) = self.epochs.take(rest.len() as u64);
+            if let Some(key) = new_epoch {
+                self.key = key;
+                self.points = Vec::new();
             }
-            let end = (self.next + rest.len() as u64).min(MAX_SEQUENCE_LEN);
-            self.reserve(end);
-            let k = (end - self.next) as usize;
-            let (head, tail) = rest.split_at_mut(k);
+            self.reserve(start + k);
+            let (head, tail) = rest.split_at_mut(k as usize);
             for (o, p) in head
                 .iter_mut()
-                .zip(&self.points[self.next as usize..end as usize])
+                .zip(&self.points[start as usize..(start + k) as usize])
             {
                 *o = Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]));
             }
-            self.next = end;
             rest = tail;
         }
     }
@@ -331,11 +337,11 @@ mod tests {
     #[test]
     fn random_access_equals_the_stored_sequence() {
         for seed in [0u64, 5, u64::MAX] {
-            let mut s = Pmj02Stochastic::new(seed);
+            let mut s = Pmj02Stochastic::new(Seed(seed));
             s.reserve(4096);
             for i in (0..4096u32).chain([4095]) {
                 assert_eq!(
-                    Pmj02Stochastic::point_at_fixed(seed, i),
+                    Pmj02Stochastic::point_at_fixed(Seed(seed), i),
                     s.generated()[i as usize],
                     "seed {seed} index {i}"
                 );

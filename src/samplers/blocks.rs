@@ -1,0 +1,298 @@
+//! The one piece of machinery every fixed-count sampler shares: a stream of independent sets
+//! of `N` points, block after block.
+//!
+//! A fixed-count sampler implements [`Blocks`]: how to set up a block from its key, and point
+//! `i` of the current block. Blanket implementations turn every [`Blocks`] into a
+//! [`Sampler`] (the first two coordinates) and a [`SamplerNd`] (all of them), walking through
+//! the blocks with a [`BlockCursor`]; block `b` is keyed by `stream_seed(seed, b)`. Samplers
+//! whose sets are computed point by point (jittered, multi-jittered, orthogonal arrays) answer
+//! [`Blocks::point`] on demand; samplers that build a whole set at once (Poisson disk,
+//! relaxation) implement [`SetGenerator`] and run inside [`Sets`].
+
+use crate::error::Result;
+use crate::float::unit_f32_from_f64;
+use crate::hash::stream_seed;
+use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
+
+/// Where a fixed-count sampler is in its stream: which block, which sample inside it.
+#[derive(Clone, Debug)]
+pub struct BlockCursor {
+    seed: u64,
+    count: u32,
+    block: u64,
+    index: u32,
+}
+
+impl BlockCursor {
+    /// The start of the stream of blocks of `count` samples seeded by `seed`.
+    pub fn new(seed: Seed, count: u32) -> Self {
+        BlockCursor {
+            seed: seed.0,
+            count,
+            block: 0,
+            index: 0,
+        }
+    }
+
+    /// The key of the current block.
+    fn block_key(&self) -> u64 {
+        stream_seed(self.seed, self.block)
+    }
+
+    /// The key of the current block if the next sample is its first (the block must then be
+    /// set up).
+    fn starting_block(&self) -> Option<u64> {
+        (self.index == 0).then(|| self.block_key())
+    }
+
+    /// The index of the next sample inside its block, and how many remain in the block.
+    fn position(&self) -> (u32, u32) {
+        (self.index, self.count - self.index)
+    }
+
+    /// Moves `k` samples on (`k` at most the number remaining in the block).
+    fn advance(&mut self, k: u32) {
+        self.index += k;
+        if self.index == self.count {
+            self.index = 0;
+            self.block = self.block.wrapping_add(1);
+        }
+    }
+}
+
+/// A fixed-count sampler: a stream of independent sets of [`set_len`](Blocks::set_len) points,
+/// each computed from its block's key. Implemented by this crate's fixed-count samplers;
+/// [`Sampler`] and [`SamplerNd`] come with it.
+pub trait Blocks: Clone + Send {
+    /// The registered name.
+    const NAME: &'static str;
+
+    /// Points per set.
+    fn set_len(&self) -> u32;
+
+    /// Coordinates per point (2 unless the sampler is D-dimensional).
+    fn set_dims(&self) -> u32 {
+        2
+    }
+
+    /// The stream position.
+    fn cursor(&mut self) -> &mut BlockCursor;
+
+    /// Sets up the block keyed by `key` (a well-mixed seed).
+    fn begin_block(&mut self, key: u64);
+
+    /// The first two coordinates of point `i` of the current block. (Implement this or
+    /// [`point_into`](Blocks::point_into).)
+    #[inline]
+    fn point(&self, i: u32) -> Point2 {
+        let mut p = [0.0f32; 2];
+        self.point_into(i, &mut p);
+        Point2::new(p[0], p[1])
+    }
+
+    /// Point `i` of the current block: its first `out.len()` coordinates (at most
+    /// [`set_dims`](Blocks::set_dims)).
+    #[inline]
+    fn point_into(&self, i: u32, out: &mut [f32]) {
+        let p = self.point(i);
+        for (o, v) in out.iter_mut().zip([p.x, p.y]) {
+            *o = v;
+        }
+    }
+
+    /// Points `start..start + out.len()` of the current block (a sampler may compute several
+    /// at once; the values are those of [`point`](Blocks::point)).
+    #[inline]
+    fn fill_run(&self, start: u32, out: &mut [Point2]) {
+        for (p, i) in out.iter_mut().zip(start..) {
+            *p = self.point(i);
+        }
+    }
+
+    /// The grids a complete set is stratified in, in its first two dimensions.
+    fn grids(&self) -> Vec<StrataGrid> {
+        Vec::new()
+    }
+
+    /// The grid on which the projection onto dimensions `x` and `y` of a complete set is
+    /// stratified (`x != y`, both below `set_dims`).
+    fn pair_strata(&self, x: u32, y: u32) -> Option<StrataGrid> {
+        let _ = (x, y);
+        None
+    }
+}
+
+impl<B: Blocks> Sampler for B {
+    fn name(&self) -> &'static str {
+        B::NAME
+    }
+
+    fn progression(&self) -> Progression {
+        Progression::FixedCount {
+            count: self.set_len() as u64,
+        }
+    }
+
+    #[inline]
+    fn next_sample(&mut self) -> Point2 {
+        if let Some(key) = self.cursor().starting_block() {
+            self.begin_block(key);
+        }
+        let i = self.cursor().position().0;
+        let p = self.point(i);
+        self.cursor().advance(1);
+        p
+    }
+
+    fn fill(&mut self, mut out: &mut [Point2]) {
+        while !out.is_empty() {
+            if let Some(key) = self.cursor().starting_block() {
+                self.begin_block(key);
+            }
+            let (start, remaining) = self.cursor().position();
+            let k = remaining.min(u32::try_from(out.len()).unwrap_or(u32::MAX));
+            let (head, tail) = out.split_at_mut(k as usize);
+            self.fill_run(start, head);
+            self.cursor().advance(k);
+            out = tail;
+        }
+    }
+
+    fn strata(&self, n: u64) -> Vec<StrataGrid> {
+        if n == self.set_len() as u64 {
+            self.grids()
+        } else {
+            Vec::new()
+        }
+    }
+}
+
+impl<B: Blocks> SamplerNd for B {
+    fn name(&self) -> &'static str {
+        B::NAME
+    }
+
+    fn dimensions(&self) -> u32 {
+        self.set_dims()
+    }
+
+    fn progression(&self) -> Progression {
+        Progression::FixedCount {
+            count: self.set_len() as u64,
+        }
+    }
+
+    fn next_point(&mut self, out: &mut [f32]) {
+        if let Some(key) = self.cursor().starting_block() {
+            self.begin_block(key);
+        }
+        let i = self.cursor().position().0;
+        let d = (self.set_dims() as usize).min(out.len());
+        self.point_into(i, &mut out[..d]);
+        self.cursor().advance(1);
+    }
+
+    fn projection_strata(&self, x: u32, y: u32) -> Option<StrataGrid> {
+        if x == y || x >= self.set_dims() || y >= self.set_dims() {
+            return None;
+        }
+        self.pair_strata(x, y)
+    }
+}
+
+/// A generator of whole point sets (Poisson disk, relaxation): each set is built at once from a
+/// key, and [`Sets`] streams one set per block.
+pub trait SetGenerator: Clone + Send {
+    /// The registered name.
+    const NAME: &'static str;
+    /// Points per set.
+    fn count(&self) -> u32;
+    /// The set for `key` (a well-mixed seed), as `f64` points in `[0,1)^2`.
+    fn generate(&self, key: u64) -> Result<Vec<[f64; 2]>>;
+}
+
+/// The fixed-count sampler over a [`SetGenerator`]: block `b` is the set generated from
+/// `stream_seed(seed, b)`.
+///
+/// The first set is generated by the constructor, so an impossible request fails there. If a
+/// later block's generation fails (possible only for dart throwing close to saturation), up to
+/// 8 further keys (`stream_seed(key, k)`) are tried; if all fail, that block repeats the first
+/// set.
+#[derive(Clone, Debug)]
+pub struct Sets<G: SetGenerator> {
+    generator: G,
+    first_key: u64,
+    first: Vec<Point2>,
+    current: Vec<Point2>,
+    cursor: BlockCursor,
+}
+
+impl<G: SetGenerator> Sets<G> {
+    /// Sets from `generator` seeded by `seed`; generates (and checks) the first set.
+    pub fn new(generator: G, seed: Seed) -> Result<Self> {
+        let cursor = BlockCursor::new(seed, generator.count());
+        let first_key = cursor.block_key();
+        let first = to_points(&generator.generate(first_key)?);
+        Ok(Sets {
+            generator,
+            first_key,
+            current: first.clone(),
+            first,
+            cursor,
+        })
+    }
+
+    /// The set of the current block.
+    pub fn current_set(&self) -> &[Point2] {
+        &self.current
+    }
+
+    /// The generator.
+    pub fn generator(&self) -> &G {
+        &self.generator
+    }
+}
+
+impl<G: SetGenerator> Blocks for Sets<G> {
+    const NAME: &'static str = G::NAME;
+
+    fn set_len(&self) -> u32 {
+        self.generator.count()
+    }
+
+    fn cursor(&mut self) -> &mut BlockCursor {
+        &mut self.cursor
+    }
+
+    fn begin_block(&mut self, key: u64) {
+        if key == self.first_key {
+            self.current.clone_from(&self.first);
+            return;
+        }
+        let set = (0..9u64)
+            .map(|attempt| {
+                if attempt == 0 {
+                    key
+                } else {
+                    stream_seed(key, attempt)
+                }
+            })
+            .find_map(|k| self.generator.generate(k).ok());
+        match set {
+            Some(s) => self.current = to_points(&s),
+            None => self.current.clone_from(&self.first),
+        }
+    }
+
+    #[inline]
+    fn point(&self, i: u32) -> Point2 {
+        self.current[i as usize]
+    }
+}
+
+/// `f64` points in `[0,1)^2` as `f32` points (rounding toward zero; never 1.0).
+pub(crate) fn to_points(p: &[[f64; 2]]) -> Vec<Point2> {
+    p.iter()
+        .map(|q| Point2::new(unit_f32_from_f64(q[0]), unit_f32_from_f64(q[1])))
+        .collect()
+}

@@ -1,0 +1,78 @@
+//! The position of a progressive sampler in its endless stream.
+//!
+//! A progressive sequence has a finite length (`2^32` points for the digital and PMJ
+//! sequences, whose indices are 32-bit; less for best candidate, whose cost grows with its
+//! length). [`Sampler::next_sample`](crate::Sampler::next_sample) never ends, so when a sequence
+//! is exhausted the sampler starts a new epoch: a fresh, independent sequence keyed by
+//! `stream_seed(seed, epoch)`. Every progressive sampler counts its samples with an [`Epochs`].
+
+use crate::hash::stream_seed;
+use crate::sampler::Seed;
+
+/// Sample `next` of epoch `epoch` of a progressive sampler whose sequences hold `len` points.
+#[derive(Clone, Debug)]
+pub(crate) struct Epochs {
+    seed: u64,
+    len: u64,
+    epoch: u64,
+    next: u64,
+}
+
+impl Epochs {
+    /// The start of the stream.
+    pub(crate) fn new(seed: Seed, len: u64) -> Self {
+        Epochs {
+            seed: seed.0,
+            len,
+            epoch: 0,
+            next: 0,
+        }
+    }
+
+    /// The key of epoch `epoch`.
+    pub(crate) fn key(&self, epoch: u64) -> u64 {
+        stream_seed(self.seed, epoch)
+    }
+
+    /// The index (inside its sequence) of the next sample, and the key of the new epoch when
+    /// that sample starts one (never for the first epoch: the sampler set it up itself).
+    #[inline]
+    pub(crate) fn advance(&mut self) -> (u64, Option<u64>) {
+        let (start, _, key) = self.take(1);
+        (start, key)
+    }
+
+    /// Up to `max` (>= 1) next samples inside one sequence: the first index, how many, and the
+    /// key of the new epoch when they start one.
+    #[inline]
+    pub(crate) fn take(&mut self, max: u64) -> (u64, u64, Option<u64>) {
+        let mut key = None;
+        if self.next == self.len {
+            self.epoch += 1;
+            self.next = 0;
+            key = Some(self.key(self.epoch));
+        }
+        let start = self.next;
+        let count = max.min(self.len - start);
+        self.next += count;
+        (start, count, key)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn epochs_restart_with_fresh_keys() {
+        let mut e = Epochs::new(Seed(5), 3);
+        let got: Vec<_> = (0..7).map(|_| e.advance()).collect();
+        assert_eq!(got[..3], [(0, None), (1, None), (2, None)]);
+        assert_eq!(got[3], (0, Some(stream_seed(5, 1))));
+        assert_eq!(got[6], (0, Some(stream_seed(5, 2))));
+        let mut e = Epochs::new(Seed(5), 10);
+        assert_eq!(e.take(4), (0, 4, None));
+        assert_eq!(e.take(100), (4, 6, None));
+        assert_eq!(e.take(100), (0, 10, Some(stream_seed(5, 1))));
+    }
+}

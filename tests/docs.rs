@@ -1,0 +1,54 @@
+//! The documents that state facts about the samplers agree with the registry, which each
+//! sampler's own file declares: the table in `docs/samplers.md` (included in the crate docs)
+//! and in the README. `STRATA_BLESS=1 cargo test --test docs` rewrites `docs/samplers.md`.
+
+use std::path::Path;
+
+use strata::registry;
+
+fn read(path: &str) -> String {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
+    std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+#[test]
+fn the_sampler_tables_are_the_registry() {
+    let table = registry::table();
+    if std::env::var_os("STRATA_BLESS").is_some() {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/samplers.md");
+        std::fs::write(p, &table).unwrap();
+    }
+    assert_eq!(
+        read("docs/samplers.md"),
+        table,
+        "docs/samplers.md is stale (STRATA_BLESS=1)"
+    );
+    assert!(
+        read("README.md").contains(&table),
+        "the README's sampler table differs from registry::table():\n{table}"
+    );
+    // every registered sampler has a row, and no row names an unregistered one
+    let rows: Vec<&str> = table.lines().skip(2).collect();
+    assert_eq!(rows.len(), registry::entries().len());
+    for (row, e) in rows.iter().zip(registry::entries()) {
+        assert!(row.starts_with(&format!("| `{}` |", e.name)), "{row}");
+    }
+}
+
+#[test]
+fn nothing_refers_outside_the_repository() {
+    for f in [
+        "README.md",
+        "docs/results.md",
+        "src/lib.rs",
+        "examples/points.rs",
+        "examples/spectrum.rs",
+        "tests/cli.rs",
+    ] {
+        let text = read(f);
+        assert!(
+            !text.contains("../shared"),
+            "{f} refers outside the repository"
+        );
+    }
+}
