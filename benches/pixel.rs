@@ -1,5 +1,5 @@
 //! The path-tracer adapter: time per 2D value (`get_2d`) for every adapter sequence (random,
-//! padded jittered, pmj02, Sobol', Halton), against the `sobol_burley` crate (Owen-scrambled
+//! padded jittered, pmj02, Sobol', Halton, the lattice, Z-ordered Sobol' and pmj02), against the `sobol_burley` crate (Owen-scrambled
 //! Sobol', the peer) in the same run.
 //!
 //! Each iteration renders a 32 x 32 "image": for every pixel and sample index (16 spp) it starts
@@ -23,9 +23,9 @@ fn pixel(c: &mut Criterion) {
     group
         .sample_size(30)
         .measurement_time(Duration::from_secs(3));
-    for name in ["random", "jittered", "pmj02", "sobol", "halton"] {
-        let mut s =
-            PixelSampler::new(Sequence::by_name(name).unwrap(), SPP, strata::Seed(1)).unwrap();
+    for name in Sequence::NAMES {
+        let sequence = Sequence::by_name_at(name, [SIDE, SIDE]).unwrap();
+        let mut s = PixelSampler::new(sequence, SPP, strata::Seed(1)).unwrap();
         group.bench_function(BenchmarkId::from_parameter(name), |b| {
             b.iter(|| {
                 let mut acc = 0.0f32;

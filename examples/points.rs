@@ -16,7 +16,7 @@ use strata::pixel::{PixelSampler, Sequence};
 use strata::registry::{self, Params};
 
 const USAGE: &str = "points --sampler NAME -n N [--seed S] [--dims D] [--pixel X,Y] [--radius RHO] \
-[--iterations K] [--strength T] [--candidates K] [--png FILE] [--no-header] [--list]";
+[--iterations K] [--strength T] [--candidates K] [--resolution WxH] [--png FILE] [--no-header] [--list]";
 
 const HELP: &str = "\
 points: print a sample set as CSV (header, then one row per sample in sequence order), or draw it.
@@ -30,6 +30,8 @@ Options:
   --seed S           seed of everything (u64, default 1); same arguments, same bytes
   --dims D           dimensions per sample (default 2)
   --pixel X,Y        the values the path-tracer adapter gives pixel (X,Y)
+  --resolution WxH   the image of the Z-ordered adapter sequences zsobol and zpmj02
+                     (default 256x256; the others ignore it)
   --radius RHO       relative Poisson-disk radius, 0 < RHO < 1
   --iterations K     Lloyd / CCVT iterations
   --strength T       orthogonal-array strength
@@ -48,6 +50,7 @@ struct Args {
     params: Params,
     dims: u64,
     pixel: Option<(u64, u64)>,
+    resolution: [u32; 2],
     png: Option<std::path::PathBuf>,
     header: bool,
 }
@@ -60,6 +63,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         params: Params::new(1),
         dims: 2,
         pixel: None,
+        resolution: strata::pixel::DEFAULT_Z_RESOLUTION,
         png: None,
         header: true,
     };
@@ -88,6 +92,19 @@ fn parse() -> Result<Option<Args>, CliError> {
                 common::sampler_param(&flag, &mut parser, &mut args.params)?
             }
             Long("png") => args.png = Some(parser.value()?.into()),
+            Long("resolution") => {
+                let v = string_value("--resolution", parser.value()?)?;
+                let bad = || {
+                    cli_error(format!(
+                        "--resolution {v:?} is not WxH; allowed: two whole numbers 1 to 65536, e.g. 256x256"
+                    ))
+                };
+                let (w, h) = v.split_once(['x', 'X']).ok_or_else(bad)?;
+                args.resolution = [
+                    parse_int("--resolution", w, 1, 65536)? as u32,
+                    parse_int("--resolution", h, 1, 65536)? as u32,
+                ];
+            }
             Long("no-header") => args.header = false,
             Long("list") => {
                 for e in registry::entries() {
@@ -129,7 +146,12 @@ fn main() -> ExitCode {
                 "-n N is required (1 to {MAX_CLI_COUNT}); usage: {USAGE}"
             ))
         })?;
-        let entry = registry::find(&name)?;
+        // the adapter's sequences (with --pixel) include ones that are not registered samplers
+        let entry = if args.pixel.is_some() {
+            None
+        } else {
+            Some(registry::find(&name)?)
+        };
         let mut params = args.params.clone();
         params.count = n;
         let dims = args.dims as usize;
@@ -138,7 +160,7 @@ fn main() -> ExitCode {
         let mut grids = Vec::new();
         let mut projection_grids = Vec::new();
         if let Some((px, py)) = args.pixel {
-            let sequence = Sequence::by_name(&name)?;
+            let sequence = Sequence::by_name_at(&name, args.resolution)?;
             let spp = u32::try_from(n)
                 .map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
             let mut sampler = PixelSampler::new(sequence, spp, strata::Seed(args.params.seed))?;
@@ -162,7 +184,7 @@ fn main() -> ExitCode {
                 }
             }
         } else if dims == 2 {
-            let mut sampler = entry.build(&params)?;
+            let mut sampler = entry.expect("no --pixel").build(&params)?;
             let mut points = vec![glam::Vec2::ZERO; n as usize];
             sampler.fill(&mut points);
             for (row, p) in values.chunks_exact_mut(2).zip(&points) {
@@ -171,7 +193,9 @@ fn main() -> ExitCode {
             }
             grids = sampler.strata(n);
         } else {
-            let mut sampler = entry.build_nd(&params, args.dims as u32)?;
+            let mut sampler = entry
+                .expect("no --pixel")
+                .build_nd(&params, args.dims as u32)?;
             sampler.fill(&mut values);
             // the grid of each 2D projection, row y, column x
             projection_grids = (0..dims * dims)

@@ -31,6 +31,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use strata::io::{self, Canvas, LinePlot, Rgb, Series};
 use strata::pixel::{PixelSampler, Sequence, warp};
+use strata::spectrum::{self, ErrorImage};
 
 const USAGE: &str = "render [--samplers a,b,..|all] [--spp N[,N,..]] [--size WxH] \
 [--scene cornell|spheres] [--reference-spp N] [--seed S] [--seeds K] [--out DIR] [--markdown FILE]";
@@ -44,7 +45,8 @@ Usage:
 
 Options:
   --samplers a,b,..|all  samplers with a path-tracer adapter: random, jittered, pmj02, sobol,
-                         halton (default all)
+                         halton, lattice, zsobol, zpmj02 (default all; the Z-ordered ones
+                         for the image size)
   --spp N[,N,..]         samples per pixel, one or more counts (default 4,16,64,256; each 1 to
                          65536; jittered needs squares)
   --size WxH             image size (default 128x128; each side 8 to 4096)
@@ -61,12 +63,17 @@ Options:
   --markdown FILE        also write the tables into FILE, as its section 'render'
   -h, --help             this text
 
-Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms: one row per sampler and count;
-rmse over all pixels and channels of linear radiance, rel_rmse of |I - R| / (R + 0.02) on
-luminance, ms the render time on all cores), NAME.png and NAME-error.png (the largest count;
-the error map is the per-pixel relative error, colour-mapped from 0 to 0.5), NAME-SPP.png for
-each count, reference.png, compare.png (one row per sampler) and convergence.png (RMSE against
-spp with the fitted slope per sampler); prints the table and the slopes.";
+Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband: one
+row per sampler and count; rmse over all pixels and channels of linear radiance, rel_rmse of
+|I - R| / (R + 0.02) on luminance, ms the render time on all cores; the last three describe the
+signed luminance error image: its RMSE after a Gaussian blur of sigma 1 and 2 pixels, and the
+share of its power (mean error excluded) below 1/8 cycle per pixel, about 0.05 for white
+error), NAME.png and NAME-error.png (the largest count; the error map is the per-pixel
+relative error, colour-mapped from 0 to 0.5), NAME-SPP.png and NAME-SPP-error-spectrum.png
+(the signed error image beside its periodogram) for each count, reference.png, compare.png
+(one row per sampler), blue-noise.png (every sampler's error image and periodogram at the
+smallest count) and convergence.png (RMSE against spp with the fitted slope per sampler);
+prints the table and the slopes.";
 
 /// Which scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -749,6 +756,66 @@ struct Row {
     rmse: f64,
     rel_rmse: f64,
     ms: f64,
+    blur1: f64,
+    blur2: f64,
+    lowband: f64,
+    /// The error image's measures for the first seed (for the pictures), and its pixels.
+    errors: ErrorImage,
+    error_pixels: Vec<f64>,
+}
+
+/// The signed luminance error of every pixel.
+fn luminance_errors(image: &[Vec3], reference: &[Vec3]) -> Vec<f64> {
+    image
+        .iter()
+        .zip(reference)
+        .map(|(a, r)| luminance(*a) as f64 - luminance(*r) as f64)
+        .collect()
+}
+
+/// A diverging colour map for signed values in [-1, 1]: blue, white, red.
+fn diverging(t: f32) -> Rgb {
+    let t = t.clamp(-1.0, 1.0);
+    let mix = |a: f32, b: f32, u: f32| (a + (b - a) * u).round() as u8;
+    if t < 0.0 {
+        let u = -t;
+        Rgb::new(
+            mix(255.0, 33.0, u),
+            mix(255.0, 102.0, u),
+            mix(255.0, 172.0, u),
+        )
+    } else {
+        Rgb::new(
+            mix(255.0, 178.0, t),
+            mix(255.0, 24.0, t),
+            mix(255.0, 43.0, t),
+        )
+    }
+}
+
+/// The signed error image (scaled to `scale`) beside its periodogram (log scale, DC centred).
+fn error_image_canvas(e: &ErrorImage, errors: &[f64], scale: f64) -> Canvas {
+    let (w, h) = (e.width, e.height);
+    let mut c = Canvas::new(2 * w + 8, h, Rgb::WHITE);
+    for (i, v) in errors.iter().enumerate() {
+        c.set(
+            (i as u32 % w) as i64,
+            (i as u32 / w) as i64,
+            diverging((v / scale) as f32),
+        );
+    }
+    // the periodogram over 3 decades below its largest value
+    let top = e.spectrum.iter().cloned().fold(f64::MIN_POSITIVE, f64::max);
+    for (i, p) in e.spectrum.iter().enumerate() {
+        let t = ((p / top).max(1e-3).log10() + 3.0) / 3.0;
+        let g = (t.clamp(0.0, 1.0) * 255.0) as u8;
+        c.set(
+            (w + 8 + i as u32 % w) as i64,
+            (i as u32 / w) as i64,
+            Rgb::new(g, g, g),
+        );
+    }
+    c
 }
 
 /// The least-squares slope of `log y` against `log x`.
@@ -782,7 +849,12 @@ fn main() -> ExitCode {
         let sequences: Vec<(String, Sequence)> = args
             .samplers
             .iter()
-            .map(|n| Ok((n.clone(), Sequence::by_name(n)?)))
+            .map(|n| {
+                Ok((
+                    n.clone(),
+                    Sequence::by_name_at(n, [args.size.0, args.size.1])?,
+                ))
+            })
             .collect::<Result<_, strata::Error>>()?;
         for (_, seq) in &sequences {
             for &spp in &args.spp {
@@ -811,6 +883,7 @@ fn main() -> ExitCode {
         for (name, seq) in &sequences {
             for &spp in &args.spp {
                 let (mut mse, mut rel, mut ms, mut first) = (0.0f64, 0.0f64, 0.0f64, None);
+                let (mut blur1, mut blur2, mut lowband, mut errors) = (0.0, 0.0, 0.0, None);
                 for k in 0..args.seeds as u64 {
                     let start = Instant::now();
                     let image = render(&scene, seq.clone(), spp, size, args.seed.wrapping_add(k))?;
@@ -828,6 +901,16 @@ fn main() -> ExitCode {
                         .map(|(a, r)| (relative_error(*a, *r) as f64).powi(2))
                         .sum::<f64>()
                         / n;
+                    let e = spectrum::error_image(
+                        &luminance_errors(&image, &reference),
+                        size.0,
+                        size.1,
+                    )?;
+                    let seeds = args.seeds as f64;
+                    blur1 += e.blur1_rmse.powi(2) / seeds;
+                    blur2 += e.blur2_rmse.powi(2) / seeds;
+                    lowband += e.lowband / seeds;
+                    errors.get_or_insert(e);
                     first.get_or_insert(image);
                 }
                 let image = first.expect("at least one seed");
@@ -846,6 +929,13 @@ fn main() -> ExitCode {
                         &error_canvas(&image, &reference, size),
                     )?;
                 }
+                let errors = errors.expect("at least one seed");
+                let e = luminance_errors(&image, &reference);
+                let scale = 4.0 * errors.rmse.max(1e-9);
+                io::write_png(
+                    args.out.join(format!("{name}-{spp}-error-spectrum.png")),
+                    &error_image_canvas(&errors, &e, scale),
+                )?;
                 rows.push(Row {
                     name: name.clone(),
                     spp,
@@ -853,26 +943,34 @@ fn main() -> ExitCode {
                     rmse: mse.sqrt(),
                     rel_rmse: rel.sqrt(),
                     ms,
+                    blur1: blur1.sqrt(),
+                    blur2: blur2.sqrt(),
+                    lowband,
+                    errors,
+                    error_pixels: e,
                 });
             }
         }
 
         write_compare(&args, &rows, &reference, ref_spp)?;
 
-        let mut csv = String::from("sampler,spp,rmse,rel_rmse,ms\n");
-        println!("| sampler | spp | rmse | rel_rmse | ms |");
-        println!("|---|---|---|---|---|");
+        let mut csv = String::from("sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband\n");
+        let mut full = String::from(
+            "| sampler | spp | rmse | rel_rmse | ms | blur1_rmse | blur2_rmse | lowband |\n|---|---|---|---|---|---|---|---|\n",
+        );
         for r in &rows {
             csv.push_str(&format!(
-                "{},{},{},{},{}\n",
-                r.name, r.spp, r.rmse, r.rel_rmse, r.ms
+                "{},{},{},{},{},{},{},{}\n",
+                r.name, r.spp, r.rmse, r.rel_rmse, r.ms, r.blur1, r.blur2, r.lowband
             ));
-            println!(
-                "| {} | {} | {:.5} | {:.4} | {:.1} |",
-                r.name, r.spp, r.rmse, r.rel_rmse, r.ms
-            );
+            full.push_str(&format!(
+                "| {} | {} | {:.5} | {:.4} | {:.1} | {:.5} | {:.5} | {:.4} |\n",
+                r.name, r.spp, r.rmse, r.rel_rmse, r.ms, r.blur1, r.blur2, r.lowband
+            ));
         }
+        print!("{full}");
         io::write_text(args.out.join("render.csv"), &csv)?;
+        write_blue_noise(&args, &rows)?;
 
         // RMSE against spp, with the fitted slope per sampler
         let mut plot = LinePlot::new(
@@ -921,11 +1019,25 @@ fn main() -> ExitCode {
         if let Some(path) = &args.markdown {
             common::write_markdown_section(
                 path,
-                "render",
+                &format!(
+                    "render-{}-{}",
+                    match args.scene {
+                        SceneKind::Cornell => "cornell",
+                        SceneKind::Spheres => "spheres",
+                    },
+                    args.spp
+                        .iter()
+                        .map(|n| n.to_string())
+                        .collect::<Vec<_>>()
+                        .join(",")
+                ),
                 &format!(
                     "RMSE of linear radiance against the reference ({} scene, {}x{}, reference: \
                      Sobol' at {ref_spp} spp), root of the mean over pixels, channels and {} \
-                     seeds; slope of log RMSE against log spp.\n\n{table}",
+                     seeds; slope of log RMSE against log spp.\n\n{table}\nThe error image \
+                     (signed luminance error): its RMSE after a Gaussian blur of sigma 1 and 2 \
+                     pixels, and the share of its power below 1/8 cycle per pixel (white \
+                     error: about 0.05).\n\n{full}",
                     match args.scene {
                         SceneKind::Cornell => "cornell",
                         SceneKind::Spheres => "spheres",
@@ -940,6 +1052,55 @@ fn main() -> ExitCode {
         eprintln!("wrote {} renders into {}", rows.len(), args.out.display());
         Ok(())
     })
+}
+
+/// blue-noise.png: per sampler (side by side), at the smallest count, the signed error image
+/// (one colour scale for all) above its periodogram: white error against blue.
+fn write_blue_noise(args: &Args, rows: &[Row]) -> Result<(), CliError> {
+    let smallest = args.spp[0];
+    let mine: Vec<&Row> = rows.iter().filter(|r| r.spp == smallest).collect();
+    let Some(first) = mine.first() else {
+        return Ok(());
+    };
+    let (w, h) = (first.errors.width, first.errors.height);
+    let label_h = 34u32;
+    let cell_w = w.max(150) + 12;
+    let scale = 4.0 * mine.iter().map(|r| r.errors.rmse).fold(1e-9, f64::max);
+    let mut c = Canvas::new(
+        8 + cell_w * mine.len() as u32,
+        label_h + 2 * h + 16,
+        Rgb::WHITE,
+    );
+    for (k, r) in mine.iter().enumerate() {
+        let x = 8 + cell_w * k as u32;
+        io::label(
+            &mut c,
+            &format!("{} at {} spp", r.name, r.spp),
+            x as i32,
+            2,
+            12,
+        );
+        io::label(
+            &mut c,
+            &format!(
+                "low band {:.3}, blur2 {:.4}",
+                r.errors.lowband, r.errors.blur2_rmse
+            ),
+            x as i32,
+            17,
+            11,
+        );
+        let both = error_image_canvas(&r.errors, &r.error_pixels, scale);
+        // the canvas holds the image and the spectrum side by side: stack them
+        let mut image = Canvas::new(w, h, Rgb::WHITE);
+        image.paste(&both, 0, 0);
+        let mut spectrum = Canvas::new(w, h, Rgb::WHITE);
+        spectrum.paste(&both, -((w + 8) as i64), 0);
+        c.paste(&image, x as i64, label_h as i64);
+        c.paste(&spectrum, x as i64, (label_h + h + 8) as i64);
+    }
+    io::write_png(args.out.join("blue-noise.png"), &c)?;
+    Ok(())
 }
 
 /// compare.png: the reference, then one row per sampler: its image at each count, and the

@@ -48,6 +48,10 @@ pub(crate) enum Stream {
     SobolShuffle = 0x79c6_8e4a,
     /// Halton: the digit permutations of dimension 0 (dimension `d` adds `d`).
     HaltonDigits = 0x4a17,
+    /// Z-ordered adapter sequences: the base-4 scramble of the pixels' Morton codes.
+    ZOrderedPixels = 0x7a01,
+    /// Z-ordered adapter sequences: the global sequence of each dimension.
+    ZOrderedDraws = 0x7a02,
     /// Lloyd: the jitter that separates coincident points.
     #[cfg(feature = "lloyd")]
     LloydJitter = 0x110d,
@@ -134,6 +138,22 @@ pub const fn owen_scramble_rev(mut n: u32, seed: u32) -> u32 {
     n ^= n.wrapping_mul(0x3d20_adea);
     n = n.wrapping_add(seed);
     n = n.wrapping_mul((seed >> 16) | 1);
+    n ^= n.wrapping_mul(0x0552_6c56);
+    n ^ n.wrapping_mul(0x53a2_2864)
+}
+
+/// A nested uniform scramble in base 4, in the bit-reversed domain: every base-4 digit (an
+/// aligned pair of bits) permuted by a function of the less significant digits and `seed`.
+/// Vegdahl's hash ("A fast hash for base-4 Owen scrambling", 2022, as in Blender Cycles):
+/// [`owen_scramble_rev`] with a step that mixes the two bits of every pair.
+#[inline]
+pub(crate) const fn owen_scramble_base4_rev(mut n: u32, seed: u32) -> u32 {
+    const PAIRS: u32 = 0x5555_5555;
+    n ^= n.wrapping_mul(0x3d20_adea);
+    n ^= (n >> 1) & (n << 1) & PAIRS;
+    n = n.wrapping_add(seed);
+    n = n.wrapping_mul((seed >> 16) | 1);
+    n ^= (n >> 1) & (n << 1) & PAIRS;
     n ^= n.wrapping_mul(0x0552_6c56);
     n ^ n.wrapping_mul(0x53a2_2864)
 }

@@ -298,3 +298,103 @@ fn a_bounce_that_overruns_its_budget_is_caught_in_debug_builds() {
         let _ = s.get_2d(); // the fifth pair takes 16-17: bounce 1's
     }
 }
+
+#[test]
+fn z_ordered_sequences_need_a_resolution_and_fall_back_outside_it() {
+    assert!(Sequence::zsobol(0, 10).is_err());
+    assert!(Sequence::zpmj02(10, 1 << 17).is_err());
+    let e = Sequence::zsobol(0, 4).unwrap_err().to_string();
+    assert!(e.contains("width") && e.contains("1 to 65536"), "{e}");
+    // by name: the default resolution
+    assert_eq!(
+        Sequence::by_name("zsobol").unwrap().name(),
+        Sequence::zsobol(256, 256).unwrap().name()
+    );
+    for seq in [
+        Sequence::zsobol(20, 12).unwrap(),
+        Sequence::zpmj02(20, 12).unwrap(),
+    ] {
+        let s = PixelSampler::new(seq.clone(), 16, strata::Seed(4)).unwrap();
+        // inside: every pixel's block is a net at every power of two
+        for pixel in [[0u32, 0], [19, 11], [7, 5]] {
+            for n in [4u64, 16] {
+                for dim in [0u32, 2, 9] {
+                    let pts: Vec<_> = (0..n).map(|i| s.sample_2d(pixel, i, dim)).collect();
+                    assert!(is_net(&pts), "{} {pixel:?} n {n} dim {dim}", seq.name());
+                }
+            }
+        }
+        // past the block (indices >= 16) and outside the image: independent values, no panic
+        for (pixel, index) in [
+            ([3u32, 3], 16u64),
+            ([3, 3], u64::MAX),
+            ([20, 0], 0),
+            ([u32::MAX, 5], 3),
+        ] {
+            let v = s.sample_2d(pixel, index, 6);
+            assert!((0.0..1.0).contains(&v.x) && (0.0..1.0).contains(&v.y));
+        }
+        // neighbouring pixels take complementary blocks: a 2 x 2 tile at 4 spp is a 16-point net
+        // in dims 2-3 for some aligned tile (the scrambled Z curve keeps aligned tiles together)
+        let tile: Vec<_> = [[8u32, 4], [9, 4], [8, 5], [9, 5]]
+            .iter()
+            .flat_map(|&p| (0..16u64).map(move |i| (p, i)))
+            .map(|(p, i)| s.sample_2d(p, i, 2))
+            .collect();
+        assert!(is_net(&tile), "{}: the 2 x 2 tile is not a net", seq.name());
+    }
+}
+
+#[test]
+fn z_ordering_moves_the_error_of_a_shared_integrand_to_high_frequencies() {
+    // Every pixel integrates the same quarter disk (dimensions 2-3): with pixel-independent
+    // sequences the error image is white (about 5% of its power below 1/8 cycle per pixel);
+    // along the Z curve, neighbours' samples complement each other and the error is blue.
+    let (w, h) = (64u32, 64u32);
+    let measure = |seq: Sequence, spp: u32| {
+        let s = PixelSampler::new(seq, spp, strata::Seed(3)).unwrap();
+        let e: Vec<f64> = (0..w * h)
+            .map(|k| {
+                let p = [k % w, k / w];
+                let hits = (0..spp as u64)
+                    .filter(|&i| {
+                        let v = s.sample_2d(p, i, 2);
+                        v.x * v.x + v.y * v.y < 2.0 / std::f32::consts::PI
+                    })
+                    .count();
+                hits as f64 / spp as f64 - 0.5
+            })
+            .collect();
+        strata::spectrum::error_image(&e, w, h).unwrap()
+    };
+    for spp in [1u32, 4, 16] {
+        for (white, blue) in [
+            (Sequence::sobol(), Sequence::zsobol(w, h).unwrap()),
+            (Sequence::pmj02(), Sequence::zpmj02(w, h).unwrap()),
+        ] {
+            let (a, b) = (measure(white.clone(), spp), measure(blue.clone(), spp));
+            assert!(a.lowband > 0.03, "{} at {spp}: {}", white.name(), a.lowband);
+            assert!(
+                b.lowband < 0.5 * a.lowband && b.blur2_rmse < 0.7 * a.blur2_rmse,
+                "{} at {spp}: low band {:.4} vs {:.4}, blur2 {:.5} vs {:.5}",
+                blue.name(),
+                b.lowband,
+                a.lowband,
+                b.blur2_rmse,
+                a.blur2_rmse
+            );
+        }
+    }
+}
+
+#[test]
+fn the_lattice_is_stratified_in_both_axes_at_every_power_of_two() {
+    let s = PixelSampler::new(Sequence::lattice(), 64, strata::Seed(2)).unwrap();
+    for dim in [0u32, 6] {
+        for n in [8u64, 64, 256] {
+            let pts: Vec<_> = (0..n).map(|i| s.sample_2d([5, 1], i, dim)).collect();
+            common::assert_one_per_cell(&pts, n as u32, 1, "lattice x");
+            common::assert_one_per_cell(&pts, 1, n as u32, "lattice y");
+        }
+    }
+}

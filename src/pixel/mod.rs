@@ -106,11 +106,11 @@ pub mod warp;
 use glam::Vec2;
 
 pub use rng::PixelRng;
-pub use sequence::{PMJ02_TABLE_LEN, Sequence};
-use sequence::{SampleIndex, SamplesPerPixel};
+pub use sequence::{DEFAULT_Z_RESOLUTION, MAX_Z_RESOLUTION, PMJ02_TABLE_LEN, Sequence};
+use sequence::{NO_Z, SampleIndex, SamplesPerPixel};
 
 use crate::error::Result;
-use crate::hash::{GOLDEN_GAMMA, mix64, stream_seed};
+use crate::hash::{GOLDEN_GAMMA, Stream, mix64, stream_seed};
 use crate::sampler::Seed;
 
 /// Where each bounce of a path starts in the dimensions of a pixel sample: the camera takes
@@ -154,7 +154,9 @@ pub struct PixelSampler {
     spp: SamplesPerPixel,
     seed: u64,
     layout: DimensionLayout,
-    pixel_key: u64,
+    pixel: PixelKeys,
+    /// The key of the global sequence of the Z-ordered sequences.
+    z_key: u64,
     /// The current sample: its index modulo `2^32` and which `2^32` block it is in.
     sample: SampleIndex,
     epoch: u32,
@@ -177,7 +179,11 @@ impl PixelSampler {
             spp: SamplesPerPixel::new(samples_per_pixel),
             seed,
             layout: DimensionLayout::default(),
-            pixel_key: pixel_key(seed, [0, 0]),
+            pixel: PixelKeys {
+                key: pixel_key(seed, [0, 0]),
+                z: NO_Z,
+            },
+            z_key: stream_seed(seed, Stream::ZOrderedDraws.id()),
             sample: SampleIndex::new(0),
             epoch: 0,
             dim: 0,
@@ -222,7 +228,7 @@ impl PixelSampler {
     /// Starts sample `index` of `pixel`, at dimension `dim` (usually 0).
     #[inline]
     pub fn start_pixel_sample(&mut self, pixel: [u32; 2], index: u64, dim: u32) {
-        self.pixel_key = pixel_key(self.seed, pixel);
+        self.pixel = self.keys(pixel);
         self.sample = SampleIndex::new(index as u32);
         self.epoch = (index >> 32) as u32;
         self.dim = dim;
@@ -266,7 +272,7 @@ impl PixelSampler {
     #[inline]
     pub fn get_1d(&mut self) -> f32 {
         self.check_budget(1);
-        let v = self.value_1d(self.pixel_key, self.sample, self.epoch, self.dim);
+        let v = self.value_1d(&self.pixel, self.sample, self.epoch, self.dim);
         self.dim = self.dim.wrapping_add(1);
         v
     }
@@ -275,7 +281,7 @@ impl PixelSampler {
     #[inline]
     pub fn get_2d(&mut self) -> Vec2 {
         self.check_budget(2);
-        let v = self.value_2d(self.pixel_key, self.sample, self.epoch, self.dim);
+        let v = self.value_2d(&self.pixel, self.sample, self.epoch, self.dim);
         self.dim = self.dim.wrapping_add(2);
         v
     }
@@ -296,13 +302,13 @@ impl PixelSampler {
     /// Stateless: the 1D value [`get_1d`](Self::get_1d) gives at `dim` for `(pixel, index)`.
     pub fn sample(&self, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
         let (sample, epoch) = split(index);
-        self.value_1d(pixel_key(self.seed, pixel), sample, epoch, dim)
+        self.value_1d(&self.keys(pixel), sample, epoch, dim)
     }
 
     /// Stateless: the 2D value [`get_2d`](Self::get_2d) gives at `dim` for `(pixel, index)`.
     pub fn sample_2d(&self, pixel: [u32; 2], index: u64, dim: u32) -> Vec2 {
         let (sample, epoch) = split(index);
-        self.value_2d(pixel_key(self.seed, pixel), sample, epoch, dim)
+        self.value_2d(&self.keys(pixel), sample, epoch, dim)
     }
 
     /// The copy of the sequence that a draw at `dim` reads: one per pixel, dimension and block
@@ -317,23 +323,57 @@ impl PixelSampler {
         }
     }
 
+    /// The keys of `pixel`: its own (for the per-pixel sequences) and, for the Z-ordered ones,
+    /// its place along the global sequence.
     #[inline]
-    fn value_1d(&self, pixel_key: u64, sample: SampleIndex, epoch: u32, dim: u32) -> f32 {
-        let s = self.stream(pixel_key, epoch, dim);
-        self.sequence.sample_1d(s, sample, &self.spp)
+    fn keys(&self, pixel: [u32; 2]) -> PixelKeys {
+        PixelKeys {
+            key: pixel_key(self.seed, pixel),
+            z: self.sequence.z_index(pixel, self.seed),
+        }
+    }
+
+    /// The copy of the sequence a draw reads and the index inside it. For the Z-ordered
+    /// sequences, sample `i < B` (`B` = samples per pixel rounded up to a power of two) of the
+    /// pixel at place `z` is sample `z B + i` of one global sequence per dimension (and per
+    /// `2^32` samples of it); past the pixel's block, or outside the resolution, a draw falls
+    /// back to the pixel's own independent copy.
+    #[inline]
+    fn draw(
+        &self,
+        keys: &PixelKeys,
+        sample: SampleIndex,
+        epoch: u32,
+        dim: u32,
+    ) -> (u64, SampleIndex) {
+        if keys.z != NO_Z && epoch == 0 && sample.get() < self.spp.z_block() {
+            let g = (keys.z << self.spp.z_bits()) | sample.get() as u64;
+            let mut s = mix64(self.z_key ^ (dim as u64).wrapping_mul(GOLDEN_GAMMA));
+            if g >> 32 != 0 {
+                s = stream_seed(s, g >> 32);
+            }
+            return (s, SampleIndex::new(g as u32));
+        }
+        (self.stream(keys.key, epoch, dim), sample)
     }
 
     #[inline]
-    fn value_2d(&self, pixel_key: u64, sample: SampleIndex, epoch: u32, dim: u32) -> Vec2 {
-        let s = self.stream(pixel_key, epoch, dim);
-        let [x, y] = self.sequence.sample_2d(s, sample, &self.spp);
+    fn value_1d(&self, keys: &PixelKeys, sample: SampleIndex, epoch: u32, dim: u32) -> f32 {
+        let (s, i) = self.draw(keys, sample, epoch, dim);
+        self.sequence.sample_1d(s, i, &self.spp)
+    }
+
+    #[inline]
+    fn value_2d(&self, keys: &PixelKeys, sample: SampleIndex, epoch: u32, dim: u32) -> Vec2 {
+        let (s, i) = self.draw(keys, sample, epoch, dim);
+        let [x, y] = self.sequence.sample_2d(s, i, &self.spp);
         Vec2::new(x, y)
     }
 
     /// 40 random bits for the low end of [`PixelRng`]'s words, beyond the sequence's 24.
     #[inline]
     fn low_bits(&self) -> u64 {
-        let s = self.stream(self.pixel_key, self.epoch, self.dim);
+        let s = self.stream(self.pixel.key, self.epoch, self.dim);
         crate::hash::hash_u64(!s, self.sample.get() as u64)
     }
 }
@@ -342,6 +382,13 @@ impl PixelSampler {
 #[inline]
 fn split(index: u64) -> (SampleIndex, u32) {
     (SampleIndex::new(index as u32), (index >> 32) as u32)
+}
+
+/// A pixel's keys (see [`PixelSampler::keys`]).
+#[derive(Clone, Copy, Debug)]
+struct PixelKeys {
+    key: u64,
+    z: u64,
 }
 
 #[inline]

@@ -31,9 +31,13 @@ use std::sync::{Arc, OnceLock};
 
 use crate::error::{Error, Result};
 use crate::float::{Strata, unit_f32_from_u32};
-use crate::hash::{DivMod, GOLDEN_GAMMA, Permutation, hash_u64, mix64, owen_scramble_rev};
+use crate::hash::{
+    DivMod, GOLDEN_GAMMA, Permutation, Stream, hash_u64, mix64, owen_scramble_base4_rev,
+    owen_scramble_rev, stream_seed,
+};
 use crate::sampler::{Seed, StrataGrid};
-use crate::samplers::{Pmj02Stochastic, halton, pmj, sobol};
+use crate::samplers::pmj::stochastic;
+use crate::samplers::{Pmj02Stochastic, halton, lattice, pmj, sobol};
 
 /// Bits of the shared pmj02 table's index: `2^16` points (512 KB, lookups stay in cache).
 const PMJ02_TABLE_BITS: u32 = 16;
@@ -86,8 +90,9 @@ fn halton_block(n: u32) -> (u32, u32, u32) {
 }
 
 /// A samples-per-pixel count with what the sequences derive from it, computed once when the
-/// sampler is built rather than on every draw. Only `jittered` (its `s x s` sets) and `halton`
-/// (its blocks) use it; `random`, `pmj02` and `sobol` are progressive and ignore it.
+/// sampler is built rather than on every draw. Only `jittered` (its `s x s` sets), `halton`
+/// (its blocks) and the Z-ordered sequences (the block of each pixel) use it; `random`,
+/// `pmj02`, `sobol` and `lattice` are progressive and ignore it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct SamplesPerPixel {
     spp: u32,
@@ -98,6 +103,9 @@ pub(crate) struct SamplesPerPixel {
     /// Halton: the block `M = 2^a 3^b >= spp`, and `(a, b)`.
     block: DivMod,
     block_exponents: (u32, u32),
+    /// The Z-ordered sequences: `log2 B`, `B` the samples per pixel rounded up to a power of
+    /// two (at most `2^31`).
+    z_bits: u32,
 }
 
 impl SamplesPerPixel {
@@ -112,7 +120,20 @@ impl SamplesPerPixel {
             strata: Strata::new(s as u64),
             block: DivMod::new(m).expect("m >= 1"),
             block_exponents: (a, b),
+            z_bits: spp.max(1).next_power_of_two().trailing_zeros().min(31),
         }
+    }
+
+    /// `log2 B` of the Z-ordered sequences.
+    #[inline]
+    pub(crate) fn z_bits(&self) -> u32 {
+        self.z_bits
+    }
+
+    /// `B`: the samples of a pixel's block along a Z-ordered sequence.
+    #[inline]
+    pub(crate) fn z_block(&self) -> u32 {
+        1 << self.z_bits
     }
 
     /// The count.
@@ -167,6 +188,38 @@ pub enum Sequence {
     Sobol,
     /// Scrambled Halton (bases 2 and 3); per draw a random order inside blocks of `2^a 3^b`.
     Halton,
+    /// Z-ordered Sobol' for an image of `[width, height]` pixels (screen-space blue-noise
+    /// error): pixels take consecutive blocks of one global sequence along a scrambled Morton
+    /// curve.
+    ZSobol([u32; 2]),
+    /// Z-ordered pmj02 (the digital form of pmj02), as [`Sequence::ZSobol`].
+    ZPmj02([u32; 2]),
+    /// An extensible rank-1 lattice (Cools, Kuo, Nuyens 2006, dimensions 0-1); per draw a
+    /// nested uniform shuffle of the index and a toroidal shift.
+    Lattice,
+}
+
+/// The largest side of the image of a Z-ordered sequence (the Morton code of a pixel has 32
+/// bits).
+pub const MAX_Z_RESOLUTION: u32 = 1 << 16;
+
+/// The resolution the Z-ordered sequences take by name, without one given.
+pub const DEFAULT_Z_RESOLUTION: [u32; 2] = [256, 256];
+
+/// No place along a global sequence: the pixel draws from its own copies.
+pub(crate) const NO_Z: u64 = u64::MAX;
+
+/// The Morton code of a pixel: the bits of `x` in the even positions, of `y` in the odd ones.
+#[inline]
+fn morton(x: u32, y: u32) -> u32 {
+    let spread = |v: u32| {
+        let mut v = v & 0xffff;
+        v = (v | (v << 8)) & 0x00ff_00ff;
+        v = (v | (v << 4)) & 0x0f0f_0f0f;
+        v = (v | (v << 2)) & 0x3333_3333;
+        (v | (v << 1)) & 0x5555_5555
+    };
+    spread(x) | (spread(y) << 1)
 }
 
 impl Sequence {
@@ -190,21 +243,55 @@ impl Sequence {
     pub fn halton() -> Self {
         Sequence::Halton
     }
+    /// The extensible rank-1 lattice.
+    pub fn lattice() -> Self {
+        Sequence::Lattice
+    }
+    /// Z-ordered Sobol' for an image of `width x height` pixels (each 1 to
+    /// [`MAX_Z_RESOLUTION`]): the image must be known up front, since neighbouring pixels take
+    /// neighbouring blocks of one sequence. Pixels outside it get independent values.
+    pub fn zsobol(width: u32, height: u32) -> Result<Self> {
+        Ok(Sequence::ZSobol(check_resolution(
+            "Sequence::zsobol",
+            width,
+            height,
+        )?))
+    }
+    /// Z-ordered pmj02 for an image of `width x height` pixels (see [`Sequence::zsobol`]).
+    pub fn zpmj02(width: u32, height: u32) -> Result<Self> {
+        Ok(Sequence::ZPmj02(check_resolution(
+            "Sequence::zpmj02",
+            width,
+            height,
+        )?))
+    }
 
     /// The names the adapter knows.
-    pub const NAMES: [&'static str; 5] = ["random", "jittered", "pmj02", "sobol", "halton"];
+    pub const NAMES: [&'static str; 8] = [
+        "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02",
+    ];
 
-    /// The sequence registered under `name` (one of [`Sequence::NAMES`]).
+    /// The sequence registered under `name` (one of [`Sequence::NAMES`]); the Z-ordered ones
+    /// for an image of [`DEFAULT_Z_RESOLUTION`] (see [`Sequence::by_name_at`]).
     pub fn by_name(name: &str) -> Result<Self> {
+        Self::by_name_at(name, DEFAULT_Z_RESOLUTION)
+    }
+
+    /// The sequence registered under `name`, the Z-ordered ones for an image of `resolution`
+    /// (`[width, height]`; the others ignore it).
+    pub fn by_name_at(name: &str, resolution: [u32; 2]) -> Result<Self> {
         Ok(match name {
             "random" => Self::random(),
             "jittered" => Self::jittered(),
             "pmj02" => Self::pmj02(),
             "sobol" => Self::sobol(),
             "halton" => Self::halton(),
+            "lattice" => Self::lattice(),
+            "zsobol" => Self::zsobol(resolution[0], resolution[1])?,
+            "zpmj02" => Self::zpmj02(resolution[0], resolution[1])?,
             other => {
                 return Err(Error::input(
-                    "Sequence::by_name",
+                    "Sequence::by_name_at",
                     format!(
                         "no path-tracer adapter for '{other}'; samplers with one: {}",
                         Self::NAMES.join(", ")
@@ -213,6 +300,42 @@ impl Sequence {
             }
         })
     }
+}
+
+impl Sequence {
+    /// The place of `pixel` along the global sequence of a Z-ordered sequence: its Morton
+    /// code under a nested base-4 scramble keyed by `seed` (which turns the Z curve's fixed
+    /// pattern into a random one while keeping every aligned `2^k x 2^k` tile of pixels on
+    /// consecutive blocks); [`NO_Z`] for the other sequences and outside the image.
+    #[inline]
+    pub(crate) fn z_index(&self, pixel: [u32; 2], seed: u64) -> u64 {
+        match self {
+            Sequence::ZSobol(res) | Sequence::ZPmj02(res) => {
+                if pixel[0] >= res[0] || pixel[1] >= res[1] {
+                    return NO_Z;
+                }
+                let key = stream_seed(seed, Stream::ZOrderedPixels.id()) as u32;
+                let m = morton(pixel[0], pixel[1]).reverse_bits();
+                owen_scramble_base4_rev(m, key).reverse_bits() as u64
+            }
+            _ => NO_Z,
+        }
+    }
+}
+
+/// Checks the resolution of a Z-ordered sequence.
+fn check_resolution(context: &'static str, width: u32, height: u32) -> Result<[u32; 2]> {
+    for (name, v) in [("width", width), ("height", height)] {
+        if v == 0 || v > MAX_Z_RESOLUTION {
+            return Err(Error::parameter(
+                context,
+                name,
+                v,
+                format!("1 to {MAX_Z_RESOLUTION} pixels"),
+            ));
+        }
+    }
+    Ok([width, height])
 }
 
 /// Point `index` of a scrambled copy of a base-2 (0,2)-sequence. The index goes through a
@@ -289,6 +412,9 @@ impl Sequence {
             Sequence::Pmj02(_) => "pmj02",
             Sequence::Sobol => "sobol",
             Sequence::Halton => "halton",
+            Sequence::Lattice => "lattice",
+            Sequence::ZSobol(_) => "zsobol",
+            Sequence::ZPmj02(_) => "zpmj02",
         }
     }
 
@@ -328,7 +454,22 @@ impl Sequence {
                     [p[0].reverse_bits(), p[1].reverse_bits()]
                 }
             }),
-            Sequence::Sobol => owen_scrambled(stream, i_rev, sobol::point01_rev),
+            Sequence::Sobol | Sequence::ZSobol(_) => {
+                owen_scrambled(stream, i_rev, sobol::point01_rev)
+            }
+            Sequence::ZPmj02(_) => owen_scrambled(stream, i_rev, stochastic::digital_point01_rev),
+            Sequence::Lattice => {
+                // phi_2 of the shuffled index is its bit reversal: the lattice in fixed point
+                let r = shuffle_rev(stream, i_rev);
+                let shift = mix64(stream);
+                [
+                    unit_f32_from_u32(r.wrapping_add(shift as u32)),
+                    unit_f32_from_u32(
+                        r.wrapping_mul(lattice::GENERATOR[1])
+                            .wrapping_add((shift >> 32) as u32),
+                    ),
+                ]
+            }
             Sequence::Halton => {
                 let (b, j, _) = block_permuted(stream, i, &spp.block);
                 let g = b as u64 * spp.block.divisor() as u64 + j as u64;
@@ -365,9 +506,11 @@ impl Sequence {
                 let s = n.isqrt();
                 if s * s == n { n } else { (s + 1) * (s + 1) }
             }
-            Sequence::Pmj02(_) | Sequence::Sobol => {
-                n.checked_next_power_of_two().unwrap_or(1 << 31)
-            }
+            Sequence::Pmj02(_)
+            | Sequence::Sobol
+            | Sequence::Lattice
+            | Sequence::ZSobol(_)
+            | Sequence::ZPmj02(_) => n.checked_next_power_of_two().unwrap_or(1 << 31),
         }
     }
 
@@ -413,6 +556,20 @@ impl Sequence {
                 }]
             }
             Sequence::Pmj02(_) | Sequence::Sobol => pmj::pmj_grids(n, true),
+            // inside a pixel's block of the global sequence: an aligned block, a net
+            Sequence::ZSobol(_) | Sequence::ZPmj02(_) if n <= spp.z_block() as u64 => {
+                pmj::pmj_grids(n, true)
+            }
+            Sequence::Lattice if n.is_power_of_two() && n <= 1 << 31 => vec![
+                StrataGrid {
+                    columns: n as u32,
+                    rows: 1,
+                },
+                StrataGrid {
+                    columns: 1,
+                    rows: n as u32,
+                },
+            ],
             _ => Vec::new(),
         }
     }

@@ -54,6 +54,8 @@ pub enum CountRule {
     Square,
     /// `q^t` for a prime `q` or a prime power `q <= 256` (orthogonal arrays of strength `t`).
     OaPower(u32),
+    /// Fibonacci numbers `1, 2, 3, 5, 8, ...` (Fibonacci lattices).
+    Fibonacci,
 }
 
 impl CountRule {
@@ -63,6 +65,7 @@ impl CountRule {
             CountRule::Any => n >= 1,
             CountRule::Square => n >= 1 && n.isqrt().pow(2) == n,
             CountRule::OaPower(t) => oa_root(n, *t).is_some(),
+            CountRule::Fibonacci => crate::samplers::lattice::fibonacci_numbers().any(|f| f == n),
         }
     }
 
@@ -87,7 +90,10 @@ impl CountRule {
                     "the count must be a perfect square (nearest allowed: {})",
                     crate::error::nearest_squares(count)
                 ),
-                other => format!("allowed counts: {other}"),
+                other => format!(
+                    "allowed counts: {other} (nearest: {})",
+                    other.nearest(count)
+                ),
             };
             return Err(Error::count(sampler, count, allowed));
         }
@@ -108,6 +114,9 @@ impl CountRule {
                 let all = self.counts_between(1, n.saturating_mul(4).max(1 << 12));
                 all.into_iter().min_by_key(|&c| c.abs_diff(n)).unwrap_or(4)
             }
+            CountRule::Fibonacci => crate::samplers::lattice::fibonacci_numbers()
+                .min_by_key(|&f| f.abs_diff(n))
+                .unwrap_or(1),
         }
     }
 
@@ -128,6 +137,9 @@ impl CountRule {
                 .filter(|&(q, c)| c >= min && crate::samplers::oa::supported_symbols(q as u32))
                 .map(|(_, c)| c)
                 .collect(),
+            CountRule::Fibonacci => crate::samplers::lattice::fibonacci_numbers()
+                .filter(|&f| f >= min && f <= max)
+                .collect(),
         }
     }
 }
@@ -138,6 +150,7 @@ impl fmt::Display for CountRule {
             CountRule::Any => f.write_str("any N >= 1"),
             CountRule::Square => f.write_str("perfect squares"),
             CountRule::OaPower(t) => write!(f, "q^{t}, q prime (power)"),
+            CountRule::Fibonacci => f.write_str("Fibonacci numbers"),
         }
     }
 }

@@ -18,8 +18,8 @@ pub use entry::{CountRule, Entry, Parameter, ParameterSpec, Params, Rates};
 use crate::error::{Error, Result};
 use crate::sampler::{Sampler, SamplerNd};
 use crate::samplers::{
-    best_candidate, ccvt, halton, jittered, latin, multijitter, oa, pmj, poisson, random, regular,
-    sobol, uncorrelated,
+    best_candidate, ccvt, halton, jittered, latin, lattice, multijitter, oa, pmj, poisson, random,
+    regular, sobol, uncorrelated,
 };
 
 /// Every registered sampler, in a stable order (simplest first).
@@ -43,6 +43,8 @@ static ENTRIES: &[Entry] = &[
     ccvt::ENTRY,
     sobol::ENTRY,
     halton::ENTRY,
+    lattice::LATTICE,
+    lattice::FIBONACCI,
     latin::LATIN,
     uncorrelated::ENTRY,
     oa::BOSE,

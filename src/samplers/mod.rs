@@ -33,6 +33,7 @@ pub mod ccvt;
 pub mod halton;
 pub(crate) mod jittered;
 pub(crate) mod latin;
+pub(crate) mod lattice;
 #[cfg(feature = "lloyd")]
 pub mod lloyd;
 pub(crate) mod multijitter;
@@ -51,6 +52,7 @@ pub use ccvt::{Ccvt, CcvtSets};
 pub use halton::{Halton, HaltonNd};
 pub use jittered::Jittered;
 pub use latin::{LatinHypercube, NRooks};
+pub use lattice::{Fibonacci, Lattice, LatticeNd};
 #[cfg(feature = "lloyd")]
 pub use lloyd::{Lloyd, LloydSets};
 pub use multijitter::{Cmj, MultiJittered};

@@ -51,6 +51,7 @@ fn first_two() -> [Matrix; 2] {
 /// The matrix of a dimension with primitive polynomial of degree `s`, inner coefficients `a`
 /// (bit `s - 1 - l` is `a_l`) and initial direction integers `m` (odd, `m_k < 2^k`), by the
 /// recurrence `V_k = V_{k-s} ^ (V_{k-s} >> s) ^ sum_{l=1}^{s-1} a_l V_{k-l}`.
+#[cfg_attr(not(any(test, feature = "joe-kuo")), allow(dead_code))]
 pub(crate) fn direction_matrix(s: usize, a: u32, m: &[u32]) -> [u32; 32] {
     let mut v = [0u32; 33]; // 1-based
     for k in 1..=32 {
@@ -78,26 +79,27 @@ struct Tables {
     bytes: Vec<[[u32; 256]; 4]>,
 }
 
-fn build(matrices: Vec<Matrix>) -> Tables {
-    let bytes = matrices
-        .iter()
-        .map(|m| {
-            let mut t = [[0u32; 256]; 4];
-            for (q, table) in t.iter_mut().enumerate() {
-                for (v, entry) in table.iter_mut().enumerate() {
-                    let mut x = 0u32;
-                    for j in 0..8 {
-                        if (v >> j) & 1 == 1 {
-                            // reversed-index bit 8q + j is index bit 31 - (8q + j)
-                            x ^= m[31 - (8 * q + j)].reverse_bits();
-                        }
-                    }
-                    *entry = x;
+/// The four byte tables of one generator matrix (see [`Tables`]): the digital-sequence
+/// machinery every base-2 digital sequence of the crate shares.
+pub(crate) fn byte_tables(m: &Matrix) -> [[u32; 256]; 4] {
+    let mut t = [[0u32; 256]; 4];
+    for (q, table) in t.iter_mut().enumerate() {
+        for (v, entry) in table.iter_mut().enumerate() {
+            let mut x = 0u32;
+            for j in 0..8 {
+                if (v >> j) & 1 == 1 {
+                    // reversed-index bit 8q + j is index bit 31 - (8q + j)
+                    x ^= m[31 - (8 * q + j)].reverse_bits();
                 }
             }
-            t
-        })
-        .collect();
+            *entry = x;
+        }
+    }
+    t
+}
+
+fn build(matrices: Vec<Matrix>) -> Tables {
+    let bytes = matrices.iter().map(byte_tables).collect();
     Tables { matrices, bytes }
 }
 
@@ -136,8 +138,9 @@ pub fn sobol_u32(index: u32, dim: u32) -> Option<u32> {
     Some(lookup(t, index.reverse_bits()).reverse_bits())
 }
 
+/// The point of a digital sequence at a bit-reversed index, bit-reversed, from its byte tables.
 #[inline]
-fn lookup(t: &[[u32; 256]; 4], i_rev: u32) -> u32 {
+pub(crate) fn lookup(t: &[[u32; 256]; 4], i_rev: u32) -> u32 {
     t[0][(i_rev & 0xff) as usize]
         ^ t[1][((i_rev >> 8) & 0xff) as usize]
         ^ t[2][((i_rev >> 16) & 0xff) as usize]

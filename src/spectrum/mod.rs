@@ -33,10 +33,12 @@
 //!   order, so the result is bit-identical for any number of threads.
 
 mod direct;
+mod image;
 mod measures;
 mod nufft;
 
 pub use crate::grid::relative_radius_max;
+pub use image::{ErrorImage, LOW_BAND, error_image};
 pub use measures::{PointSetMeasures, nearest_neighbour_distances, point_set_measures};
 
 use rayon::prelude::*;

@@ -111,6 +111,30 @@ const fn xor_values(dim: usize) -> [u32; DIGITS] {
 /// The XOR values of pmj02's two dimensions, computed at compile time.
 pub(crate) const XORS: [[u32; DIGITS]; 2] = [xor_values(0), xor_values(1)];
 
+/// pmj02 as a digital sequence: dimensions 0 and 1 of the base-2 digital (0,2)-sequence whose
+/// generator matrices are [`generator`]`(0)` and `(1)`, at a bit-reversed index, bit-reversed.
+/// Owen-scrambled, its points are distributed as the stochastic pmj02 sequence (Helmer et al.
+/// 2021, who derive the construction from these matrices); the Z-ordered adapter sequence
+/// `zpmj02` reads it at 32-bit indices, where no table of the stochastic sequence would fit.
+pub(crate) fn digital_point01_rev(index_rev: u32) -> [u32; 2] {
+    static TABLES: std::sync::OnceLock<[[[u32; 256]; 4]; 2]> = std::sync::OnceLock::new();
+    let t = TABLES.get_or_init(|| {
+        let matrix = |dim: usize| {
+            let cols = generator(dim);
+            let mut m = [0u32; DIGITS];
+            for (k, c) in cols.iter().enumerate() {
+                m[k] = (*c as u32).reverse_bits(); // row r (digit r from the top) -> bit 31 - r
+            }
+            crate::samplers::sobol::byte_tables(&m)
+        };
+        [matrix(0), matrix(1)]
+    });
+    [
+        crate::samplers::sobol::lookup(&t[0], index_rev),
+        crate::samplers::sobol::lookup(&t[1], index_rev),
+    ]
+}
+
 /// The stochastic pmj02 sequence (progressive; O(1) per sample, 8 bytes per stored sample).
 ///
 /// ```
@@ -332,6 +356,31 @@ mod tests {
             &XORS[1][..11],
             &[0, 1, 3, 3, 7, 0x1b, 0x27, 0xb, 0x17, 0x13b, 0x367]
         );
+    }
+
+    #[test]
+    fn the_digital_form_is_a_0_2_sequence() {
+        // every prefix and aligned block of 2^m points, m <= 12, fills every elementary interval
+        for m in 0..=12u32 {
+            let n = 1u32 << m;
+            for start in [0u32, n, 5 * n, 1 << 20] {
+                for a in 0..=m {
+                    let mut seen = vec![false; n as usize];
+                    for i in start..start + n {
+                        let p = digital_point01_rev(i.reverse_bits());
+                        let (x, y) = (p[0].reverse_bits(), p[1].reverse_bits());
+                        let top =
+                            |v: u32, b: u32| if b == 0 { 0 } else { (v >> (32 - b)) as usize };
+                        let cell = (top(y, m - a) << a) | top(x, a);
+                        assert!(
+                            !seen[cell],
+                            "m {m} start {start} shape {a}: cell {cell} twice"
+                        );
+                        seen[cell] = true;
+                    }
+                }
+            }
+        }
     }
 
     #[test]
