@@ -326,7 +326,10 @@ fn render_sweeps_counts_and_refuses_bad_input() {
     assert_eq!(code, 0, "{err}");
     let csv = std::fs::read_to_string(dir.join("render.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().collect();
-    assert_eq!(rows[0], "sampler,spp,rmse,rel_rmse,ms");
+    assert_eq!(
+        rows[0],
+        "sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband"
+    );
     // one row per sampler and count, counts in increasing order
     assert_eq!(rows.len(), 5, "{csv}");
     assert!(rows[1].starts_with("pmj02,1,") && rows[2].starts_with("pmj02,4,"));
