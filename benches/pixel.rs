@@ -1,6 +1,7 @@
-//! The path-tracer adapter: time per 2D value (`get_2d`) for every adapter sequence (random,
-//! padded jittered, pmj02, Sobol', Halton, the lattice, Z-ordered Sobol' and pmj02), against the `sobol_burley` crate (Owen-scrambled
-//! Sobol', the peer) in the same run.
+//! The path-tracer adapter: time per 2D value, drawn one at a time (`get_2d`) and two at a time
+//! (`get_4d`), for every adapter sequence (random, padded jittered, pmj02, Sobol', Halton, the
+//! lattice, Z-ordered Sobol' and pmj02), against the `sobol_burley` crate (Owen-scrambled
+//! Sobol', the peer; `sample` and `sample_4d`) in the same run.
 //!
 //! Each iteration renders a 32 x 32 "image": for every pixel and sample index (16 spp) it starts
 //! the pixel sample and draws four 2D values (dimensions 0-7), as a path tracer would.
@@ -36,6 +37,23 @@ fn pixel(c: &mut Criterion) {
                             for _ in 0..PAIRS {
                                 let v = s.get_2d();
                                 acc += v.x + v.y;
+                            }
+                        }
+                    }
+                }
+                black_box(acc)
+            })
+        });
+        group.bench_function(BenchmarkId::from_parameter(format!("{name}-get_4d")), |b| {
+            b.iter(|| {
+                let mut acc = 0.0f32;
+                for y in 0..SIDE {
+                    for x in 0..SIDE {
+                        for i in 0..SPP as u64 {
+                            s.start_pixel_sample([x, y], i, 0);
+                            for _ in 0..PAIRS / 2 {
+                                let v = s.get_4d();
+                                acc += v.x + v.y + v.z + v.w;
                             }
                         }
                     }

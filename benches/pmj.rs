@@ -1,5 +1,8 @@
 //! Progressive multi-jittered sequences: 4096 and 65536 points of each, generated from scratch
-//! (a new seed per iteration), against the PCG32 baseline in the same run.
+//! (a new seed per iteration), against the PCG32 baseline in the same run; and the growth of
+//! the constructive pmj02's time per point from 2^12 to 2^24 points (`pmj/growth/...`), with the
+//! stochastic generator (linear by construction) beside it. `STRATA_BENCH_QUICK=1` stops the
+//! growth table at 2^20.
 //!
 //! `cargo bench --bench pmj`; `python3 tools/criterion_table.py pmj` prints medians and ratios.
 
@@ -26,6 +29,38 @@ fn pmj(c: &mut Criterion) {
             if name == "pmjbn" && n > 4096 {
                 continue; // about half a second per sequence; 4096 shows the cost
             }
+            let mut seed = 0u64;
+            group.bench_function(BenchmarkId::from_parameter(name), |b| {
+                b.iter(|| {
+                    seed += 1;
+                    let mut s = registry::build(name, &Params::new(n).seed(seed)).unwrap();
+                    s.fill(&mut buf);
+                    black_box(&buf);
+                })
+            });
+        }
+        group.finish();
+    }
+    growth(c);
+}
+
+/// Time per point of whole sequences of 2^12 to 2^24 points (the elementary-interval search
+/// and marking are O(log N) per point; the memory they touch is what grows).
+fn growth(c: &mut Criterion) {
+    let quick = std::env::var_os("STRATA_BENCH_QUICK").is_some();
+    for e in [12u32, 16, 20, 22, 24] {
+        if quick && e > 20 {
+            break;
+        }
+        let n = 1u64 << e;
+        let mut group = c.benchmark_group(format!("pmj/growth/2^{e}"));
+        group.throughput(Throughput::Elements(n));
+        group
+            .sample_size(10)
+            .warm_up_time(Duration::from_millis(100))
+            .measurement_time(Duration::from_secs(if e >= 22 { 20 } else { 3 }));
+        let mut buf = vec![Vec2::ZERO; n as usize];
+        for name in ["pmj02", "pmj02-stochastic"] {
             let mut seed = 0u64;
             group.bench_function(BenchmarkId::from_parameter(name), |b| {
                 b.iter(|| {

@@ -5,11 +5,13 @@
 //! command-line tool can print it as is: `jittered cannot make 10 samples: the count must be a
 //! perfect square (nearest allowed: 9 or 16)`.
 
-use std::fmt;
-use std::sync::Arc;
+use alloc::sync::Arc;
+use core::fmt;
+
+use crate::prelude::*;
 
 /// Shorthand for `Result<T, strata::Error>`.
-pub type Result<T, E = Error> = std::result::Result<T, E>;
+pub type Result<T, E = Error> = core::result::Result<T, E>;
 
 /// What went wrong, with what would have been allowed.
 ///
@@ -65,8 +67,8 @@ pub enum Error {
         /// The file involved.
         path: String,
         /// The operating system's or encoder's error (also given by
-        /// [`source`](std::error::Error::source)).
-        source: Arc<dyn std::error::Error + Send + Sync>,
+        /// [`source`](core::error::Error::source)).
+        source: Arc<dyn core::error::Error + Send + Sync>,
     },
 }
 
@@ -167,6 +169,7 @@ impl Error {
 
     /// Shorthand for [`Error::Io`]: `source` is the underlying error (an `std::io::Error`, an
     /// encoder's error, or a message).
+    #[cfg(feature = "std")]
     pub fn io(
         path: impl AsRef<std::path::Path>,
         source: impl Into<Box<dyn std::error::Error + Send + Sync>>,
@@ -209,8 +212,8 @@ impl fmt::Display for Error {
     }
 }
 
-impl std::error::Error for Error {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+impl core::error::Error for Error {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
         match self {
             Error::Io { source, .. } => Some(source.as_ref()),
             _ => None,
@@ -244,6 +247,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "std")]
     fn io_errors_keep_their_source() {
         use std::error::Error as _;
         let e = Error::io(

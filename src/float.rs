@@ -104,8 +104,8 @@ pub(crate) struct Strata {
 impl Strata {
     /// `n >= 1` strata (`n = 0` is treated as 1).
     #[inline]
-    pub(crate) fn new(n: u64) -> Self {
-        let n = n.max(1) as f64;
+    pub(crate) const fn new(n: u64) -> Self {
+        let n = if n == 0 { 1.0 } else { n as f64 };
         Strata { n, inv_n: 1.0 / n }
     }
 
@@ -138,7 +138,7 @@ impl Strata {
     #[cfg(target_arch = "x86_64")]
     #[inline]
     unsafe fn place2_sse2(&self, k: [u32; 2], jitter: [u32; 2]) -> Point2 {
-        use std::arch::x86_64::*;
+        use core::arch::x86_64::*;
         // SAFETY: SSE2 is part of the x86_64 baseline, so every intrinsic below is available;
         // the only memory access is an unaligned store into a local array of four floats.
         unsafe {
@@ -167,8 +167,14 @@ impl Strata {
     /// The point at offset `u` in `[0, 1)` inside stratum `k` (`k < n`).
     #[inline]
     pub fn place_f64(&self, k: u64, u: f64) -> f32 {
-        let x = (k as f64 + u) * self.inv_n;
-        self.snap(k as f64, x.min(1.0) as f32)
+        // through i64 where it fits: one instruction instead of u64's sequence
+        let k = if k <= i64::MAX as u64 {
+            k as i64 as f64
+        } else {
+            k as f64
+        };
+        let x = (k + u) * self.inv_n;
+        self.snap(k, x.min(1.0) as f32)
     }
 
     /// `x`, a float within one ulp of stratum `k`, moved into it. Rounding to `f32` (and of

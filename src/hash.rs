@@ -25,6 +25,7 @@ pub const GOLDEN_GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
 /// values are fixed forever, since every sampler's output depends on them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u64)]
+#[cfg_attr(not(feature = "std"), allow(dead_code))]
 pub(crate) enum Stream {
     /// Multi-jittered: the shuffles of the x sub-columns.
     MultiJitterX = 0x006d_6a58,
@@ -66,6 +67,7 @@ impl Stream {
 
     /// A 32-bit key for this stream of `key` (for a [`Permutation`]).
     #[inline]
+    #[cfg_attr(not(feature = "std"), allow(dead_code))]
     pub(crate) const fn key32(self, key: u64) -> u32 {
         key32(key ^ self.id())
     }
@@ -142,6 +144,29 @@ pub const fn owen_scramble_rev(mut n: u32, seed: u32) -> u32 {
     n ^ n.wrapping_mul(0x53a2_2864)
 }
 
+/// [`owen_scramble_rev`] on `N` lanes at once: each step over the whole array, so that the
+/// compiler keeps the lanes in SIMD registers (SSE2, NEON). Lane `k` is exactly
+/// `owen_scramble_rev(n[k], seed[k])`.
+#[inline(always)]
+pub(crate) fn owen_scramble_rev_lanes<const N: usize>(mut n: [u32; N], seed: [u32; N]) -> [u32; N] {
+    for v in &mut n {
+        *v ^= v.wrapping_mul(0x3d20_adea);
+    }
+    for (v, s) in n.iter_mut().zip(seed) {
+        *v = v.wrapping_add(s);
+    }
+    for (v, s) in n.iter_mut().zip(seed) {
+        *v = v.wrapping_mul((s >> 16) | 1);
+    }
+    for v in &mut n {
+        *v ^= v.wrapping_mul(0x0552_6c56);
+    }
+    for v in &mut n {
+        *v ^= v.wrapping_mul(0x53a2_2864);
+    }
+    n
+}
+
 /// A nested uniform scramble in base 4, in the bit-reversed domain: every base-4 digit (an
 /// aligned pair of bits) permuted by a function of the less significant digits and `seed`.
 /// Vegdahl's hash ("A fast hash for base-4 Owen scrambling", 2022, as in Blender Cycles):
@@ -168,6 +193,7 @@ pub const fn owen_scramble(x: u32, seed: u32) -> u32 {
 
 /// A 32-bit key derived from a 64-bit one (for [`permute`], whose key is 32 bits).
 #[inline]
+#[cfg_attr(not(feature = "std"), allow(dead_code))]
 pub(crate) const fn key32(key: u64) -> u32 {
     (mix64(key) >> 32) as u32
 }
@@ -353,6 +379,9 @@ pub(crate) struct DivMod {
 }
 
 impl DivMod {
+    /// Division by 1.
+    pub(crate) const ONE: DivMod = DivMod { d: 1, m: 0 };
+
     /// The divider for `d`; `None` when `d == 0`.
     #[inline]
     pub const fn new(d: u32) -> Option<Self> {

@@ -26,8 +26,9 @@
 //!
 //! [`pixel`] has the guarantees, the dimension layout of a bouncing renderer, a `rand` bridge
 //! and mappings of 2D draws; [`conformance`] checks any sequence (yours too) for bias,
-//! independence and stratification. With `default-features = false` the crate depends only on
-//! `rand`, `rand_pcg` and `glam` (re-exported as [`glam`]).
+//! independence and stratification. With `default-features = false` the crate is `no_std` (it
+//! needs `alloc` only for the pmj02 table) and depends only on `rand` and `glam` (re-exported as
+//! [`glam`], with `libm`): see [Features](#features).
 //!
 //! ## The idea in brief
 //!
@@ -75,30 +76,58 @@
 //!
 //! ## Features
 //!
+//! * `std` (default): the standard library, every sampler, [`registry`], [`conformance`],
+//!   [`analysis`]. Without it (`default-features = false`) the crate is `#![no_std]`, for
+//!   rust-gpu shaders, embedded and WASM renderers: [`PixelSampler`] with every
+//!   [`Sequence`], and the stateless functions ([`samplers::sobol::owen_scrambled`],
+//!   [`samplers::Pmj02Stochastic::point_at`], [`samplers::halton::scrambled_radical_inverse`],
+//!   the lattice's [`samplers::lattice::GENERATOR`], [`hash`], [`float`]), none of which
+//!   allocates; `alloc` holds the pmj02 adapter's table and the samplers' stored points.
 //! * `spectrum` (default): power spectra, point-set measures and the convergence studies
 //!   ([`spectrum`], [`analysis`]).
 //! * `io` (default): pictures, EXR and CSV output and plots ([`io`]).
 //! * `lloyd` (default): Lloyd relaxation on the periodic Voronoi diagram (`spade`).
 //! * `joe-kuo` (default): Joe and Kuo's Sobol' direction numbers for 1000 dimensions.
 
+#![cfg_attr(all(not(feature = "std"), not(test)), no_std)]
 #![warn(missing_docs, missing_debug_implementations)]
 #![warn(clippy::undocumented_unsafe_blocks)]
 
+extern crate alloc;
+
+/// `alloc`'s types under their `std` names, for the files that build without `std`.
+#[allow(unused_imports)]
+mod prelude {
+    pub(crate) use alloc::borrow::ToOwned;
+    pub(crate) use alloc::boxed::Box;
+    pub(crate) use alloc::string::{String, ToString};
+    pub(crate) use alloc::vec::Vec;
+    pub(crate) use alloc::{format, vec};
+}
+
+#[cfg(feature = "std")]
 pub mod analysis;
+#[cfg(feature = "std")]
 pub mod conformance;
 mod error;
 pub mod float;
+#[cfg(feature = "std")]
 mod grid;
 pub mod hash;
 #[cfg(feature = "io")]
 pub mod io;
+#[cfg_attr(not(feature = "std"), allow(dead_code))]
+mod morton;
+#[cfg(feature = "std")]
 mod occupancy;
 pub mod pixel;
+#[cfg(feature = "std")]
 pub mod registry;
 mod sampler;
 pub mod samplers;
 #[cfg(feature = "spectrum")]
 pub mod spectrum;
+#[cfg(feature = "std")]
 mod stats;
 
 pub use error::{Error, Result};

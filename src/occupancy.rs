@@ -170,7 +170,27 @@ pub struct ElementaryIntervals {
     /// Words per shape: `2^m / 64`, at least 1.
     stride: usize,
     words: Vec<u64>,
-    alive: Vec<u64>,
+    /// Scratch of the search: the live words of the current and the next step.
+    alive: Vec<(usize, u64)>,
+    next: Vec<(usize, u64)>,
+}
+
+/// The bit of shape `a` (of `m + 1`, each `max(2^m, 64)` bits, `h = ceil(m/2)`) holding the
+/// point's cell: row-major `(y << a) | x` for `a >= h`, column-major `(x << (m - a)) | y`
+/// below, with the top `a` bits of x and `m - a` of y.
+#[inline(always)]
+fn cell_in_shape(m: u32, h: u32, a: u32, p: &[u32; 2]) -> usize {
+    let bits = 1usize << m.max(6);
+    // the coordinate in the top half of a u64, so that the top b bits are v >> (64 - b) for
+    // 1 <= b <= 32, and b = 0 gives 0 through the double shift
+    let (x, y) = ((p[0] as u64) << 32, (p[1] as u64) << 32);
+    let top = |v: u64, b: u32| (v >> 1) >> (63 - b);
+    let i = if a >= h {
+        (top(y, m - a) << a) | top(x, a)
+    } else {
+        (top(x, a) << (m - a)) | top(y, m - a)
+    };
+    a as usize * bits + i as usize
 }
 
 /// Each of the 8 bits of a byte twice: bit `i` to bits `2i` and `2i + 1`.
@@ -214,8 +234,16 @@ impl ElementaryIntervals {
         self.stride = (1usize << level).div_ceil(64);
         self.words.clear();
         self.words.resize(self.stride * (level as usize + 1), 0);
-        for p in points {
-            self.mark(*p);
+        // shape by shape: each pass writes into one shape's bitset (2^m bits, cache-sized
+        // where all shapes together are not) while reading the points in order
+        let (m, h) = (level, level.div_ceil(2));
+        let bits = self.stride * 64;
+        for a in 0..=m {
+            let shape = &mut self.words[a as usize * self.stride..(a as usize + 1) * self.stride];
+            for p in points {
+                let i = cell_in_shape(m, h, a, p) - a as usize * bits;
+                shape[i >> 6] |= 1 << (i & 63);
+            }
         }
     }
 
@@ -233,22 +261,10 @@ impl ElementaryIntervals {
 
     /// Marks every interval containing the point.
     pub fn mark(&mut self, p: [u32; 2]) {
-        let m = self.level;
-        let h = m.div_ceil(2);
-        let bits = self.stride * 64;
-        // x and y as 64-bit values with the coordinate in the top half, so that the top `b`
-        // bits are `v >> (64 - b)` for 1 <= b <= 32; b = 0 gives 0 via the double shift.
-        let (x, y) = ((p[0] as u64) << 32, (p[1] as u64) << 32);
-        let top = |v: u64, b: u32| (v >> 1) >> (63 - b);
-        let words = &mut self.words;
-        let mut set = |i: usize| words[i >> 6] |= 1 << (i & 63);
-        for a in 0..h {
-            // column-major: (x << (m - a)) | y
-            set(a as usize * bits + ((top(x, a) << (m - a)) | top(y, m - a)) as usize);
-        }
-        for a in h..=m {
-            // row-major: (y << a) | x
-            set(a as usize * bits + ((top(y, m - a) << a) | top(x, a)) as usize);
+        let (m, h) = (self.level, self.level.div_ceil(2));
+        for a in 0..=m {
+            let i = cell_in_shape(m, h, a, &p);
+            self.words[i >> 6] |= 1 << (i & 63);
         }
     }
 
@@ -318,38 +334,58 @@ impl ElementaryIntervals {
             w = double_bits(w as u32) & mask & !o;
             step += 1;
         }
+        // Larger steps: the surviving words only, as (word offset, bits) pairs. A zero word's
+        // children are zero, so the work per step is the number of live words: a handful once
+        // the occupied intervals have pruned the run (the usual case), at most the run's words.
         let mut alive = std::mem::take(&mut self.alive);
+        let mut next = std::mem::take(&mut self.next);
         alive.clear();
-        alive.push(w);
-        let mut any = w;
-        while any != 0 && step <= steps {
+        // One live word (almost always, once a level has a few points): in registers.
+        let (mut i, mut v) = (0usize, w);
+        while v != 0 && step <= steps {
             let b = start(step) >> 6;
-            let k = alive.len();
-            alive.resize(2 * k, 0);
-            any = 0;
-            let mut i = k;
-            while i > 0 {
-                i -= 1;
-                let v = alive[i];
-                let hi = double_bits((v >> 32) as u32) & !self.words[b + 2 * i + 1];
-                let lo = double_bits(v as u32) & !self.words[b + 2 * i];
-                alive[2 * i + 1] = hi;
-                alive[2 * i] = lo;
-                any |= hi | lo;
-            }
+            let lo = double_bits(v as u32) & !self.words[b + 2 * i];
+            let hi = double_bits((v >> 32) as u32) & !self.words[b + 2 * i + 1];
             step += 1;
-        }
-        if any != 0 {
-            let base = c << steps;
-            for (wi, &v) in alive.iter().enumerate() {
-                let mut v = v;
-                while v != 0 {
-                    out.push((base + wi * 64 + v.trailing_zeros() as usize) as u32);
-                    v &= v - 1;
+            match (lo != 0, hi != 0) {
+                (true, false) => (i, v) = (2 * i, lo),
+                (false, true) => (i, v) = (2 * i + 1, hi),
+                (false, false) => v = 0,
+                (true, true) => {
+                    alive.push((2 * i, lo));
+                    alive.push((2 * i + 1, hi));
+                    v = 0;
                 }
             }
         }
+        if v != 0 {
+            alive.push((i, v));
+        }
+        while !alive.is_empty() && step <= steps {
+            let b = start(step) >> 6;
+            next.clear();
+            for &(i, v) in &alive {
+                let lo = double_bits(v as u32) & !self.words[b + 2 * i];
+                let hi = double_bits((v >> 32) as u32) & !self.words[b + 2 * i + 1];
+                if lo != 0 {
+                    next.push((2 * i, lo));
+                }
+                if hi != 0 {
+                    next.push((2 * i + 1, hi));
+                }
+            }
+            std::mem::swap(&mut alive, &mut next);
+            step += 1;
+        }
+        let base = c << steps;
+        for &(wi, mut v) in &alive {
+            while v != 0 {
+                out.push((base + wi * 64 + v.trailing_zeros() as usize) as u32);
+                v &= v - 1;
+            }
+        }
         self.alive = alive;
+        self.next = next;
     }
 }
 
@@ -383,8 +419,12 @@ mod tests {
             h = crate::hash::mix64(h);
             h as u32
         };
-        for m in 1..=8u32 {
-            for _ in 0..20 {
+        // m past 12 runs the sparse steps (more than 64 candidates per axis)
+        for (m, reps) in (1..=8u32)
+            .map(|m| (m, 20))
+            .chain([(12, 4), (14, 4), (16, 2), (18, 1)])
+        {
+            for _ in 0..reps {
                 let mut e = ElementaryIntervals::new(m);
                 for _ in 0..(1u32 << m) / 3 {
                     let p = [rnd(), rnd()];

@@ -1,5 +1,6 @@
 //! The [`Sampler`] traits (2D and D-dimensional), the point type, and the shape of a stream.
 
+use crate::prelude::*;
 use glam::Vec2;
 
 /// A 2D sample point in `[0,1)^2`.
@@ -131,8 +132,8 @@ pub trait SamplerNd: Send {
     }
 }
 
-impl std::fmt::Debug for dyn SamplerNd {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+impl core::fmt::Debug for dyn SamplerNd {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("SamplerNd")
             .field("name", &self.name())
             .field("dimensions", &self.dimensions())
@@ -140,8 +141,8 @@ impl std::fmt::Debug for dyn SamplerNd {
     }
 }
 
-impl std::fmt::Debug for dyn Sampler {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+impl core::fmt::Debug for dyn Sampler {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("Sampler")
             .field("name", &self.name())
             .field("progression", &self.progression())

@@ -398,3 +398,32 @@ fn the_lattice_is_stratified_in_both_axes_at_every_power_of_two() {
         }
     }
 }
+
+#[test]
+fn four_dimensions_at_once_are_two_draws_of_two() {
+    // get_4d's lane-parallel path against two scalar get_2d, bit for bit: every sequence, pixels
+    // inside and outside the Z resolution, the pmj02 table and its on-demand continuation past
+    // 2^16, and a later block of 2^32 samples
+    for seq in all() {
+        let mut a = PixelSampler::new(seq.clone(), 16, strata::Seed(9)).unwrap();
+        let mut b = a.clone();
+        for pixel in [[0u32, 0], [5, 3], [63, 63], [300, 2]] {
+            for index in [0u64, 1, 15, 1000, 65_535, 65_536, 200_000, (1 << 32) + 3] {
+                for dim in [0u32, 2, 7] {
+                    a.start_pixel_sample(pixel, index, dim);
+                    b.start_pixel_sample(pixel, index, dim);
+                    let v = a.get_4d();
+                    let (p, q) = (b.get_2d(), b.get_2d());
+                    let (name, bits) = (seq.name(), |x: f32| x.to_bits());
+                    assert_eq!(
+                        v.to_array().map(bits),
+                        [p.x, p.y, q.x, q.y].map(bits),
+                        "{name} pixel {pixel:?} index {index} dim {dim}"
+                    );
+                    assert_eq!(a.dimension(), b.dimension());
+                    assert_eq!(v, a.sample_4d(pixel, index, dim));
+                }
+            }
+        }
+    }
+}

@@ -1,13 +1,18 @@
 #!/usr/bin/env python3
 """Print the medians of a criterion run as a Markdown table, with ratios to a baseline.
 
-usage: tools/criterion_table.py GROUP_PREFIX [BASELINE_ID]
+usage: tools/criterion_table.py GROUP_PREFIX [BASELINE_ID] [--markdown FILE --section NAME]
 
 Reads target/criterion/<group>/<id>/new/estimates.json for every group whose name starts with
 GROUP_PREFIX (criterion writes '/' in group names as '_'). For each group, prints the median time
 per iteration, the time per element when the benchmark declared a throughput, and the ratio to
 BASELINE_ID measured in the same group (default: the id containing 'baseline').
+
+With --markdown FILE the table also goes into FILE between `<!-- begin NAME -->` and
+`<!-- end NAME -->` (replacing an earlier version of the section, appending it otherwise), as the
+example programs write docs/results.md.
 """
+import builtins
 import json
 import os
 import sys
@@ -20,13 +25,38 @@ def human(ns):
     return f"{ns:.3g} ns"
 
 
+def write_section(path, name, body):
+    """Replaces (or appends) the section NAME of the Markdown file PATH."""
+    begin, end = f"<!-- begin {name} -->", f"<!-- end {name} -->"
+    text = open(path).read() if os.path.exists(path) else ""
+    block = f"{begin}\n{body}\n{end}"
+    if begin in text and end in text:
+        head, rest = text.split(begin, 1)
+        text = head + block + rest.split(end, 1)[1]
+    else:
+        text = text.rstrip("\n") + "\n\n" + block + "\n"
+    open(path, "w").write(text)
+
+
 def main():
-    if len(sys.argv) < 2:
+    args = sys.argv[1:]
+    markdown = section = None
+    if "--markdown" in args:
+        i = args.index("--markdown")
+        markdown = args[i + 1]
+        del args[i : i + 2]
+    if "--section" in args:
+        i = args.index("--section")
+        section = args[i + 1]
+        del args[i : i + 2]
+    if not args or (markdown and not section):
         sys.exit(__doc__)
-    prefix = sys.argv[1].replace("/", "_")
-    baseline_id = sys.argv[2] if len(sys.argv) > 2 else None
+    prefix = args[0].replace("/", "_")
+    baseline_id = args[1] if len(args) > 1 else None
     root = os.path.join("target", "criterion")
     groups = sorted(g for g in os.listdir(root) if g.startswith(prefix))
+    lines = []
+    print = lines.append  # noqa: A001 - collect the table, then print or write it
     print("| group | benchmark | median / iter | per element | ratio to baseline |")
     print("|---|---|---|---|---|")
     for g in groups:
@@ -50,6 +80,11 @@ def main():
             per = human(median / elements) if elements else ""
             ratio = (f"{median / base:.2f}x" if median >= base else f"{median / base:.4f}x ({base / median:.2f}x faster)") if base else ""
             print(f"| {g} | {b} | {human(median)} | {per} | {ratio} |")
+    table = "\n".join(lines)
+    builtins.print(table)
+    if markdown:
+        command = " ".join(["python3", "tools/criterion_table.py"] + sys.argv[1:])
+        write_section(markdown, section, f"<!-- written by `{command}` after `cargo bench` -->\n\n{table}\n")
 
 
 if __name__ == "__main__":

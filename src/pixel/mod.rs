@@ -101,9 +101,10 @@
 
 mod rng;
 mod sequence;
+#[cfg(feature = "std")]
 pub mod warp;
 
-use glam::Vec2;
+use glam::{Vec2, Vec4};
 
 pub use rng::PixelRng;
 pub use sequence::{DEFAULT_Z_RESOLUTION, MAX_Z_RESOLUTION, PMJ02_TABLE_LEN, Sequence};
@@ -111,6 +112,7 @@ use sequence::{NO_Z, SampleIndex, SamplesPerPixel};
 
 use crate::error::Result;
 use crate::hash::{GOLDEN_GAMMA, Stream, mix64, stream_seed};
+use crate::prelude::*;
 use crate::sampler::Seed;
 
 /// Where each bounce of a path starts in the dimensions of a pixel sample: the camera takes
@@ -182,6 +184,7 @@ impl PixelSampler {
             pixel: PixelKeys {
                 key: pixel_key(seed, [0, 0]),
                 z: NO_Z,
+                z_tile_key: 0,
             },
             z_key: stream_seed(seed, Stream::ZOrderedDraws.id()),
             sample: SampleIndex::new(0),
@@ -286,6 +289,18 @@ impl PixelSampler {
         v
     }
 
+    /// The next four dimensions as two 2D draws `(x0, y0, x1, y1)`: the same values as two
+    /// calls of [`get_2d`](Self::get_2d), computed together (the hashing of the Owen-scrambled
+    /// sequences runs lane-parallel), for renderers that draw a light sample and a direction
+    /// at once.
+    #[inline]
+    pub fn get_4d(&mut self) -> Vec4 {
+        self.check_budget(4);
+        let v = self.value_4d(&self.pixel, self.sample, self.epoch, self.dim);
+        self.dim = self.dim.wrapping_add(4);
+        v
+    }
+
     /// The position inside the pixel: a 2D draw meant for dimensions 0-1 (call it first).
     #[inline]
     pub fn get_pixel_2d(&mut self) -> Vec2 {
@@ -311,6 +326,12 @@ impl PixelSampler {
         self.value_2d(&self.keys(pixel), sample, epoch, dim)
     }
 
+    /// Stateless: the 4D value [`get_4d`](Self::get_4d) gives at `dim` for `(pixel, index)`.
+    pub fn sample_4d(&self, pixel: [u32; 2], index: u64, dim: u32) -> Vec4 {
+        let (sample, epoch) = split(index);
+        self.value_4d(&self.keys(pixel), sample, epoch, dim)
+    }
+
     /// The copy of the sequence that a draw at `dim` reads: one per pixel, dimension and block
     /// of `2^32` samples (`epoch`).
     #[inline]
@@ -327,9 +348,21 @@ impl PixelSampler {
     /// its place along the global sequence.
     #[inline]
     fn keys(&self, pixel: [u32; 2]) -> PixelKeys {
+        let z = self.sequence.z_index(pixel, self.seed);
+        // the global index z B + i may pass 2^32: each tile of 2^32 indices reads its own copy
+        let tile = if z == NO_Z {
+            0
+        } else {
+            (z << self.spp.z_bits()) >> 32
+        };
         PixelKeys {
             key: pixel_key(self.seed, pixel),
-            z: self.sequence.z_index(pixel, self.seed),
+            z,
+            z_tile_key: if tile == 0 {
+                self.z_key
+            } else {
+                stream_seed(self.z_key, tile)
+            },
         }
     }
 
@@ -348,10 +381,7 @@ impl PixelSampler {
     ) -> (u64, SampleIndex) {
         if keys.z != NO_Z && epoch == 0 && sample.get() < self.spp.z_block() {
             let g = (keys.z << self.spp.z_bits()) | sample.get() as u64;
-            let mut s = mix64(self.z_key ^ (dim as u64).wrapping_mul(GOLDEN_GAMMA));
-            if g >> 32 != 0 {
-                s = stream_seed(s, g >> 32);
-            }
+            let s = mix64(keys.z_tile_key ^ (dim as u64).wrapping_mul(GOLDEN_GAMMA));
             return (s, SampleIndex::new(g as u32));
         }
         (self.stream(keys.key, epoch, dim), sample)
@@ -368,6 +398,13 @@ impl PixelSampler {
         let (s, i) = self.draw(keys, sample, epoch, dim);
         let [x, y] = self.sequence.sample_2d(s, i, &self.spp);
         Vec2::new(x, y)
+    }
+
+    #[inline]
+    fn value_4d(&self, keys: &PixelKeys, sample: SampleIndex, epoch: u32, dim: u32) -> Vec4 {
+        let (s0, i) = self.draw(keys, sample, epoch, dim);
+        let (s1, _) = self.draw(keys, sample, epoch, dim.wrapping_add(2)); // the same index
+        Vec4::from_array(self.sequence.sample_4d([s0, s1], i, &self.spp))
     }
 
     /// 40 random bits for the low end of [`PixelRng`]'s words, beyond the sequence's 24.
@@ -389,6 +426,8 @@ fn split(index: u64) -> (SampleIndex, u32) {
 struct PixelKeys {
     key: u64,
     z: u64,
+    /// The Z-ordered sequences' key of the pixel's tile of `2^32` global indices.
+    z_tile_key: u64,
 }
 
 #[inline]

@@ -1,7 +1,7 @@
 //! A bridge for renderers written against `rand`: successive dimensions of a pixel sample as
 //! `rand::Rng` words.
 
-use std::convert::Infallible;
+use core::convert::Infallible;
 
 use rand::TryRng;
 

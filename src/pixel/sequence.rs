@@ -27,14 +27,16 @@
 //!   a hashed random order per draw.
 //! * `random`: hashed independent uniform values.
 
-use std::sync::{Arc, OnceLock};
+use alloc::sync::Arc;
 
 use crate::error::{Error, Result};
 use crate::float::{Strata, unit_f32_from_u32};
 use crate::hash::{
     DivMod, GOLDEN_GAMMA, Permutation, Stream, hash_u64, mix64, owen_scramble_base4_rev,
-    owen_scramble_rev, stream_seed,
+    owen_scramble_rev, owen_scramble_rev_lanes, stream_seed,
 };
+use crate::morton::morton;
+use crate::prelude::*;
 use crate::sampler::{Seed, StrataGrid};
 use crate::samplers::pmj::stochastic;
 use crate::samplers::{Pmj02Stochastic, halton, lattice, pmj, sobol};
@@ -51,10 +53,11 @@ const PMJ02_SEED: Seed = Seed(0x706d_6a30_3200);
 
 /// The first [`PMJ02_TABLE_LEN`] points of the shared pmj02 sequence, in index order (a
 /// pixel's draw reads an aligned block of it: a few cache lines), both coordinates
-/// bit-reversed (the domain of the Owen scramble that follows the lookup).
-fn pmj02_table() -> &'static Arc<Vec<[u32; 2]>> {
-    static TABLE: OnceLock<Arc<Vec<[u32; 2]>>> = OnceLock::new();
-    TABLE.get_or_init(|| {
+/// bit-reversed (the domain of the Owen scramble that follows the lookup). Built once per
+/// process with `std`; without it, once per [`Sequence::pmj02`] call (about 0.3 ms; clones share
+/// it).
+fn pmj02_table() -> Arc<Vec<[u32; 2]>> {
+    let build = || {
         let mut s = Pmj02Stochastic::new(PMJ02_SEED);
         s.reserve(PMJ02_TABLE_LEN as u64);
         let table = s
@@ -63,7 +66,14 @@ fn pmj02_table() -> &'static Arc<Vec<[u32; 2]>> {
             .map(|p| [p[0].reverse_bits(), p[1].reverse_bits()])
             .collect();
         Arc::new(table)
-    })
+    };
+    #[cfg(feature = "std")]
+    {
+        static TABLE: std::sync::OnceLock<Arc<Vec<[u32; 2]>>> = std::sync::OnceLock::new();
+        TABLE.get_or_init(build).clone()
+    }
+    #[cfg(not(feature = "std"))]
+    build()
 }
 
 /// The largest block of [`Sequence::halton`]: `2^31`.
@@ -209,19 +219,6 @@ pub const DEFAULT_Z_RESOLUTION: [u32; 2] = [256, 256];
 /// No place along a global sequence: the pixel draws from its own copies.
 pub(crate) const NO_Z: u64 = u64::MAX;
 
-/// The Morton code of a pixel: the bits of `x` in the even positions, of `y` in the odd ones.
-#[inline]
-fn morton(x: u32, y: u32) -> u32 {
-    let spread = |v: u32| {
-        let mut v = v & 0xffff;
-        v = (v | (v << 8)) & 0x00ff_00ff;
-        v = (v | (v << 4)) & 0x0f0f_0f0f;
-        v = (v | (v << 2)) & 0x3333_3333;
-        (v | (v << 1)) & 0x5555_5555
-    };
-    spread(x) | (spread(y) << 1)
-}
-
 impl Sequence {
     /// Independent uniform values.
     pub fn random() -> Self {
@@ -233,7 +230,7 @@ impl Sequence {
     }
     /// pmj02 (builds the shared table on first use: 65536 points, 512 KB).
     pub fn pmj02() -> Self {
-        Sequence::Pmj02(pmj02_table().clone())
+        Sequence::Pmj02(pmj02_table())
     }
     /// Sobol'.
     pub fn sobol() -> Self {
@@ -358,7 +355,7 @@ fn owen_scrambled(
     point_rev: impl FnOnce(u32) -> [u32; 2],
 ) -> [f32; 2] {
     let p = point_rev(shuffle_rev(stream, index_rev));
-    let seed = (stream as u32) ^ (stream >> 32) as u32;
+    let seed = value_seed(stream);
     let x = owen_scramble_rev(p[0], seed);
     let y = owen_scramble_rev(p[1], seed.rotate_left(16) ^ 0x9e37_79b9);
     // one 64-bit reversal brings both coordinates back: reverse(x:y) = reverse(y):reverse(x)
@@ -367,6 +364,37 @@ fn owen_scrambled(
         unit_f32_from_u32(both as u32),
         unit_f32_from_u32((both >> 32) as u32),
     ]
+}
+
+/// The value-scramble seed of `x` in [`owen_scrambled`] (`y`'s is it rotated, XOR a constant).
+#[inline(always)]
+fn value_seed(stream: u64) -> u32 {
+    (stream as u32) ^ (stream >> 32) as u32
+}
+
+/// Two draws of [`owen_scrambled`] at once (two streams, one index), lane-parallel: the two
+/// shuffles in two lanes, the four value scrambles and bit reversals in four. The same bits
+/// as two calls of [`owen_scrambled`].
+#[inline(always)]
+fn owen_scrambled_pair(
+    streams: [u64; 2],
+    index_rev: u32,
+    point_rev: impl Fn(u32, u64) -> [u32; 2],
+) -> [f32; 4] {
+    let r = owen_scramble_rev_lanes(
+        owen_scramble_rev_lanes([index_rev; 2], streams.map(|s| s as u32)),
+        streams.map(|s| (s >> 32) as u32),
+    );
+    let (p, q) = (point_rev(r[0], streams[0]), point_rev(r[1], streams[1]));
+    let (a, b) = (value_seed(streams[0]), value_seed(streams[1]));
+    let seeds = [
+        a,
+        a.rotate_left(16) ^ 0x9e37_79b9,
+        b,
+        b.rotate_left(16) ^ 0x9e37_79b9,
+    ];
+    owen_scramble_rev_lanes([p[0], p[1], q[0], q[1]], seeds)
+        .map(|v| unit_f32_from_u32(v.reverse_bits()))
 }
 
 /// The shuffled index of [`owen_scrambled`], from and to the bit-reversed domain.
@@ -401,6 +429,20 @@ fn block_permuted(stream: u64, index: u32, block: &DivMod) -> (u32, u32, u64) {
         Permutation::with_divider(block, (key >> 32) as u32).apply(once),
         key,
     )
+}
+
+/// The pmj02 point at the shuffled reversed index `r` of draw `i` of `stream`, bit-reversed:
+/// from the table for the first `2^16` samples, on demand past them.
+#[inline(always)]
+fn pmj02_point_rev(table: &[[u32; 2]], i: u32, r: u32, stream: u64) -> [u32; 2] {
+    let j = r.reverse_bits();
+    if (i as usize) < PMJ02_TABLE_LEN {
+        // the shuffle sends [0, 2^16) to an aligned block: its low bits index it
+        table[j as usize & (PMJ02_TABLE_LEN - 1)]
+    } else {
+        let p = Pmj02Stochastic::point_at_fixed(PMJ02_SEED, j ^ pmj02_block(stream));
+        [p[0].reverse_bits(), p[1].reverse_bits()]
+    }
 }
 
 impl Sequence {
@@ -444,16 +486,9 @@ impl Sequence {
                     .place2([col, row], [h as u32, (h >> 32) as u32])
                     .to_array()
             }
-            Sequence::Pmj02(table) => owen_scrambled(stream, i_rev, |r| {
-                let j = r.reverse_bits();
-                if (i as usize) < PMJ02_TABLE_LEN {
-                    // the shuffle sends [0, 2^16) to an aligned block: its low bits index it
-                    table[j as usize & (PMJ02_TABLE_LEN - 1)]
-                } else {
-                    let p = Pmj02Stochastic::point_at_fixed(PMJ02_SEED, j ^ pmj02_block(stream));
-                    [p[0].reverse_bits(), p[1].reverse_bits()]
-                }
-            }),
+            Sequence::Pmj02(table) => {
+                owen_scrambled(stream, i_rev, |r| pmj02_point_rev(table, i, r, stream))
+            }
             Sequence::Sobol | Sequence::ZSobol(_) => {
                 owen_scrambled(stream, i_rev, sobol::point01_rev)
             }
@@ -492,6 +527,35 @@ impl Sequence {
                 halton::scrambled_radical_inverse(0, g, stream)
             }
             _ => self.sample_2d(stream, index, spp)[0],
+        }
+    }
+
+    /// Two 2D draws at once, of `streams[0]` and `streams[1]` at the same index: the same
+    /// values as two calls of [`sample_2d`](Sequence::sample_2d), lane-parallel for the
+    /// Owen-scrambled sequences.
+    #[inline]
+    pub(crate) fn sample_4d(
+        &self,
+        streams: [u64; 2],
+        index: SampleIndex,
+        spp: &SamplesPerPixel,
+    ) -> [f32; 4] {
+        let (i, i_rev) = (index.get(), index.reversed());
+        match self {
+            Sequence::Pmj02(table) => {
+                owen_scrambled_pair(streams, i_rev, |r, s| pmj02_point_rev(table, i, r, s))
+            }
+            Sequence::Sobol | Sequence::ZSobol(_) => {
+                owen_scrambled_pair(streams, i_rev, |r, _| sobol::point01_rev(r))
+            }
+            Sequence::ZPmj02(_) => {
+                owen_scrambled_pair(streams, i_rev, |r, _| stochastic::digital_point01_rev(r))
+            }
+            _ => {
+                let [a, b] = self.sample_2d(streams[0], index, spp);
+                let [c, d] = self.sample_2d(streams[1], index, spp);
+                [a, b, c, d]
+            }
         }
     }
 

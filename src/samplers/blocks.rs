@@ -12,6 +12,7 @@
 use crate::error::Result;
 use crate::float::unit_f32_from_f64;
 use crate::hash::stream_seed;
+use crate::prelude::*;
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 
 /// Where a fixed-count sampler is in its stream: which block, which sample inside it.

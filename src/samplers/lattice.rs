@@ -18,10 +18,16 @@
 //! Screen-Space Samplers with Blue-Noise Error Distribution", 2021) report lattices on par
 //! with Owen-scrambled Sobol' for rendering once padded: `render` measures it.
 
-use super::{BlockCursor, Blocks, Epochs, check_dims};
+#[cfg(feature = "std")]
+use super::{BlockCursor, Blocks};
+use super::{Epochs, check_dims};
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
-use crate::hash::{hash_u64, stream_seed};
+use crate::hash::hash_u64;
+#[cfg(feature = "std")]
+use crate::hash::stream_seed;
+use crate::prelude::*;
+#[cfg(feature = "std")]
 use crate::registry::{CountRule, Entry, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 
@@ -39,9 +45,13 @@ pub const GENERATOR: [u32; 100] = [
     139019, 172565, 487045, 304803,
 ];
 
+/// The registered name of the lattice.
+const LATTICE_NAME: &str = "lattice";
+
 /// The registry entry of `lattice`.
+#[cfg(feature = "std")]
 pub(crate) const LATTICE: Entry = Entry {
-    name: "lattice",
+    name: LATTICE_NAME,
     description: "extensible rank-1 lattice (Cools-Kuo-Nuyens vector), toroidally shifted, progressive, up to 100 --dims",
     paper: "Cools, Kuo, Nuyens 2006",
     progressive: true,
@@ -55,6 +65,7 @@ pub(crate) const LATTICE: Entry = Entry {
 };
 
 /// The registry entry of `fibonacci`.
+#[cfg(feature = "std")]
 pub(crate) const FIBONACCI: Entry = Entry {
     name: "fibonacci",
     description: "Fibonacci lattice, N = F_k points with z = (1, F_(k-1)), toroidally shifted",
@@ -118,7 +129,7 @@ impl Lattice {
 
 impl Sampler for Lattice {
     fn name(&self) -> &'static str {
-        LATTICE.name
+        LATTICE_NAME
     }
 
     fn progression(&self) -> Progression {
@@ -163,7 +174,7 @@ impl LatticeNd {
     /// `dims` dimensions (1 to 100), shifted by `seed`.
     pub fn new(dims: u32, seed: Seed) -> Result<Self> {
         check_dims(
-            LATTICE.name,
+            LATTICE_NAME,
             dims,
             GENERATOR.len() as u32,
             " (the published generating vector's components)",
@@ -179,7 +190,7 @@ impl LatticeNd {
 
 impl SamplerNd for LatticeNd {
     fn name(&self) -> &'static str {
-        LATTICE.name
+        LATTICE_NAME
     }
 
     fn dimensions(&self) -> u32 {
@@ -208,8 +219,9 @@ impl SamplerNd for LatticeNd {
 }
 
 /// The Fibonacci numbers that fit a fixed-count set (`F_2 = 1` to below `2^31`).
+#[cfg(feature = "std")]
 pub(crate) fn fibonacci_numbers() -> impl Iterator<Item = u64> {
-    std::iter::successors(Some((1u64, 2u64)), |&(a, b)| Some((b, a + b)))
+    core::iter::successors(Some((1u64, 2u64)), |&(a, b)| Some((b, a + b)))
         .map(|(a, _)| a)
         .take_while(|&f| f <= crate::samplers::MAX_FIXED_COUNT)
 }
@@ -223,6 +235,7 @@ pub(crate) fn fibonacci_numbers() -> impl Iterator<Item = u64> {
 /// assert!(p.x < 1.0 && p.y < 1.0);
 /// assert!(Fibonacci::new(90, Seed(2)).is_err()); // 89 or 144
 /// ```
+#[cfg(feature = "std")]
 #[derive(Clone, Debug)]
 pub struct Fibonacci {
     n: u32,
@@ -231,6 +244,7 @@ pub struct Fibonacci {
     cursor: BlockCursor,
 }
 
+#[cfg(feature = "std")]
 impl Fibonacci {
     /// Sets of `count` points, a Fibonacci number (1, 2, 3, 5, 8, ..., at most `2^31`).
     pub fn new(count: u64, seed: Seed) -> Result<Self> {
@@ -248,6 +262,7 @@ impl Fibonacci {
     }
 }
 
+#[cfg(feature = "std")]
 impl Blocks for Fibonacci {
     const NAME: &'static str = FIBONACCI.name;
 
@@ -314,6 +329,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "std")]
     fn fibonacci_counts_and_strata() {
         let f: Vec<u64> = fibonacci_numbers().take(10).collect();
         assert_eq!(f, [1, 2, 3, 5, 8, 13, 21, 34, 55, 89]);

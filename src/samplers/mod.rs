@@ -27,45 +27,74 @@
 //! read from a set generated at once ([`Sets`]). Progressive samplers share another: when a
 //! sequence of `2^32` points is exhausted, a new, independent one starts.
 
+#[cfg(feature = "std")]
 pub mod best_candidate;
 mod blocks;
+#[cfg(feature = "std")]
 pub mod ccvt;
 pub mod halton;
+#[cfg(feature = "std")]
 pub(crate) mod jittered;
+#[cfg(feature = "std")]
 pub(crate) mod latin;
-pub(crate) mod lattice;
+pub mod lattice;
 #[cfg(feature = "lloyd")]
 pub mod lloyd;
+#[cfg(feature = "std")]
 pub(crate) mod multijitter;
+#[cfg(feature = "std")]
 pub mod oa;
 pub mod pmj;
+#[cfg(feature = "std")]
 pub mod poisson;
 mod progressive;
+#[cfg(feature = "std")]
 pub(crate) mod random;
+#[cfg(feature = "std")]
 pub(crate) mod regular;
 pub mod sobol;
+#[cfg(feature = "std")]
 pub(crate) mod uncorrelated;
 
+#[cfg(feature = "std")]
 pub use best_candidate::BestCandidate;
 pub use blocks::{BlockCursor, Blocks, SetGenerator, Sets};
+#[cfg(feature = "std")]
 pub use ccvt::{Ccvt, CcvtSets};
 pub use halton::{Halton, HaltonNd};
+#[cfg(feature = "std")]
 pub use jittered::Jittered;
+#[cfg(feature = "std")]
 pub use latin::{LatinHypercube, NRooks};
-pub use lattice::{Fibonacci, Lattice, LatticeNd};
+#[cfg(feature = "std")]
+pub use lattice::Fibonacci;
+pub use lattice::{Lattice, LatticeNd};
 #[cfg(feature = "lloyd")]
 pub use lloyd::{Lloyd, LloydSets};
+#[cfg(feature = "std")]
 pub use multijitter::{Cmj, MultiJittered};
+#[cfg(feature = "std")]
 pub use oa::{Bose, Bush};
-pub use pmj::{Pmj, Pmj02Stochastic};
+#[cfg(feature = "std")]
+pub use pmj::Pmj;
+pub use pmj::Pmj02Stochastic;
+#[cfg(feature = "std")]
 pub use poisson::{Bridson, BridsonDisk, DartThrowing, PoissonDisk};
 pub(crate) use progressive::Epochs;
+#[cfg(feature = "std")]
 pub use random::{Random, RandomNd};
+#[cfg(feature = "std")]
 pub use regular::Regular;
 pub use sobol::{Sobol, SobolNd};
+#[cfg(feature = "std")]
 pub use uncorrelated::UncorrelatedJitter;
 
+use alloc::format;
+#[cfg(feature = "std")]
+use alloc::vec::Vec;
+
 use crate::error::{Error, Result};
+#[cfg(feature = "std")]
 use crate::hash::{Permutation, key32, stream_seed};
 
 /// The largest count a fixed-count sampler accepts (`2^31`: indices within a block, and the
@@ -93,6 +122,7 @@ pub(crate) fn check_dims(sampler: &'static str, dims: u32, max: u32, note: &str)
 
 /// Replaces `out` with `k` independent permutations of `[0, len)` for block key `key` (one per
 /// dimension or group of dimensions, permutation `d` keyed by stream `d` of `key`).
+#[cfg(feature = "std")]
 pub(crate) fn block_permutations(out: &mut Vec<Permutation>, len: u32, key: u64, k: u32) {
     out.clear();
     out.extend(

@@ -18,6 +18,7 @@
 //! Evaluation is direct (no running state): indices up to `2^32 - 1`, any order, in O(1) by
 //! four 256-entry tables per dimension (one per byte of the index).
 
+#[cfg(feature = "std")]
 use std::sync::OnceLock;
 
 use super::Epochs;
@@ -25,6 +26,8 @@ use super::pmj::MAX_SEQUENCE_LEN;
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
 use crate::hash::{Stream, hash32, owen_scramble_rev, stream_seed};
+use crate::prelude::*;
+#[cfg(feature = "std")]
 use crate::registry::{CountRule, Entry, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 
@@ -33,25 +36,36 @@ use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 type Matrix = [u32; 32];
 
 /// The generator matrices of dimensions 0 and 1, computed.
-fn first_two() -> [Matrix; 2] {
+const fn first_two() -> [Matrix; 2] {
     let mut vdc = [0u32; 32];
     let mut pascal = [0u32; 32];
-    for k in 0..32 {
+    let mut k = 0;
+    while k < 32 {
         vdc[k] = 1 << (31 - k);
         // Pascal mod 2: column k has bit (31 - r) set for rows r <= k with binom(k, r) odd.
-        for r in 0..=k {
+        let mut r = 0;
+        while r <= k {
             if (k & r) == r {
                 pascal[k] |= 1 << (31 - r);
             }
+            r += 1;
         }
+        k += 1;
     }
     [vdc, pascal]
 }
 
+/// The byte tables of dimensions 0 and 1, built at compile time: the (0,2)-sequence every
+/// draw of the path-tracer adapter reads, with no lazy initialisation on the way.
+static FIRST_TWO: [[[u32; 256]; 4]; 2] = {
+    let m = first_two();
+    [byte_tables(&m[0]), byte_tables(&m[1])]
+};
+
 /// The matrix of a dimension with primitive polynomial of degree `s`, inner coefficients `a`
 /// (bit `s - 1 - l` is `a_l`) and initial direction integers `m` (odd, `m_k < 2^k`), by the
 /// recurrence `V_k = V_{k-s} ^ (V_{k-s} >> s) ^ sum_{l=1}^{s-1} a_l V_{k-l}`.
-#[cfg_attr(not(any(test, feature = "joe-kuo")), allow(dead_code))]
+#[cfg(any(test, feature = "joe-kuo"))]
 pub(crate) fn direction_matrix(s: usize, a: u32, m: &[u32]) -> [u32; 32] {
     let mut v = [0u32; 33]; // 1-based
     for k in 1..=32 {
@@ -74,6 +88,7 @@ pub(crate) fn direction_matrix(s: usize, a: u32, m: &[u32]) -> [u32; 32] {
 
 /// Per dimension, four 256-entry tables in the bit-reversed index domain: table `q` maps byte
 /// `q` of the reversed index to the XOR of the reversed direction vectors of its bits.
+#[cfg(feature = "std")]
 struct Tables {
     matrices: Vec<Matrix>,
     bytes: Vec<[[u32; 256]; 4]>,
@@ -81,28 +96,36 @@ struct Tables {
 
 /// The four byte tables of one generator matrix (see [`Tables`]): the digital-sequence
 /// machinery every base-2 digital sequence of the crate shares.
-pub(crate) fn byte_tables(m: &Matrix) -> [[u32; 256]; 4] {
+pub(crate) const fn byte_tables(m: &Matrix) -> [[u32; 256]; 4] {
     let mut t = [[0u32; 256]; 4];
-    for (q, table) in t.iter_mut().enumerate() {
-        for (v, entry) in table.iter_mut().enumerate() {
+    let mut q = 0;
+    while q < 4 {
+        let mut v = 0;
+        while v < 256 {
             let mut x = 0u32;
-            for j in 0..8 {
+            let mut j = 0;
+            while j < 8 {
                 if (v >> j) & 1 == 1 {
                     // reversed-index bit 8q + j is index bit 31 - (8q + j)
                     x ^= m[31 - (8 * q + j)].reverse_bits();
                 }
+                j += 1;
             }
-            *entry = x;
+            t[q][v] = x;
+            v += 1;
         }
+        q += 1;
     }
     t
 }
 
+#[cfg(feature = "std")]
 fn build(matrices: Vec<Matrix>) -> Tables {
     let bytes = matrices.iter().map(byte_tables).collect();
     Tables { matrices, bytes }
 }
 
+#[cfg(feature = "std")]
 fn tables() -> &'static Tables {
     static TABLES: OnceLock<Tables> = OnceLock::new();
     TABLES.get_or_init(|| {
@@ -120,22 +143,63 @@ fn tables() -> &'static Tables {
     })
 }
 
+/// The byte tables of dimension `dim`: dimensions 0 and 1 from the compile-time tables, the
+/// others (with `std`) from the lazily built ones.
+#[inline]
+fn dim_tables(dim: u32) -> Option<&'static [[u32; 256]; 4]> {
+    if dim < 2 {
+        return Some(&FIRST_TWO[dim as usize]);
+    }
+    #[cfg(feature = "std")]
+    return tables().bytes.get(dim as usize);
+    #[cfg(not(feature = "std"))]
+    None
+}
+
 /// The number of Sobol' dimensions available (1000 with the `joe-kuo` feature, else 2).
 pub fn max_dimensions() -> u32 {
-    tables().matrices.len() as u32
+    #[cfg(feature = "std")]
+    return tables().matrices.len() as u32;
+    #[cfg(not(feature = "std"))]
+    2
 }
 
 /// The generator matrix of dimension `dim` (columns for index bits 0..32, MSB-first values).
 #[cfg(test)]
 pub(crate) fn matrix(dim: u32) -> Option<[u32; 32]> {
-    tables().matrices.get(dim as usize).copied()
+    #[cfg(feature = "std")]
+    return tables().matrices.get(dim as usize).copied();
+    #[cfg(not(feature = "std"))]
+    first_two().get(dim as usize).copied()
 }
 
 /// Point `index` of dimension `dim` of the plain (unscrambled) Sobol' sequence, 32-bit fixed
 /// point; `None` past [`max_dimensions`].
 pub fn sobol_u32(index: u32, dim: u32) -> Option<u32> {
-    let t = tables().bytes.get(dim as usize)?;
+    let t = dim_tables(dim)?;
     Some(lookup(t, index.reverse_bits()).reverse_bits())
+}
+
+/// Dimension `dim` of point `index` of the Owen-scrambled Sobol' sequence seeded by `seed`:
+/// the value [`SobolNd`] gives (within its first `2^32` points), stateless and allocation-free.
+/// `None` past [`max_dimensions`].
+///
+/// ```
+/// use strata::{SamplerNd, Seed, samplers::{SobolNd, sobol}};
+/// let mut s = SobolNd::new(2, Seed(4))?;
+/// let mut p = [0f32; 2];
+/// s.next_point(&mut p);
+/// assert_eq!(sobol::owen_scrambled(0, 1, 4), Some(p[1]));
+/// # Ok::<(), strata::Error>(())
+/// ```
+pub fn owen_scrambled(index: u32, dim: u32, seed: u64) -> Option<f32> {
+    let t = dim_tables(dim)?;
+    let s = Scramble::new(seed);
+    Some(unit_f32_from_u32(s.sample_rev_u32(
+        t,
+        s.index_rev(index),
+        dim,
+    )))
 }
 
 /// The point of a digital sequence at a bit-reversed index, bit-reversed, from its byte tables.
@@ -152,8 +216,10 @@ pub(crate) fn lookup(t: &[[u32; 256]; 4], i_rev: u32) -> u32 {
 /// around this, in the reversed domain where both are cheap.
 #[inline]
 pub(crate) fn point01_rev(index_rev: u32) -> [u32; 2] {
-    let t = &tables().bytes;
-    [lookup(&t[0], index_rev), lookup(&t[1], index_rev)]
+    [
+        lookup(&FIRST_TWO[0], index_rev),
+        lookup(&FIRST_TWO[1], index_rev),
+    ]
 }
 
 /// Seeds of one scrambled copy of the sequence: the index shuffle and one value scramble per
@@ -190,11 +256,11 @@ impl Scramble {
     /// exist).
     #[inline]
     pub fn sample2_u32(&self, index: u32, dim: u32) -> [u32; 2] {
-        let t = &tables().bytes;
+        let table = |d: u32| dim_tables(d).expect("the dimension exists");
         let i = self.index_rev(index);
         [
-            self.sample_rev_u32(&t[dim as usize], i, dim),
-            self.sample_rev_u32(&t[dim as usize + 1], i, dim + 1),
+            self.sample_rev_u32(table(dim), i, dim),
+            self.sample_rev_u32(table(dim + 1), i, dim + 1),
         ]
     }
 
@@ -205,9 +271,13 @@ impl Scramble {
     }
 }
 
+/// The registered name.
+const NAME: &str = "sobol";
+
 /// The registry entry of `sobol`.
+#[cfg(feature = "std")]
 pub(crate) const ENTRY: Entry = Entry {
-    name: "sobol",
+    name: NAME,
     description: "Sobol' (Joe-Kuo directions), Owen-scrambled by hashing, progressive, any --dims",
     paper: "Sobol' 1967; Joe, Kuo 2008; Burley 2020",
     progressive: true,
@@ -270,7 +340,7 @@ fn advance(epochs: &mut Epochs, scramble: &mut Scramble) -> u32 {
 
 impl Sampler for Sobol {
     fn name(&self) -> &'static str {
-        ENTRY.name
+        NAME
     }
 
     fn progression(&self) -> Progression {
@@ -304,7 +374,7 @@ impl SobolNd {
         } else {
             " (enable the `joe-kuo` feature for 1000)"
         };
-        super::check_dims(ENTRY.name, dims, max, why)?;
+        super::check_dims(NAME, dims, max, why)?;
         Ok(SobolNd {
             epochs: Epochs::new(seed, MAX_SEQUENCE_LEN),
             dims,
@@ -315,7 +385,7 @@ impl SobolNd {
 
 impl SamplerNd for SobolNd {
     fn name(&self) -> &'static str {
-        ENTRY.name
+        NAME
     }
 
     fn dimensions(&self) -> u32 {
@@ -329,9 +399,10 @@ impl SamplerNd for SobolNd {
     fn next_point(&mut self, out: &mut [f32]) {
         let i = advance(&mut self.epochs, &mut self.scramble);
         // one index shuffle for all dimensions of the point
-        let (t, ir) = (&tables().bytes, self.scramble.index_rev(i));
-        for (d, (o, table)) in out.iter_mut().zip(t).take(self.dims as usize).enumerate() {
-            *o = unit_f32_from_u32(self.scramble.sample_rev_u32(table, ir, d as u32));
+        let ir = self.scramble.index_rev(i);
+        for (d, o) in (0..self.dims).zip(out.iter_mut()) {
+            let table = dim_tables(d).expect("checked at construction");
+            *o = unit_f32_from_u32(self.scramble.sample_rev_u32(table, ir, d));
         }
     }
 }

@@ -25,7 +25,7 @@ use crate::error::{Error, Result};
 /// The radius of the low band, in cycles per pixel.
 pub const LOW_BAND: f64 = 1.0 / 8.0;
 
-/// The measures of an error image (see the [module docs](self)).
+/// The measures of an error image (see [`error_image`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ErrorImage {
     /// Width in pixels.

@@ -39,17 +39,26 @@
 //! classes stratified in about two thirds of the elementary shapes; no split by index makes
 //! both halves full nets.
 
+#[cfg(feature = "std")]
 mod construct;
 pub mod stochastic;
 
+#[cfg(feature = "std")]
 use construct::{Construction, Variant};
 pub use stochastic::Pmj02Stochastic;
 
+#[cfg(feature = "std")]
 use super::Epochs;
+#[cfg(feature = "std")]
 use crate::error::{Error, Result};
+#[cfg(feature = "std")]
 use crate::float::unit_f32_from_u32;
+use crate::prelude::*;
+#[cfg(feature = "std")]
 use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
-use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
+use crate::sampler::StrataGrid;
+#[cfg(feature = "std")]
+use crate::sampler::{Point2, Progression, Sampler, Seed};
 
 /// The most samples a progressive PMJ sequence holds before it starts over with a new seed.
 pub const MAX_SEQUENCE_LEN: u64 = 1 << 32;
@@ -61,6 +70,7 @@ pub const DEFAULT_CANDIDATES: u32 = 100;
 pub const MAX_CANDIDATES: u32 = 1 << 16;
 
 /// The candidates parameter of the best-candidate variants.
+#[cfg(feature = "std")]
 const CANDIDATES: ParameterSpec = ParameterSpec {
     parameter: Parameter::Candidates,
     default: DEFAULT_CANDIDATES as f64,
@@ -68,6 +78,7 @@ const CANDIDATES: ParameterSpec = ParameterSpec {
 };
 
 /// The registry entry of `pmj`.
+#[cfg(feature = "std")]
 pub(crate) const PMJ: Entry = Entry {
     name: "pmj",
     description: "progressive multi-jittered: 1D strata and squarest grid at every power of two",
@@ -83,6 +94,7 @@ pub(crate) const PMJ: Entry = Entry {
 };
 
 /// The registry entry of `pmjbn`.
+#[cfg(feature = "std")]
 pub(crate) const PMJBN: Entry = Entry {
     name: "pmjbn",
     description: "pmj with best-candidate blue noise (--candidates K, default 100)",
@@ -101,6 +113,7 @@ pub(crate) const PMJBN: Entry = Entry {
 };
 
 /// The registry entry of `pmj02`.
+#[cfg(feature = "std")]
 pub(crate) const PMJ02: Entry = Entry {
     name: "pmj02",
     description: "progressive (0,m,2)-nets at every power of two (Pharr's strata enumeration)",
@@ -116,6 +129,7 @@ pub(crate) const PMJ02: Entry = Entry {
 };
 
 /// The registry entry of `pmj02bn`.
+#[cfg(feature = "std")]
 pub(crate) const PMJ02BN: Entry = Entry {
     name: "pmj02bn",
     description: "pmj02 with best-candidate placement (--candidates K, default 100)",
@@ -186,6 +200,7 @@ pub(crate) fn pmj_grids(n: u64, all_shapes: bool) -> Vec<StrataGrid> {
 /// }
 /// assert!(cells.iter().all(|&c| c == 1));
 /// ```
+#[cfg(feature = "std")]
 #[derive(Clone, Debug)]
 pub struct Pmj {
     epochs: Epochs,
@@ -194,6 +209,7 @@ pub struct Pmj {
     points: Vec<[u32; 2]>,
 }
 
+#[cfg(feature = "std")]
 impl Pmj {
     fn with_variant(variant: Variant, seed: Seed) -> Self {
         let epochs = Epochs::new(seed, MAX_SEQUENCE_LEN);
@@ -272,6 +288,7 @@ impl Pmj {
     }
 }
 
+#[cfg(feature = "std")]
 fn check_candidates(name: &'static str, candidates: u32) -> Result<u32> {
     if candidates == 0 || candidates > MAX_CANDIDATES {
         return Err(Error::parameter(
@@ -284,6 +301,7 @@ fn check_candidates(name: &'static str, candidates: u32) -> Result<u32> {
     Ok(candidates)
 }
 
+#[cfg(feature = "std")]
 impl Sampler for Pmj {
     fn name(&self) -> &'static str {
         match self.variant {

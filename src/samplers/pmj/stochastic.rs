@@ -24,6 +24,8 @@
 
 use crate::float::unit_f32_from_u32;
 use crate::hash::{hash_u64, stream_seed};
+use crate::prelude::*;
+#[cfg(feature = "std")]
 use crate::registry::{CountRule, Entry, Rates};
 use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 
@@ -117,22 +119,24 @@ pub(crate) const XORS: [[u32; DIGITS]; 2] = [xor_values(0), xor_values(1)];
 /// 2021, who derive the construction from these matrices); the Z-ordered adapter sequence
 /// `zpmj02` reads it at 32-bit indices, where no table of the stochastic sequence would fit.
 pub(crate) fn digital_point01_rev(index_rev: u32) -> [u32; 2] {
-    static TABLES: std::sync::OnceLock<[[[u32; 256]; 4]; 2]> = std::sync::OnceLock::new();
-    let t = TABLES.get_or_init(|| {
-        let matrix = |dim: usize| {
-            let cols = generator(dim);
-            let mut m = [0u32; DIGITS];
-            for (k, c) in cols.iter().enumerate() {
-                m[k] = (*c as u32).reverse_bits(); // row r (digit r from the top) -> bit 31 - r
-            }
-            crate::samplers::sobol::byte_tables(&m)
-        };
-        [matrix(0), matrix(1)]
-    });
     [
-        crate::samplers::sobol::lookup(&t[0], index_rev),
-        crate::samplers::sobol::lookup(&t[1], index_rev),
+        crate::samplers::sobol::lookup(&DIGITAL_TABLES[0], index_rev),
+        crate::samplers::sobol::lookup(&DIGITAL_TABLES[1], index_rev),
     ]
+}
+
+/// The byte tables of [`digital_point01_rev`], built at compile time.
+static DIGITAL_TABLES: [[[u32; 256]; 4]; 2] = [digital_tables(0), digital_tables(1)];
+
+const fn digital_tables(dim: usize) -> [[u32; 256]; 4] {
+    let cols = generator(dim);
+    let mut m = [0u32; 32];
+    let mut k = 0;
+    while k < DIGITS {
+        m[k] = (cols[k] as u32).reverse_bits(); // row r (digit r from the top) -> bit 31 - r
+        k += 1;
+    }
+    crate::samplers::sobol::byte_tables(&m)
 }
 
 /// The stochastic pmj02 sequence (progressive; O(1) per sample, 8 bytes per stored sample).
@@ -151,9 +155,13 @@ pub struct Pmj02Stochastic {
     points: Vec<[u32; 2]>,
 }
 
+/// The registered name.
+const NAME: &str = "pmj02-stochastic";
+
 /// The registry entry of `pmj02-stochastic`.
+#[cfg(feature = "std")]
 pub(crate) const ENTRY: Entry = Entry {
-    name: "pmj02-stochastic",
+    name: NAME,
     description: "pmj02 by stochastic generation, O(1) per sample",
     paper: "Helmer, Christensen, Kensler 2021",
     progressive: true,
@@ -279,7 +287,7 @@ impl Pmj02Stochastic {
 
 impl Sampler for Pmj02Stochastic {
     fn name(&self) -> &'static str {
-        ENTRY.name
+        NAME
     }
 
     fn progression(&self) -> Progression {

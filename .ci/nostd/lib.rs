@@ -1,0 +1,66 @@
+//! The stateless core of strata in a `#![no_std]` library: Sobol' and Z-ordered Sobol' by
+//! (index, dimension, seed), stochastic pmj02 by index, Halton, hashing, Kensler's permutation
+//! and float conversion, exported so that the linker keeps them.
+
+#![no_std]
+
+use core::alloc::{GlobalAlloc, Layout};
+
+use strata::samplers::{Pmj02Stochastic, halton, sobol};
+use strata::{PixelSampler, Seed, Sequence, float, hash};
+
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    loop {}
+}
+
+/// An allocator that has nothing to give: the functions below never ask.
+struct NoAlloc;
+
+// SAFETY: alloc returns null (an allocation failure), which GlobalAlloc allows; dealloc is
+// never given a pointer this allocator returned, since it returns none.
+unsafe impl GlobalAlloc for NoAlloc {
+    unsafe fn alloc(&self, _: Layout) -> *mut u8 {
+        core::ptr::null_mut()
+    }
+    unsafe fn dealloc(&self, _: *mut u8, _: Layout) {}
+}
+
+#[global_allocator]
+static ALLOCATOR: NoAlloc = NoAlloc;
+
+/// Sobol' (Owen-scrambled) by index, dimension and seed.
+#[unsafe(no_mangle)]
+pub extern "C" fn strata_sobol(index: u32, dim: u32, seed: u64) -> f32 {
+    sobol::owen_scrambled(index, dim, seed).unwrap_or(-1.0)
+}
+
+/// Z-ordered Sobol' for pixel (x, y) of a 1920 x 1080 image: the draw at `dim`.
+#[unsafe(no_mangle)]
+pub extern "C" fn strata_zsobol(x: u32, y: u32, index: u64, dim: u32, seed: u64) -> f32 {
+    match Sequence::zsobol(1920, 1080)
+        .and_then(|z| PixelSampler::new(z, 64, Seed(seed)))
+    {
+        Ok(s) => s.sample_2d([x, y], index, dim).x,
+        Err(_) => -1.0,
+    }
+}
+
+/// Stochastic pmj02 by index.
+#[unsafe(no_mangle)]
+pub extern "C" fn strata_pmj02(index: u32, seed: u64) -> f32 {
+    Pmj02Stochastic::point_at(Seed(seed), index).x
+}
+
+/// Scrambled Halton by dimension, index and seed.
+#[unsafe(no_mangle)]
+pub extern "C" fn strata_halton(dim: u32, index: u64, seed: u64) -> f32 {
+    halton::scrambled_radical_inverse(dim as usize % halton::MAX_DIMENSIONS, index, seed)
+}
+
+/// Hashing, Kensler's permutation and float conversion.
+#[unsafe(no_mangle)]
+pub extern "C" fn strata_hash(i: u32, len: u32, key: u64) -> f32 {
+    let p = hash::permute(i % len.max(1), len.max(1), hash::hash32(i, key as u32));
+    float::unit_f32_from_u32(hash::owen_scramble(p, hash::mix64(key) as u32))
+}
