@@ -60,7 +60,8 @@ Options:
                          64): rmse and rel_rmse are over all of them (the root of the mean
                          squared error), ms is the mean time; the pictures show seed S
   --out DIR              output directory (default out/render)
-  --markdown FILE        also write the tables into FILE, as its section 'render'
+  --markdown FILE        also write the tables into FILE, as its section
+                         'render-SCENE-COUNTS' (e.g. render-cornell-4,16,64,256)
   -h, --help             this text
 
 Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband: one

