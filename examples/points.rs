@@ -1,8 +1,9 @@
-//! `points`: print a sample set as CSV, or draw it.
+//! `points`: print a sample set as CSV (or UTK's text or binary format), or draw it.
 //!
 //! ```text
 //! cargo run --release --example points -- --sampler NAME -n N [--seed S] [--dims D]
 //!         [--pixel X,Y] [--radius RHO] [--iterations K] [--strength T] [--png FILE] [--list]
+//!         [--format csv|utk|bin]
 //! ```
 //! See `docs/cli.md` (the command-line contract).
 
@@ -13,10 +14,12 @@ use std::process::ExitCode;
 
 use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_pair, string_value};
 use strata::pixel::{PixelSampler, Sequence};
+use strata::pointsets::{self, Format};
 use strata::registry::{self, Params};
 
 const USAGE: &str = "points --sampler NAME -n N [--seed S] [--dims D] [--pixel X,Y] [--radius RHO] \
-[--iterations K] [--strength T] [--candidates K] [--resolution WxH] [--png FILE] [--no-header] [--list]";
+[--iterations K] [--strength T] [--candidates K] [--capacity C] [--resolution WxH] [--png FILE] \
+[--format csv|utk|bin] [--no-header] [--list]";
 
 const HELP: &str = "\
 points: print a sample set as CSV (header, then one row per sample in sequence order), or draw it.
@@ -36,7 +39,10 @@ Options:
   --iterations K     Lloyd / CCVT iterations
   --strength T       orthogonal-array strength
   --candidates K     best-candidate count
+  --capacity C       CCVT points per site
   --png FILE         also draw the points (with the strata grid) into FILE
+  --format F         csv (default), utk (UTK text: space-separated, no header) or bin (UTK
+                     binary: the magic UTK!, data type 4 = f32, counts, then the values)
   --no-header        omit the CSV header line
   --list             print every registered sampler with a one-line description
   -h, --help         this text
@@ -53,6 +59,7 @@ struct Args {
     resolution: [u32; 2],
     png: Option<std::path::PathBuf>,
     header: bool,
+    format: Format,
 }
 
 fn parse() -> Result<Option<Args>, CliError> {
@@ -66,6 +73,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         resolution: strata::pixel::DEFAULT_Z_RESOLUTION,
         png: None,
         header: true,
+        format: Format::Csv,
     };
     let mut parser = lexopt::Parser::from_env();
     while let Some(arg) = parser.next()? {
@@ -87,7 +95,7 @@ fn parse() -> Result<Option<Args>, CliError> {
                 let v = string_value("--pixel", parser.value()?)?;
                 args.pixel = Some(parse_pair("--pixel", &v, u32::MAX as u64)?);
             }
-            Long(flag @ ("radius" | "iterations" | "strength" | "candidates")) => {
+            Long(flag @ ("radius" | "iterations" | "strength" | "candidates" | "capacity")) => {
                 let flag = flag.to_owned(); // the argument borrows the parser
                 common::sampler_param(&flag, &mut parser, &mut args.params)?
             }
@@ -106,6 +114,10 @@ fn parse() -> Result<Option<Args>, CliError> {
                 ];
             }
             Long("no-header") => args.header = false,
+            Long("format") => {
+                let v = string_value("--format", parser.value()?)?;
+                args.format = Format::by_name(&v)?;
+            }
             Long("list") => {
                 for e in registry::entries() {
                     let kind = if e.progressive {
@@ -221,6 +233,20 @@ fn main() -> ExitCode {
 
         let stdout = std::io::stdout();
         let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
+        if args.format != Format::Csv {
+            let written = pointsets::write_f32(&mut out, args.format, dims, &values)
+                .and_then(|()| out.flush().map_err(|e| strata::Error::io("<stdout>", e)));
+            return match written {
+                Err(strata::Error::Io { source, .. })
+                    if source
+                        .downcast_ref::<std::io::Error>()
+                        .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe) =>
+                {
+                    Ok(())
+                }
+                other => other.map_err(Into::into),
+            };
+        }
         let result = (|| -> std::io::Result<()> {
             if args.header {
                 if dims == 2 {

@@ -39,7 +39,7 @@ Options:
                       `points --sampler NAME -n N --seed S+r` prints
   --resolution K      frequencies |u|, |v| <= K/2 (even, default 256)
   --out DIR           output directory (default out), created when missing
-  --radius, --iterations, --strength, --candidates   passed to the samplers that take them
+  --radius, --iterations, --strength, --candidates, --capacity   passed to the samplers that take them
   --no-overview       skip out/overview.png
   --markdown FILE     also write the table into FILE, as its section 'spectrum'
   -h, --help          this text
@@ -101,7 +101,7 @@ fn parse() -> Result<Option<Args>, CliError> {
                 a.resolution = k;
             }
             Long("out") => a.out = p.value()?.into(),
-            Long(flag @ ("radius" | "iterations" | "strength" | "candidates")) => {
+            Long(flag @ ("radius" | "iterations" | "strength" | "candidates" | "capacity")) => {
                 let flag = flag.to_owned(); // the argument borrows the parser
                 common::sampler_param(&flag, &mut p, &mut a.params)?
             }
@@ -152,6 +152,9 @@ fn run_one(
     if !takes(registry::Parameter::Strength) {
         params.strength = None;
     }
+    if !takes(registry::Parameter::Capacity) {
+        params.capacity = None;
+    }
     if !takes(registry::Parameter::Candidates) {
         params.candidates = None;
     }
@@ -186,23 +189,14 @@ fn run_one(
     bar.inc(realizations as u64);
 
     let name = entry.name;
-    let dir = &args.out;
     let grids = entry.build(&params.clone().seed(args.seed))?.strata(count);
-    let scale = 512u32.div_ceil(spectrum.side() as u32).max(1);
-    io::write_png(
-        dir.join(format!("{name}-spectrum.png")),
-        &io::draw_spectrum(&spectrum, scale),
-    )?;
-    io::write_spectrum_exr(dir.join(format!("{name}-spectrum.exr")), &spectrum)?;
-    io::write_radial_csv(dir.join(format!("{name}-radial.csv")), &radial)?;
-    let title = format!("{name}: radial mean, N = {count}, {realizations} realizations");
-    io::write_png(
-        dir.join(format!("{name}-radial.png")),
-        &io::radial_plot(&radial, &title, count as usize, 640, 400),
-    )?;
-    io::write_png(
-        dir.join(format!("{name}-points.png")),
-        &io::draw_points(&sets[0], &grids, 512),
+    io::write_spectrum_files(
+        &args.out,
+        name,
+        &spectrum,
+        realizations as usize,
+        &sets[0],
+        &grids,
     )?;
 
     // Mean power over the low band 0 < |w| < sqrt(N)/2: what smooth integrands see.

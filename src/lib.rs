@@ -122,6 +122,8 @@ mod morton;
 mod occupancy;
 pub mod pixel;
 #[cfg(feature = "std")]
+pub mod pointsets;
+#[cfg(feature = "std")]
 pub mod registry;
 mod sampler;
 pub mod samplers;

@@ -355,3 +355,95 @@ fn render_sweeps_counts_and_refuses_bad_input() {
         assert!(err.contains(says), "{args:?}: {err}");
     }
 }
+
+/// `run_example` with raw stdout bytes.
+fn run_example_bytes(name: &str, args: &[&str]) -> (i32, Vec<u8>, String) {
+    let bin = example_bin(name).expect("the example is built by `cargo test`");
+    let out = Command::new(bin)
+        .args(args)
+        .output()
+        .expect("the example runs");
+    (
+        out.status.code().unwrap_or(-1),
+        out.stdout,
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+#[test]
+#[cfg(feature = "spectrum")]
+fn points_writes_every_format_and_measure_reads_them_back() {
+    use strata::analysis::discrepancy;
+    use strata::pointsets;
+    let dir = std::env::temp_dir().join(format!("strata-measure-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut s = registry::build("sobol", &Params::new(64).seed(5)).unwrap();
+    let want: Vec<f64> = (0..64)
+        .flat_map(|_| {
+            let p = s.next_sample();
+            [p.x as f64, p.y as f64]
+        })
+        .collect();
+    let mut files = Vec::new();
+    for format in ["csv", "utk", "bin"] {
+        let (code, out, err) = run_example_bytes(
+            "points",
+            &[
+                "--sampler",
+                "sobol",
+                "-n",
+                "64",
+                "--seed",
+                "5",
+                "--format",
+                format,
+            ],
+        );
+        assert_eq!(code, 0, "{err}");
+        let sets = pointsets::parse(&out).unwrap();
+        assert_eq!(sets.len(), 1);
+        // every format holds exactly the generated f32 values
+        let got: Vec<f32> = sets[0].coords.iter().map(|&v| v as f32).collect();
+        let exact: Vec<f32> = want.iter().map(|&v| v as f32).collect();
+        assert_eq!(got, exact, "{format}");
+        let path = dir.join(format!("sobol-{format}.{format}"));
+        std::fs::write(&path, &out).unwrap();
+        files.push(path);
+    }
+    let paths: Vec<&str> = files.iter().map(|p| p.to_str().unwrap()).collect();
+    let out_dir = dir.join("out");
+    let mut args = paths.clone();
+    args.extend(["--out", out_dir.to_str().unwrap()]);
+    let (code, out, err) = run_example("measure", &args);
+    assert_eq!(code, 0, "{err}");
+    // three files, each a set row and a mean row, all with the library's values
+    let cd = discrepancy::centered_squared(&want, 2).unwrap();
+    let rows: Vec<&str> = out
+        .lines()
+        .filter(|l| l.split('|').nth(2).map(str::trim) == Some("0"))
+        .collect();
+    assert_eq!(rows.len(), 3, "{out}");
+    for row in rows {
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        let printed: f64 = cells[7].parse().unwrap(); // | file | set | n | d | l2 | wd2 | cd2
+        assert!((printed - cd).abs() <= 1e-6 * cd, "{row}");
+        assert_eq!(cells[10], "0", "a Sobol' prefix is a (0,6,2)-net: {row}");
+    }
+    for f in [
+        "sobol-csv-spectrum.png",
+        "sobol-bin-radial.csv",
+        "measures.csv",
+    ] {
+        assert!(out_dir.join(f).exists(), "{f}");
+    }
+    // a damaged file: a one-line error naming the line
+    let bad = dir.join("bad.txt");
+    std::fs::write(&bad, "0.1 0.2\n0.3\n").unwrap();
+    let (code, _, err) = run_example("measure", &[bad.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(err.contains("line 2") && err.lines().count() == 1, "{err}");
+    let (code, _, err) = run_example("measure", &[]);
+    assert_ne!(code, 0);
+    assert!(err.contains("FILE"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

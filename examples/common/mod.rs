@@ -95,7 +95,7 @@ pub fn unexpected(arg: lexopt::Arg<'_>, usage: &str) -> CliError {
 }
 
 /// The sampler parameters `points` and `spectrum` share: `--radius`, `--iterations`,
-/// `--strength`, `--candidates` (the flag's name without dashes), read from `parser` into
+/// `--strength`, `--candidates`, `--capacity` (the flag's name without dashes), read from `parser` into
 /// `params` with the same ranges in both programs.
 pub fn sampler_param(
     flag: &str,
@@ -109,6 +109,7 @@ pub fn sampler_param(
         "iterations" => params.iterations = Some(parse_int(&dashed, &v, 0, 100_000)? as u32),
         "strength" => params.strength = Some(parse_int(&dashed, &v, 0, 64)? as u32),
         "candidates" => params.candidates = Some(parse_int(&dashed, &v, 0, 1 << 16)? as u32),
+        "capacity" => params.capacity = Some(parse_int(&dashed, &v, 0, 1 << 16)? as u32),
         other => return Err(cli_error(format!("--{other} is not a sampler parameter"))),
     }
     Ok(())

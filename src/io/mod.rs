@@ -245,3 +245,37 @@ pub fn write_text(path: impl AsRef<Path>, text: &str) -> Result<()> {
     f.write_all(text.as_bytes())
         .map_err(|e| crate::Error::io(path, e))
 }
+
+/// Writes the files of one pattern's expected spectrum into `dir`, as the `spectrum` and
+/// `measure` programs do: `NAME-spectrum.png` (log-scaled), `NAME-spectrum.exr` (the values),
+/// `NAME-radial.csv` and `NAME-radial.png` (the radial mean), and `NAME-points.png` (`points`,
+/// one realization, with `grids`).
+#[cfg(feature = "spectrum")]
+pub fn write_spectrum_files(
+    dir: impl AsRef<Path>,
+    name: &str,
+    spectrum: &Spectrum,
+    realizations: usize,
+    points: &[Point2],
+    grids: &[StrataGrid],
+) -> Result<()> {
+    let dir = dir.as_ref();
+    let radial = spectrum.radial();
+    let count = points.len();
+    let scale = 512u32.div_ceil(spectrum.side() as u32).max(1);
+    write_png(
+        dir.join(format!("{name}-spectrum.png")),
+        &draw_spectrum(spectrum, scale),
+    )?;
+    write_spectrum_exr(dir.join(format!("{name}-spectrum.exr")), spectrum)?;
+    write_radial_csv(dir.join(format!("{name}-radial.csv")), &radial)?;
+    let title = format!("{name}: radial mean, N = {count}, {realizations} realizations");
+    write_png(
+        dir.join(format!("{name}-radial.png")),
+        &radial_plot(&radial, &title, count, 640, 400),
+    )?;
+    write_png(
+        dir.join(format!("{name}-points.png")),
+        &draw_points(points, grids, 512),
+    )
+}

@@ -19,6 +19,8 @@ pub enum Parameter {
     Strength,
     /// Best-candidate count (`--candidates`).
     Candidates,
+    /// Discrete points per CCVT site (`--capacity`).
+    Capacity,
 }
 
 impl Parameter {
@@ -29,6 +31,7 @@ impl Parameter {
             Parameter::Iterations => "iterations",
             Parameter::Strength => "strength",
             Parameter::Candidates => "candidates",
+            Parameter::Capacity => "capacity",
         }
     }
 }
@@ -377,6 +380,8 @@ pub struct Params {
     pub strength: Option<u32>,
     /// Best-candidate count.
     pub candidates: Option<u32>,
+    /// Discrete points per CCVT site.
+    pub capacity: Option<u32>,
 }
 
 impl Params {
@@ -389,6 +394,7 @@ impl Params {
             iterations: None,
             strength: None,
             candidates: None,
+            capacity: None,
         }
     }
 
@@ -417,6 +423,9 @@ impl Params {
         }
         if let Some(x) = self.candidates {
             v.push((Parameter::Candidates, x.to_string()));
+        }
+        if let Some(x) = self.capacity {
+            v.push((Parameter::Capacity, x.to_string()));
         }
         v
     }

@@ -1,8 +1,10 @@
 //! Capacity-constrained Voronoi tessellation: Balzer, Schlömer, Deussen, "Capacity-Constrained
 //! Point Distributions: A Variant of Lloyd's Method" (SIGGRAPH 2009).
 //!
-//! The density is represented by `M = N m` discrete points, uniform on the unit torus; each of
-//! the `N` sites owns exactly `m` of them (its *capacity*). The energy
+//! The density is represented by `M = N m` discrete points, the first `M` points of an
+//! Owen-scrambled Sobol' sequence (evener than uniform random points, so the sites' centroids
+//! carry less noise: rho 0.655 instead of 0.580 at 64 points per site, 1024 sites); each of the
+//! `N` sites owns exactly `m` of them (its *capacity*). The energy
 //! `E = sum_i sum_{x in A_i} |x - s_i|^2` is lowered by exchanging points between pairs of sites
 //! and by moving each site to the centroid of its points, until no exchange helps. Unlike
 //! Lloyd's method, every site keeps the same share of the domain, which prevents the drift
@@ -29,8 +31,15 @@ use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
 /// Discrete points per site.
 pub const DEFAULT_CAPACITY: u32 = 256;
 
-/// The default (maximum) number of passes; the optimisation usually stops earlier.
-pub const DEFAULT_ITERATIONS: u32 = 200;
+/// The default cap on the passes: high enough that the optimisation stops by convergence (a
+/// pass without a swap), which takes 20-60 passes at the default capacity.
+pub const DEFAULT_ITERATIONS: u32 = 10_000;
+
+/// The most points per site.
+pub const MAX_CAPACITY: u32 = 4096;
+
+/// The most discrete points in one optimisation (sites x capacity; 24 bytes each).
+pub const MAX_POINTS: u64 = 1 << 26;
 
 /// The most passes accepted.
 pub const MAX_ITERATIONS: u32 = 100_000;
@@ -41,15 +50,22 @@ pub const MAX_CCVT_COUNT: u64 = 1 << 16;
 /// The registry entry of `ccvt`.
 pub(crate) const ENTRY: Entry = Entry {
     name: "ccvt",
-    description: "capacity-constrained Voronoi tessellation, 256 points per site (--iterations K, default 200)",
+    description: "capacity-constrained Voronoi tessellation until no swap is left (--capacity C points per site, default 256; --iterations K caps the passes, default 10000)",
     paper: "Balzer, Schlömer, Deussen 2009",
     progressive: false,
     counts: CountRule::Any,
-    parameters: &[ParameterSpec {
-        parameter: Parameter::Iterations,
-        default: DEFAULT_ITERATIONS as f64,
-        allowed: "1 to 100000",
-    }],
+    parameters: &[
+        ParameterSpec {
+            parameter: Parameter::Iterations,
+            default: DEFAULT_ITERATIONS as f64,
+            allowed: "1 to 100000",
+        },
+        ParameterSpec {
+            parameter: Parameter::Capacity,
+            default: DEFAULT_CAPACITY as f64,
+            allowed: "1 to 4096, sites x capacity at most 2^26",
+        },
+    ],
     promise: "equal-capacity Voronoi cells (blue noise)",
     rates: Rates {
         discontinuous: Some(-1.5),
@@ -59,8 +75,9 @@ pub(crate) const ENTRY: Entry = Entry {
     expensive: true,
     build: |p| {
         let k = p.iterations.unwrap_or(DEFAULT_ITERATIONS);
+        let c = p.capacity.unwrap_or(DEFAULT_CAPACITY);
         Ok(Box::new(CcvtSets::new(
-            Ccvt::new(p.count, k)?,
+            Ccvt::with_capacity(p.count, k, c)?,
             p.sampler_seed(),
         )?))
     },
@@ -99,7 +116,8 @@ impl Ccvt {
         Self::with_capacity(count, iterations, DEFAULT_CAPACITY)
     }
 
-    /// As [`new`](Ccvt::new) with `capacity` points per site (1 to 4096).
+    /// As [`new`](Ccvt::new) with `capacity` points per site (1 to [`MAX_CAPACITY`], and
+    /// `count * capacity` at most [`MAX_POINTS`]).
     pub fn with_capacity(count: u64, iterations: u32, capacity: u32) -> Result<Self> {
         if count == 0 || count > MAX_CCVT_COUNT {
             return Err(Error::count(
@@ -116,12 +134,16 @@ impl Ccvt {
                 format!("1 to {MAX_ITERATIONS}"),
             ));
         }
-        if capacity == 0 || capacity > 4096 {
+        if capacity == 0 || capacity > MAX_CAPACITY || count * capacity as u64 > MAX_POINTS {
             return Err(Error::parameter(
                 ENTRY.name,
                 "capacity",
                 capacity,
-                "1 to 4096 points per site",
+                format!(
+                    "1 to {MAX_CAPACITY} points per site, and at most {MAX_POINTS} points in all \
+                     ({count} sites take at most {})",
+                    (MAX_POINTS / count).min(MAX_CAPACITY as u64)
+                ),
             ));
         }
         Ok(Ccvt {
@@ -197,15 +219,18 @@ impl Ccvt {
     }
 }
 
-/// Assigns `m` uniform points to each site: points in random order go to the nearest site that
-/// still has room (Balzer's initialisation). Returns the points grouped by site.
+/// Assigns `m` density points to each site: the points of a scrambled Sobol' sequence, in its
+/// order, go to the nearest site that still has room (Balzer's initialisation). Returns the
+/// points grouped by site.
 fn initial_assignment(sites: &[[f64; 2]], m: usize, rng: &mut Pcg32) -> Vec<[f64; 2]> {
     let n = sites.len();
     let grid = TorusGrid::from_points(sites.iter().copied());
     let mut count = vec![0usize; n];
     let mut grouped = vec![[0.0f64; 2]; n * m];
-    for _ in 0..n * m {
-        let x = [uniform(rng), uniform(rng)];
+    let sobol = crate::samplers::Sobol::new(crate::sampler::Seed(uniform(rng).to_bits()));
+    for k in 0..n * m {
+        let p = sobol.sample(k as u32);
+        let x = [p.x as f64, p.y as f64];
         let (s, _) = grid
             .nearest_where(x, |i| count[i] < m)
             .expect("room remains while points remain");

@@ -22,9 +22,15 @@ use crate::grid::{relative_radius_max, wrap_unit as wrap};
 use crate::hash::{Stream, hash_u64, stream_seed};
 use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
 
-/// The default number of iterations: enough, from random points, for the mean distance from a
-/// point to its cell's centroid to fall below 1% of `r_max(N)` (tested).
-pub const DEFAULT_ITERATIONS: u32 = 64;
+/// The convergence tolerance: relaxation stops once the mean distance from a point to its
+/// cell's centroid falls below this fraction of `r_max(N)`. At N = 1024 this takes a few
+/// hundred iterations from random points (about 0.6 s per set) and reaches a mean spacing
+/// `rho` of 0.80 and a mean nearest-neighbour distance of 0.94 `r_max` (8 seeds); a looser
+/// 1e-3 stops at rho 0.79.
+pub const TOLERANCE: f64 = 2.5e-4;
+
+/// The default cap on the iterations (convergence usually stops them first).
+pub const DEFAULT_ITERATIONS: u32 = 1000;
 
 /// The most iterations accepted.
 pub const MAX_ITERATIONS: u32 = 100_000;
@@ -38,7 +44,7 @@ pub const MAX_LLOYD_COUNT: u64 = 1 << 22;
 /// The registry entry of `lloyd`.
 pub(crate) const ENTRY: Entry = Entry {
     name: "lloyd",
-    description: "Lloyd relaxation on the periodic Voronoi diagram from random points (--iterations K, default 64)",
+    description: "Lloyd relaxation on the periodic Voronoi diagram from random points, to convergence (at most --iterations K, default 1000)",
     paper: "Lloyd 1982",
     progressive: false,
     counts: CountRule::Any,
@@ -47,7 +53,7 @@ pub(crate) const ENTRY: Entry = Entry {
         default: DEFAULT_ITERATIONS as f64,
         allowed: "0 to 100000",
     }],
-    promise: "a centroidal Voronoi tessellation (near-hexagonal)",
+    promise: "a centroidal Voronoi tessellation (near-hexagonal), converged",
     rates: Rates::NONE,
     expensive: true,
     build: |p| {
@@ -238,10 +244,21 @@ pub struct LloydStep {
 /// Runs `iterations` Lloyd steps on `points` in place (coordinates in `[0,1)`), returning what
 /// each step measured. Coincident points are separated by a tiny hashed offset.
 pub fn relax(points: &mut [[f64; 2]], iterations: u32) -> Result<Vec<LloydStep>> {
+    relax_until(points, 0.0, iterations)
+}
+
+/// Lloyd steps on `points` in place until a step finds the mean distance from a point to its
+/// cell's centroid below `tolerance` times `r_max(N)` (that step still moves the points), or
+/// `max_iterations` steps; returns what each step measured.
+pub fn relax_until(
+    points: &mut [[f64; 2]],
+    tolerance: f64,
+    max_iterations: u32,
+) -> Result<Vec<LloydStep>> {
     let n = points.len();
     let r_max = relative_radius_max(n);
-    let mut steps = Vec::with_capacity(iterations as usize);
-    for it in 0..iterations {
+    let mut steps = Vec::new();
+    for it in 0..max_iterations {
         let cells = voronoi_cells(points)?;
         let (mut energy, mut offset) = (0.0, 0.0);
         for (i, (p, cell)) in points.iter_mut().zip(&cells).enumerate() {
@@ -266,15 +283,20 @@ pub fn relax(points: &mut [[f64; 2]], iterations: u32) -> Result<Vec<LloydStep>>
                 }
             }
         }
+        let mean_offset = offset / n as f64 / r_max;
         steps.push(LloydStep {
             energy,
-            mean_offset: offset / n as f64 / r_max,
+            mean_offset,
         });
+        if mean_offset < tolerance {
+            break;
+        }
     }
     Ok(steps)
 }
 
-/// Lloyd-relaxed sets: `count` random points relaxed `iterations` times.
+/// Lloyd-relaxed sets: `count` random points relaxed until converged ([`TOLERANCE`]) or for
+/// at most `iterations` steps.
 #[derive(Clone, Debug)]
 pub struct Lloyd {
     count: u32,
@@ -282,8 +304,8 @@ pub struct Lloyd {
 }
 
 impl Lloyd {
-    /// `count` points (1 to [`MAX_LLOYD_COUNT`]) relaxed `iterations` times (0 to
-    /// [`MAX_ITERATIONS`]).
+    /// `count` points (1 to [`MAX_LLOYD_COUNT`]) relaxed until converged, at most `iterations`
+    /// steps (0 to [`MAX_ITERATIONS`]).
     pub fn new(count: u64, iterations: u32) -> Result<Self> {
         if count == 0 || count > MAX_LLOYD_COUNT {
             return Err(Error::count(
@@ -329,7 +351,7 @@ impl SetGenerator for Lloyd {
 
     fn generate(&self, key: u64) -> Result<Vec<[f64; 2]>> {
         let mut points = random_start(self.count as usize, key);
-        relax(&mut points, self.iterations)?;
+        relax_until(&mut points, TOLERANCE, self.iterations)?;
         Ok(points)
     }
 }

@@ -1,0 +1,236 @@
+//! `measure`: measure point sets made by anything (ours, UTK's, scipy's, yours).
+//!
+//! ```text
+//! cargo run --release --example measure -- FILE... [--out DIR]
+//! ```
+//! See `docs/cli.md` (the command-line contract) and `--help` for the definitions.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use common::{CliError, cli_error};
+use rayon::prelude::*;
+use strata::analysis::discrepancy;
+use strata::pointsets::{self, PointSet};
+use strata::{io, spectrum};
+
+const USAGE: &str = "measure FILE... [--out DIR] [--resolution K]";
+
+const HELP: &str = "\
+measure: read point sets and print their discrepancies, spacing and spectral measures.
+
+Usage:
+  cargo run --release --example measure -- FILE... [options]
+
+Files: CSV (one point per line, comma-separated, optional header), UTK text (space-separated,
+sets separated by lines starting with '#'), or UTK binary (.bin: magic UTK!, data type f32 or
+f64, counts of sets, points and dimensions, then the values). The format is read from the
+content. Coordinates must lie in [0, 1).
+
+Options:
+  --out DIR          also write, per file whose sets are 2D and of one size, the expected
+                     spectrum over its sets as `spectrum` does: FILE-spectrum.png/.exr,
+                     FILE-radial.csv/.png, FILE-points.png; and measures.csv with the table
+  --resolution K     spectrum grid, frequencies |u|, |v| <= K/2 (even, default 128)
+  -h, --help         this text
+
+Columns (one row per set, then the mean of each file's sets):
+  n, d        points and dimensions
+  l2_star     L2-star discrepancy (Warnock): sqrt(3^-d - 2^(1-d)/n sum_i prod_k (1 - x_ik^2)
+              + n^-2 sum_ij prod_k (1 - max(x_ik, x_jk))); equals scipy.stats.qmc.discrepancy
+              (method='L2-star'), which also takes the root
+  wd2         wrap-around L2 discrepancy, squared (Hickernell): -(4/3)^d + n^-2 sum_ij
+              prod_k (3/2 - |x_ik - x_jk| + |x_ik - x_jk|^2); equals scipy's 'WD' (squared)
+  cd2         centered L2 discrepancy, squared (Hickernell), with a_ik = |x_ik - 1/2|:
+              (13/12)^d - 2/n sum_i prod_k (1 + a_ik/2 - a_ik^2/2) + n^-2 sum_ij prod_k
+              (1 + a_ik/2 + a_jk/2 - |x_ik - x_jk|/2); equals scipy's 'CD' (squared)
+  md2         mixture discrepancy, squared (Zhou, Fang, Ning 2013): (19/12)^d - 2/n sum_i
+              prod_k (5/3 - a_ik/4 - a_ik^2/4) + n^-2 sum_ij prod_k (15/8 - a_ik/4 - a_jk/4
+              - 3|x_ik - x_jk|/4 + |x_ik - x_jk|^2/2); equals scipy's 'MD' (squared)
+  star        exact star discrepancy (2D sets of at most 16384 points)
+  t           t-value as a base-2 (t,m,2)-net (2D sets of 2^m points): 0 for a (0,m,2)-net
+  min_nn      minimum toroidal nearest-neighbour distance / r_max (2D), r_max(n) =
+              sqrt(2 / (sqrt(3) n)), the spacing of the densest packing
+  mean_nn     mean nearest-neighbour distance / r_max (2D)
+  nu_eff      effective Nyquist frequency / sqrt(n), and
+  osc         oscillations: the PSA spectral measures (Heck et al. 2013), 2D sets of at most
+              65536 points
+
+The pairwise sums are O(n^2 d): sets above 65536 points show '-' for them.";
+
+/// The most points per set for the O(n^2) discrepancies.
+const MAX_PAIRWISE: usize = 1 << 16;
+
+struct Args {
+    files: Vec<PathBuf>,
+    out: Option<PathBuf>,
+    resolution: u32,
+}
+
+fn parse() -> Result<Option<Args>, CliError> {
+    use lexopt::prelude::*;
+    let mut args = Args {
+        files: Vec::new(),
+        out: None,
+        resolution: 128,
+    };
+    let mut parser = lexopt::Parser::from_env();
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Long("out") => args.out = Some(parser.value()?.into()),
+            Long("resolution") => {
+                let v = common::string_value("--resolution", parser.value()?)?;
+                args.resolution = common::parse_int("--resolution", &v, 2, 4096)? as u32;
+                spectrum::check_resolution(args.resolution)?;
+            }
+            Short('h') | Long("help") => {
+                println!("{HELP}");
+                return Ok(None);
+            }
+            Value(v) => args.files.push(v.into()),
+            other => return Err(common::unexpected(other, USAGE)),
+        }
+    }
+    if args.files.is_empty() {
+        return Err(cli_error(format!(
+            "at least one FILE is required; usage: {USAGE}"
+        )));
+    }
+    Ok(Some(args))
+}
+
+/// The measures of one set; `None` where a measure does not apply.
+#[derive(Clone, Default)]
+struct Row {
+    n: usize,
+    d: usize,
+    values: [Option<f64>; COLUMNS.len()],
+}
+
+/// The measured columns after `n` and `d`.
+const COLUMNS: [&str; 10] = [
+    "l2_star", "wd2", "cd2", "md2", "star", "t", "min_nn", "mean_nn", "nu_eff", "osc",
+];
+
+fn measure(set: &PointSet) -> Result<Row, strata::Error> {
+    let (n, d) = (set.len(), set.dims);
+    let mut v: [Option<f64>; COLUMNS.len()] = Default::default();
+    let c = &set.coords;
+    if n <= MAX_PAIRWISE {
+        v[0] = Some(discrepancy::l2_star(c, d)?);
+        v[1] = Some(discrepancy::wrap_around_squared(c, d)?);
+        v[2] = Some(discrepancy::centered_squared(c, d)?);
+        v[3] = Some(discrepancy::mixture_squared(c, d)?);
+    }
+    if let Some(points) = set.points_2d() {
+        if n <= discrepancy::MAX_EXACT_STAR {
+            v[4] = Some(discrepancy::star_2d(c)?);
+        }
+        v[5] = discrepancy::net_t_value(c)?.map(f64::from);
+        if n >= 2 {
+            let m = spectrum::point_set_measures(&[points])?;
+            v[6] = Some(m.global_min_distance);
+            v[7] = Some(m.average_min_distance);
+            v[8] = m.effective_nyquist;
+            v[9] = m.oscillations;
+        }
+    }
+    Ok(Row { n, d, values: v })
+}
+
+/// The mean of each column over the rows that have it (`None` if some row lacks it).
+fn mean(rows: &[Row]) -> Row {
+    let mut out = Row {
+        n: rows[0].n,
+        d: rows[0].d,
+        values: Default::default(),
+    };
+    for (k, slot) in out.values.iter_mut().enumerate() {
+        let vals: Option<Vec<f64>> = rows.iter().map(|r| r.values[k]).collect();
+        *slot = vals.map(|v| v.iter().sum::<f64>() / v.len() as f64);
+    }
+    out
+}
+
+fn cell(v: Option<f64>) -> String {
+    match v {
+        Some(x) if x.fract() == 0.0 && x.abs() < 1e6 => format!("{x}"),
+        Some(x) => format!("{x:.6e}"),
+        None => "-".into(),
+    }
+}
+
+fn file_label(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| path.display().to_string())
+}
+
+fn main() -> ExitCode {
+    common::run("measure", || {
+        let Some(args) = parse()? else { return Ok(()) };
+        let mut table = format!("| file | set | n | d | {} |\n", COLUMNS.join(" | "));
+        table.push_str(&format!("|{}\n", "---|".repeat(COLUMNS.len() + 4)));
+        let mut csv = format!("file,set,n,d,{}\n", COLUMNS.join(","));
+        for path in &args.files {
+            let sets = pointsets::read_file(path)?;
+            let rows: Vec<Row> = sets
+                .par_iter()
+                .map(measure)
+                .collect::<Result<_, strata::Error>>()?;
+            let label = file_label(path);
+            let same_shape = rows.iter().all(|r| (r.n, r.d) == (rows[0].n, rows[0].d));
+            let mut lines: Vec<(String, &Row)> = rows
+                .iter()
+                .enumerate()
+                .map(|(i, r)| (i.to_string(), r))
+                .collect();
+            let average = same_shape.then(|| mean(&rows));
+            if let Some(m) = &average {
+                lines.push(("mean".into(), m));
+            }
+            for (set, r) in lines {
+                let cells: Vec<String> = r.values.iter().map(|&v| cell(v)).collect();
+                table.push_str(&format!(
+                    "| {label} | {set} | {} | {} | {} |\n",
+                    r.n,
+                    r.d,
+                    cells.join(" | ")
+                ));
+                csv.push_str(&format!(
+                    "{label},{set},{},{},{}\n",
+                    r.n,
+                    r.d,
+                    cells.join(",")
+                ));
+            }
+            if let Some(dir) = &args.out {
+                let points: Option<Vec<_>> = sets.iter().map(PointSet::points_2d).collect();
+                match points {
+                    Some(points) if same_shape => {
+                        let spec = spectrum::expected_spectrum_of_sets(&points, args.resolution)?;
+                        io::write_spectrum_files(
+                            dir,
+                            &label,
+                            &spec,
+                            points.len(),
+                            &points[0],
+                            &[],
+                        )?;
+                    }
+                    _ => eprintln!(
+                        "measure: {}: no spectrum (it needs 2D sets of one size)",
+                        path.display()
+                    ),
+                }
+            }
+        }
+        print!("{table}");
+        if let Some(dir) = &args.out {
+            io::write_text(dir.join("measures.csv"), &csv)?;
+        }
+        Ok(())
+    })
+}
