@@ -59,6 +59,8 @@ pub enum CountRule {
     OaPower(u32),
     /// Fibonacci numbers `1, 2, 3, 5, 8, ...` (Fibonacci lattices).
     Fibonacci,
+    /// Powers of two `2^m` (digital nets).
+    PowerOfTwo,
 }
 
 impl CountRule {
@@ -69,6 +71,7 @@ impl CountRule {
             CountRule::Square => n >= 1 && n.isqrt().pow(2) == n,
             CountRule::OaPower(t) => oa_root(n, *t).is_some(),
             CountRule::Fibonacci => crate::samplers::lattice::fibonacci_numbers().any(|f| f == n),
+            CountRule::PowerOfTwo => n.is_power_of_two(),
         }
     }
 
@@ -120,6 +123,10 @@ impl CountRule {
             CountRule::Fibonacci => crate::samplers::lattice::fibonacci_numbers()
                 .min_by_key(|&f| f.abs_diff(n))
                 .unwrap_or(1),
+            CountRule::PowerOfTwo => {
+                let lo = 1u64 << (63 - n.leading_zeros());
+                if n - lo <= lo { lo } else { lo << 1 }
+            }
         }
     }
 
@@ -143,6 +150,10 @@ impl CountRule {
             CountRule::Fibonacci => crate::samplers::lattice::fibonacci_numbers()
                 .filter(|&f| f >= min && f <= max)
                 .collect(),
+            CountRule::PowerOfTwo => (0..64)
+                .map(|m| 1u64 << m)
+                .filter(|&c| c >= min && c <= max)
+                .collect(),
         }
     }
 }
@@ -154,6 +165,7 @@ impl fmt::Display for CountRule {
             CountRule::Square => f.write_str("perfect squares"),
             CountRule::OaPower(t) => write!(f, "q^{t}, q prime (power)"),
             CountRule::Fibonacci => f.write_str("Fibonacci numbers"),
+            CountRule::PowerOfTwo => f.write_str("powers of two"),
         }
     }
 }

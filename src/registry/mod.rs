@@ -18,8 +18,8 @@ pub use entry::{CountRule, Entry, Parameter, ParameterSpec, Params, Rates};
 use crate::error::{Error, Result};
 use crate::sampler::{Sampler, SamplerNd};
 use crate::samplers::{
-    best_candidate, ccvt, halton, jittered, latin, lattice, multijitter, oa, pmj, poisson, random,
-    regular, sobol, uncorrelated,
+    best_candidate, ccvt, halton, jittered, latin, lattice, multijitter, net02bn, oa, pmj, poisson,
+    random, regular, sobol, uncorrelated,
 };
 
 /// Every registered sampler, in a stable order (simplest first).
@@ -35,6 +35,7 @@ static ENTRIES: &[Entry] = &[
     pmj::PMJ02,
     pmj::PMJ02BN,
     pmj::stochastic::ENTRY,
+    net02bn::ENTRY,
     poisson::POISSON,
     poisson::BRIDSON,
     best_candidate::ENTRY,

@@ -14,6 +14,7 @@
 //! | `best-candidate` | [`BestCandidate`] | progressive | see [`best_candidate`] | Mitchell 1991 |
 //! | `lloyd` | `LloydSets` | fixed, any `N` | Lloyd relaxation (feature `lloyd`) | Lloyd 1982 |
 //! | `ccvt` | [`CcvtSets`] | fixed, any `N` | see [`ccvt`] | Balzer et al. 2009 |
+//! | `net02bn` | [`Net02BnSets`] | fixed `N = 2^m` | see [`net02bn`] | Ahmed, Wonka 2021 |
 //! | `sobol` | [`Sobol`], [`SobolNd`] | progressive | see [`sobol`] | Sobol' 1967, Burley 2020 |
 //! | `halton` | [`Halton`], [`HaltonNd`] | progressive | see [`halton`] | Halton 1960 |
 //! | `latin` | [`LatinHypercube`] | fixed, any `N`, D dims | every 1D projection | McKay et al. 1979 |
@@ -42,6 +43,8 @@ pub mod lattice;
 pub mod lloyd;
 #[cfg(feature = "std")]
 pub(crate) mod multijitter;
+#[cfg(feature = "std")]
+pub mod net02bn;
 #[cfg(feature = "std")]
 pub mod oa;
 pub mod pmj;
@@ -73,6 +76,8 @@ pub use lattice::{Lattice, LatticeNd};
 pub use lloyd::{Lloyd, LloydSets};
 #[cfg(feature = "std")]
 pub use multijitter::{Cmj, MultiJittered};
+#[cfg(feature = "std")]
+pub use net02bn::{Net02Bn, Net02BnSets};
 #[cfg(feature = "std")]
 pub use oa::{Bose, Bush};
 #[cfg(feature = "std")]
