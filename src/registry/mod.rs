@@ -33,7 +33,7 @@ static ENTRIES: &[Entry] = &[
     pmj::PMJ,
     pmj::PMJBN,
     pmj::PMJ02,
-    pmj::PMJ02BN,
+    pmj::blue::ENTRY,
     pmj::stochastic::ENTRY,
     net02bn::ENTRY,
     poisson::POISSON,

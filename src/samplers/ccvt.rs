@@ -16,8 +16,17 @@
 //! solved at once by a selection (`select_nth_unstable`) instead of two heaps. Pairs whose
 //! bounding circles (centre `s_i`, radius the farthest point of `A_i`) do not overlap cannot
 //! gain and are skipped, as are pairs of sites that did not change in the last pass. Sites are
-//! re-centred after each pass; the optimisation stops when a pass exchanges nothing or after
-//! the given number of passes.
+//! re-centred after each pass; the optimisation stops when a pass exchanges nothing (the
+//! stopping rule; `--iterations` only caps the passes). It runs coarse to fine: converged with
+//! `m / 16` and then `m / 4` points per site before the full `m`, which halves to quarters the
+//! time of the fine stage.
+//!
+//! **Capacity against time** (1024 sites, converged, mean of 4 seeds, one core; spacing `rho`
+//! and mean nearest-neighbour distance relative to `r_max`): 256 points per site (the default)
+//! 0.700 / 0.850 in 0.24 s; 1024: 0.727 / 0.863 in 2.2 s; 4096: 0.764 / 0.881 in 56 s, the
+//! published figure (0.764 / 0.891). The converged discrete problem, not the stopping rule,
+//! sets the quality: `rho` grows with the capacity, so the published spacing costs
+//! `--capacity 4096`.
 
 use rand_pcg::Pcg32;
 
@@ -101,9 +110,9 @@ pub struct CcvtResult {
     pub points: Vec<[f64; 2]>,
     /// Points per site.
     pub capacity: usize,
-    /// The energy after each pass.
+    /// The energy after each pass of the final (full-capacity) stage.
     pub energy: Vec<f64>,
-    /// Passes run.
+    /// Passes run, over all stages.
     pub passes: u32,
     /// True when the last pass exchanged nothing (a stable configuration).
     pub converged: bool,
@@ -154,19 +163,55 @@ impl Ccvt {
     }
 
     /// The full optimisation for `key`: sites, their points, and the energy after each pass.
+    ///
+    /// Coarse to fine: the sites are first converged with `m / 16` points per site, then with
+    /// `m / 4`, then with `m` (stages below 16 points per site are skipped); each stage assigns
+    /// its density points afresh to the converged sites of the one before, so the expensive
+    /// fine stage starts close to its optimum. `iterations` caps the passes of each stage.
     pub fn optimize(&self, key: u64) -> CcvtResult {
         let (n, m) = (self.count as usize, self.capacity as usize);
         let mut rng = Pcg32::new(stream_seed(key, 7), stream_seed(key, 8));
         let mut sites: Vec<[f64; 2]> = (0..n)
             .map(|_| [uniform(&mut rng), uniform(&mut rng)])
             .collect();
-        let mut points = initial_assignment(&sites, m, &mut rng);
-        let mut energy = Vec::new();
+        let density_seed = uniform(&mut rng).to_bits();
+        let mut stages: Vec<usize> = [m / 16, m / 4].into_iter().filter(|&c| c >= 16).collect();
+        stages.push(m);
+        let (mut passes, mut converged) = (0, false);
+        let (mut points, mut energy) = (Vec::new(), Vec::new());
+        for &cap in &stages {
+            points = initial_assignment(&sites, cap, density_seed, &mut rng);
+            energy.clear();
+            let (p, c) = self.relax(&mut sites, &mut points, cap, &mut energy);
+            passes += p;
+            converged = c;
+        }
+        CcvtResult {
+            sites,
+            points,
+            capacity: m,
+            energy,
+            passes,
+            converged,
+        }
+    }
+
+    /// Exchange passes and re-centring at `m` points per site until a pass exchanges nothing
+    /// or `iterations` passes have run; appends each pass's energy. Returns the passes run and
+    /// whether the configuration is stable.
+    fn relax(
+        &self,
+        sites: &mut [[f64; 2]],
+        points: &mut [[f64; 2]],
+        m: usize,
+        energy: &mut Vec<f64>,
+    ) -> (u32, bool) {
+        let n = sites.len();
         let mut stable = vec![false; n];
         let mut changed = vec![false; n];
         let mut radius = vec![0.0f64; n];
         let mut scratch: Vec<(f64, [f64; 2])> = Vec::with_capacity(2 * m);
-        let (mut passes, mut converged) = (0, false);
+        let mut passes = 0;
         for _ in 0..self.iterations {
             passes += 1;
             for i in 0..n {
@@ -190,7 +235,7 @@ impl Ccvt {
                 });
                 partners.sort_unstable();
                 for &j in &partners {
-                    if exchange(&mut points, m, i, j, sites[i], sites[j], &mut scratch) {
+                    if exchange(points, m, i, j, sites[i], sites[j], &mut scratch) {
                         changed[i] = true;
                         changed[j] = true;
                     }
@@ -202,32 +247,29 @@ impl Ccvt {
                 }
                 stable[i] = !changed[i];
             }
-            energy.push(total_energy(&sites, &points, m));
+            energy.push(total_energy(sites, points, m));
             if !changed.iter().any(|&c| c) {
-                converged = true;
-                break;
+                return (passes, true);
             }
         }
-        CcvtResult {
-            sites,
-            points,
-            capacity: m,
-            energy,
-            passes,
-            converged,
-        }
+        (passes, false)
     }
 }
 
 /// Assigns `m` density points to each site: the points of a scrambled Sobol' sequence, in its
 /// order, go to the nearest site that still has room (Balzer's initialisation). Returns the
 /// points grouped by site.
-fn initial_assignment(sites: &[[f64; 2]], m: usize, rng: &mut Pcg32) -> Vec<[f64; 2]> {
+fn initial_assignment(
+    sites: &[[f64; 2]],
+    m: usize,
+    density_seed: u64,
+    rng: &mut Pcg32,
+) -> Vec<[f64; 2]> {
     let n = sites.len();
     let grid = TorusGrid::from_points(sites.iter().copied());
     let mut count = vec![0usize; n];
     let mut grouped = vec![[0.0f64; 2]; n * m];
-    let sobol = crate::samplers::Sobol::new(crate::sampler::Seed(uniform(rng).to_bits()));
+    let sobol = crate::samplers::Sobol::new(crate::sampler::Seed(density_seed));
     for k in 0..n * m {
         let p = sobol.sample(k as u32);
         let x = [p.x as f64, p.y as f64];

@@ -8,7 +8,8 @@
 //! | `nrooks` | [`NRooks`] | fixed, any `N` | one point per row and per column of `N x N` (Latin hypercube) | Shirley 1991 |
 //! | `multijittered` | [`MultiJittered`] | fixed `N = n^2` | jittered on `n x n` *and* N-rooks | Chiu, Shirley, Wang 1994 |
 //! | `cmj` | [`Cmj`] | fixed, any `N` | multi-jittered on `m x n` (`m n >= N`), correlated shuffles | Kensler 2013 |
-//! | `pmj`, `pmjbn`, `pmj02`, `pmj02bn` | [`Pmj`] | progressive | see [`pmj`] | Christensen et al. 2018, Pharr 2019 |
+//! | `pmj`, `pmjbn`, `pmj02` | [`Pmj`] | progressive | see [`pmj`] | Christensen et al. 2018, Pharr 2019 |
+//! | `pmj02bn` | [`Pmj02Bn`] | progressive | see [`pmj::blue`] | Christensen et al. 2018, Doignies et al. 2024 |
 //! | `pmj02-stochastic` | [`Pmj02Stochastic`] | progressive | see [`pmj`] | Helmer et al. 2021 |
 //! | `poisson`, `bridson` | [`PoissonDisk`], [`BridsonDisk`] | fixed, any `N` | see [`poisson`] | Cook 1986, Bridson 2007 |
 //! | `best-candidate` | [`BestCandidate`] | progressive | see [`best_candidate`] | Mitchell 1991 |
@@ -80,9 +81,9 @@ pub use multijitter::{Cmj, MultiJittered};
 pub use net02bn::{Net02Bn, Net02BnSets};
 #[cfg(feature = "std")]
 pub use oa::{Bose, Bush};
-#[cfg(feature = "std")]
-pub use pmj::Pmj;
 pub use pmj::Pmj02Stochastic;
+#[cfg(feature = "std")]
+pub use pmj::{Pmj, Pmj02Bn};
 #[cfg(feature = "std")]
 pub use poisson::{Bridson, BridsonDisk, DartThrowing, PoissonDisk};
 pub(crate) use progressive::Epochs;

@@ -1,4 +1,4 @@
-//! The constructive PMJ generators (pmj, pmjbn, pmj02, pmj02bn): one doubling at a time.
+//! The constructive PMJ generators (pmj, pmjbn, pmj02): one doubling at a time.
 
 use rand::Rng;
 use rand_pcg::Pcg32;
