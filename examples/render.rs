@@ -29,7 +29,8 @@ use std::time::Instant;
 use common::{CliError, cli_error, parse_int, string_value};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use strata::io::{self, Canvas, LinePlot, Rgb, Series};
+use strata::analysis::study;
+use strata::io::{self, Canvas, LinePlot, Marker, Rgb, Series};
 use strata::pixel::{PixelSampler, Sequence, warp};
 use strata::spectrum::{self, ErrorImage};
 
@@ -73,8 +74,11 @@ error), NAME.png and NAME-error.png (the largest count; the error map is the per
 relative error, colour-mapped from 0 to 0.5), NAME-SPP.png and NAME-SPP-error-spectrum.png
 (the signed error image beside its periodogram) for each count, reference.png, compare.png
 (one row per sampler), blue-noise.png (every sampler's error image and periodogram at the
-smallest count) and convergence.png (RMSE against spp with the fitted slope per sampler);
-prints the table and the slopes.";
+smallest count), convergence.png (RMSE against spp with the fitted slope per sampler) and
+pareto.png (RMSE against render time, the sequences on the Pareto front bold); prints the
+tables, the slopes and the renderer's trade: per sequence the render time to reach the RMSE
+that the median sequence reaches at each count but the smallest (power laws of RMSE and
+time against spp fitted over the counts; '*' where extrapolated).";
 
 /// Which scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -1017,6 +1021,8 @@ fn main() -> ExitCode {
                 .push(Series::new(label, pts, io::PALETTE[k % io::PALETTE.len()]));
         }
         println!("\n{table}");
+        let trade = write_trade(&args, &sequences, &rows)?;
+        println!("{trade}");
         if let Some(path) = &args.markdown {
             common::write_markdown_section(
                 path,
@@ -1038,7 +1044,7 @@ fn main() -> ExitCode {
                      seeds; slope of log RMSE against log spp.\n\n{table}\nThe error image \
                      (signed luminance error): its RMSE after a Gaussian blur of sigma 1 and 2 \
                      pixels, and the share of its power below 1/8 cycle per pixel (white \
-                     error: about 0.05).\n\n{full}",
+                     error: about 0.05).\n\n{full}\n{trade}",
                     match args.scene {
                         SceneKind::Cornell => "cornell",
                         SceneKind::Spheres => "spheres",
@@ -1053,6 +1059,155 @@ fn main() -> ExitCode {
         eprintln!("wrote {} renders into {}", rows.len(), args.out.display());
         Ok(())
     })
+}
+
+/// The renderer's trade: per sequence, the render time and the time to reach each target RMSE
+/// (power laws of RMSE and time against spp, fitted over the measured counts; `*`: outside
+/// them). The targets are the median RMSE over the sequences at each count but the smallest
+/// (the error a typical sequence reaches there). Writes `pareto.png` (RMSE against render
+/// time, sequences on the Pareto front bold) and returns the Markdown table.
+fn write_trade(
+    args: &Args,
+    sequences: &[(String, Sequence)],
+    rows: &[Row],
+) -> Result<String, CliError> {
+    let mut targets: Vec<f64> = args
+        .spp
+        .iter()
+        .skip(1)
+        .map(|&spp| {
+            let mut v: Vec<f64> = rows
+                .iter()
+                .filter(|r| r.spp == spp)
+                .map(|r| r.rmse)
+                .collect();
+            v.sort_by(f64::total_cmp);
+            v[v.len() / 2]
+        })
+        .collect();
+    if targets.is_empty() {
+        targets = rows.iter().map(|r| r.rmse).take(1).collect();
+    }
+    let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.ms, r.rmse)).collect();
+    let front = study::pareto_front(&points);
+    let on_front = |name: &str| front.iter().any(|&i| rows[i].name == name);
+    struct Line {
+        name: String,
+        ms_per_spp: f64,
+        cells: Vec<Option<(f64, f64, bool)>>,
+    }
+    let mut lines: Vec<Line> = sequences
+        .iter()
+        .map(|(name, _)| {
+            let mine: Vec<&Row> = rows.iter().filter(|r| &r.name == name).collect();
+            let err: Vec<(f64, f64)> = mine.iter().map(|r| (r.spp as f64, r.rmse)).collect();
+            let time: Vec<(f64, f64)> = mine.iter().map(|r| (r.spp as f64, r.ms)).collect();
+            let (lo, hi) = (
+                args.spp[0] as f64,
+                *args.spp.last().expect("a count") as f64,
+            );
+            let cells = targets
+                .iter()
+                .map(|&t| {
+                    let spp = study::count_to_reach(&err, t)?.ceil();
+                    let ms = study::power_law_at(&time, spp)?;
+                    Some((spp, ms, spp < lo || spp > hi))
+                })
+                .collect();
+            let last = mine.last().expect("a count");
+            Line {
+                name: name.clone(),
+                ms_per_spp: last.ms / f64::from(last.spp),
+                cells,
+            }
+        })
+        .collect();
+    let key = |l: &Line| {
+        l.cells
+            .last()
+            .copied()
+            .flatten()
+            .map_or(f64::INFINITY, |c| c.1)
+    };
+    lines.sort_by(|a, b| key(a).total_cmp(&key(b)));
+    let mut table = format!(
+        "The renderer's trade: render time (all cores, one image) to reach each RMSE, cheapest \
+         first at the smallest RMSE; the targets are the median RMSE over the sequences at \
+         {} spp; `*`: extrapolated beyond the measured counts; bold: on the Pareto front of \
+         (time, RMSE) over all renders.\n\n| sequence | ms per spp | {} |\n|---|---|{}\n",
+        args.spp
+            .iter()
+            .skip(1)
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+        targets
+            .iter()
+            .map(|t| format!("RMSE {t:.4}"))
+            .collect::<Vec<_>>()
+            .join(" | "),
+        "---|".repeat(targets.len())
+    );
+    for l in &lines {
+        let name = if on_front(&l.name) {
+            format!("**{}**", l.name)
+        } else {
+            l.name.clone()
+        };
+        let cells: Vec<String> = l
+            .cells
+            .iter()
+            .map(|c| match c {
+                Some((spp, ms, x)) => {
+                    format!("{ms:.0} ms ({spp} spp{})", if *x { "*" } else { "" })
+                }
+                None => "-".into(),
+            })
+            .collect();
+        table.push_str(&format!(
+            "| {name} | {:.2} | {} |\n",
+            l.ms_per_spp,
+            cells.join(" | ")
+        ));
+    }
+    let mut plot = LinePlot::new(
+        "render: RMSE against render time (bold: Pareto front)",
+        "render time (ms, all cores)",
+        "RMSE against the reference",
+    );
+    plot.log_x = true;
+    plot.log_y = true;
+    plot.legend_outside = true;
+    let mut line = Series::reference(
+        "Pareto front",
+        front.iter().map(|&i| points[i]).collect(),
+        Rgb::grey(60),
+    );
+    line.width = 1;
+    plot.series.push(line);
+    for (k, (name, _)) in sequences.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|r| &r.name == name)
+            .map(|r| (r.ms, r.rmse))
+            .collect();
+        let bold = on_front(name);
+        let mut s = Series::new(
+            if bold {
+                format!("{name} *")
+            } else {
+                name.clone()
+            },
+            pts,
+            io::PALETTE[k % io::PALETTE.len()],
+        );
+        s.marker = Marker::ALL[k % Marker::ALL.len()];
+        s.width = if bold { 3 } else { 1 };
+        s.faint = !bold;
+        plot.series.push(s);
+    }
+    io::write_png(args.out.join("pareto.png"), &plot.render(820, 500))?;
+    Ok(table)
 }
 
 /// blue-noise.png: per sampler (side by side), at the smallest count, the signed error image

@@ -1,4 +1,12 @@
-//! Convergence studies: estimates over seeds and counts, variance, RMSE, slopes, time.
+//! Convergence studies: estimates over seeds and counts, variance, RMSE, slopes with bootstrap
+//! intervals, generation time, and the time each sampler needs to reach an error.
+//!
+//! **What is timed.** The cost of a *set*: building the sampler with a new seed and filling
+//! `N` points (for set generators such as Lloyd or CCVT, the whole optimisation), on one core.
+//! Before timing, one untimed build pays the one-time costs (direction-number tables, lazily
+//! built lookup tables); its excess over a timed set is reported as `one_time_ns`. A
+//! measurement repeats sets with fresh seeds until at least [`MIN_TIMED_NS`] of work has run
+//! and divides; [`TIMINGS`] such measurements give the median and the spread (min, max).
 
 use std::time::Instant;
 
@@ -20,6 +28,66 @@ pub const MAX_SEEDS: u32 = 1 << 16;
 /// The most coordinates a study holds at once (`seeds x N x D`, 4 bytes each: 1 GiB).
 pub const MAX_STUDY_VALUES: u64 = 1 << 28;
 
+/// At least this much work (nanoseconds) per timing measurement.
+pub const MIN_TIMED_NS: f64 = 1e6;
+
+/// Timing measurements per (sampler, count); their median is the reported time.
+pub const TIMINGS: usize = 5;
+
+/// Bootstrap resamples for the slopes' confidence intervals.
+pub const BOOTSTRAP: usize = 400;
+
+/// How many seeds (independent estimates) per count.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Seeds {
+    /// The same number for every sampler.
+    Fixed(u32),
+    /// Per sampler, from its cost: as many as [`SEED_BUDGET_NS`] of generation at its largest
+    /// count allows, rounded down to a power of two and clamped to `[min, max]`.
+    Auto {
+        /// Fewest seeds.
+        min: u32,
+        /// Most seeds.
+        max: u32,
+    },
+}
+
+/// The generation time per count that [`Seeds::Auto`] spends (32 ms).
+pub const SEED_BUDGET_NS: f64 = 3.2e7;
+
+impl Seeds {
+    /// The default: 32 to 256 seeds by cost.
+    pub const DEFAULT: Seeds = Seeds::Auto { min: 32, max: 256 };
+
+    /// The seeds for a sampler whose set at the largest count takes `set_ns`.
+    pub fn for_cost(&self, set_ns: f64) -> u32 {
+        match *self {
+            Seeds::Fixed(k) => k,
+            Seeds::Auto { min, max } => {
+                let k = (SEED_BUDGET_NS / set_ns.max(1.0)).clamp(1.0, f64::from(u32::MAX)) as u32;
+                let pow2 = 1u32 << (31 - k.leading_zeros());
+                pow2.clamp(min, max)
+            }
+        }
+    }
+
+    /// The most seeds this can give.
+    pub fn max(&self) -> u32 {
+        match *self {
+            Seeds::Fixed(k) => k,
+            Seeds::Auto { max, .. } => max,
+        }
+    }
+
+    /// The fewest seeds this can give.
+    pub fn min(&self) -> u32 {
+        match *self {
+            Seeds::Fixed(k) => k,
+            Seeds::Auto { min, .. } => min,
+        }
+    }
+}
+
 /// What to study.
 #[derive(Clone, Debug)]
 pub struct Config {
@@ -32,7 +100,7 @@ pub struct Config {
     /// Largest count.
     pub max_n: u64,
     /// Seeds per count (at least 2, for a variance).
-    pub seeds: u32,
+    pub seeds: Seeds,
     /// Compute the spectrum-predicted variance (2D samplers and integrands).
     pub predict: bool,
 }
@@ -54,9 +122,18 @@ pub struct Row {
     pub variance: f64,
     /// Root mean squared error against the exact value.
     pub rmse: f64,
-    /// Generation time per sample: the fastest of a few generations of one set, on one core,
-    /// divided by `N` (nanoseconds; a timing, so not deterministic).
+    /// Generation time per sample: [`set_ns`](Row::set_ns) divided by `N` (a timing, so not
+    /// deterministic).
     pub ns_per_sample: f64,
+    /// Generation time of one set on one core, nanoseconds: the median of [`TIMINGS`]
+    /// measurements (see the module docs).
+    pub set_ns: f64,
+    /// The fastest of the measurements.
+    pub set_ns_min: f64,
+    /// The slowest of the measurements.
+    pub set_ns_max: f64,
+    /// The first build's excess over a timed set (one-time tables), nanoseconds, at least 0.
+    pub one_time_ns: f64,
     /// Variance predicted from the expected spectrum, where made.
     pub predicted_variance: Option<f64>,
 }
@@ -73,6 +150,26 @@ pub struct Slope {
     pub slope: Option<f64>,
     /// The published rate for the pattern class, where there is one.
     pub expected: Option<f64>,
+    /// The 95% confidence interval of the slope: 2.5% and 97.5% quantiles of the slopes of
+    /// [`BOOTSTRAP`] bootstrap resamples of the seeds (see [`bootstrap_interval`]).
+    pub interval: Option<(f64, f64)>,
+}
+
+/// The cost of reaching an error: one row of `time_to_error.csv`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimeToError {
+    /// Integrand.
+    pub integrand: Integrand,
+    /// Target RMSE relative to the integral.
+    pub target: f64,
+    /// Sampler name.
+    pub sampler: &'static str,
+    /// The smallest allowed count whose fitted RMSE is at most the target.
+    pub n: u64,
+    /// The fitted generation time of a set of `n`, nanoseconds.
+    pub ns: f64,
+    /// True when `n` lies outside the measured counts (the power laws are extrapolated).
+    pub extrapolated: bool,
 }
 
 /// The counts a sampler is studied at: powers of two in `[min, max]` (plus `min` and `max`),
@@ -130,12 +227,16 @@ pub fn check(config: &Config) -> Result<()> {
             ),
         ));
     }
-    if config.seeds < 2 || config.seeds > MAX_SEEDS {
-        return Err(Error::parameter(
+    if config.seeds.min() < 2
+        || config.seeds.max() > MAX_SEEDS
+        || config.seeds.min() > config.seeds.max()
+    {
+        return Err(Error::input(
             "study::check",
-            "seeds",
-            config.seeds,
-            format!("2 to {MAX_SEEDS} (a variance needs two estimates)"),
+            format!(
+                "{:?}: seeds must be 2 to {MAX_SEEDS} (a variance needs two estimates), the fewest no more than the most",
+                config.seeds
+            ),
         ));
     }
     let dims = config
@@ -144,12 +245,13 @@ pub fn check(config: &Config) -> Result<()> {
         .map(|f| f.dimensions())
         .max()
         .unwrap_or(2) as u64;
-    if config.seeds as u64 * config.max_n * dims > MAX_STUDY_VALUES {
+    if config.seeds.max() as u64 * config.max_n * dims > MAX_STUDY_VALUES {
         return Err(Error::input(
             "study::check",
             format!(
                 "{} seeds of {} points in {dims} dimensions would hold more than {MAX_STUDY_VALUES} coordinates; use fewer seeds or a smaller max-n",
-                config.seeds, config.max_n
+                config.seeds.max(),
+                config.max_n
             ),
         ));
     }
@@ -172,10 +274,9 @@ pub fn check(config: &Config) -> Result<()> {
 }
 
 /// One realization: the points (flat, `dims` per point) and the time it took.
-fn realization(entry: &Entry, n: u64, seed: u64, dims: u32) -> Result<(Vec<f32>, f64)> {
+fn realization(entry: &Entry, n: u64, seed: u64, dims: u32) -> Result<Vec<f32>> {
     let params = Params::new(n).seed(seed);
-    let start = Instant::now();
-    let values = if dims == 2 {
+    Ok(if dims == 2 {
         let mut s = entry.build(&params)?;
         let mut pts = vec![Point2::ZERO; n as usize];
         s.fill(&mut pts);
@@ -185,20 +286,75 @@ fn realization(entry: &Entry, n: u64, seed: u64, dims: u32) -> Result<(Vec<f32>,
         let mut v = vec![0f32; n as usize * dims as usize];
         s.fill(&mut v);
         v
-    };
-    Ok((values, start.elapsed().as_nanos() as f64))
+    })
 }
 
-/// Runs the study. `progress(sampler, n)` is called after each count of each sampler.
+/// The timing of one (sampler, count), nanoseconds per set.
+#[derive(Clone, Copy, Debug)]
+struct Timing {
+    median: f64,
+    min: f64,
+    max: f64,
+    one_time: f64,
+}
+
+/// Times sets of `n` (see the module docs). Seeds from `1 << 40` up, apart from the study's.
+fn time_sets(entry: &Entry, n: u64, dims: u32) -> Result<Timing> {
+    let mut seed = 1u64 << 40;
+    let start = Instant::now();
+    std::hint::black_box(realization(entry, n, seed, dims)?);
+    let first = start.elapsed().as_nanos() as f64;
+    let mut per_set = Vec::with_capacity(TIMINGS);
+    // slow sets (over 0.1 s) get 3 measurements of one set each
+    let runs = if first > 1e8 { 3 } else { TIMINGS };
+    for _ in 0..runs {
+        let start = Instant::now();
+        let mut sets = 0u32;
+        loop {
+            seed += 1;
+            std::hint::black_box(realization(entry, n, seed, dims)?);
+            sets += 1;
+            if start.elapsed().as_nanos() as f64 >= MIN_TIMED_NS {
+                break;
+            }
+        }
+        per_set.push(start.elapsed().as_nanos() as f64 / f64::from(sets));
+    }
+    per_set.sort_by(f64::total_cmp);
+    let median = per_set[per_set.len() / 2];
+    Ok(Timing {
+        median,
+        min: per_set[0],
+        max: per_set[per_set.len() - 1],
+        one_time: (first - median).max(0.0),
+    })
+}
+
+/// The unbiased variance of `values` (shifted by the first value, for accuracy).
+fn variance(values: impl Iterator<Item = f64> + Clone) -> f64 {
+    let k = values.clone().count() as f64;
+    let mut it = values;
+    let Some(e0) = it.clone().next() else {
+        return 0.0;
+    };
+    let (s1, s2) = it.by_ref().fold((0.0, 0.0), |(a, b), e| {
+        (a + (e - e0), b + (e - e0) * (e - e0))
+    });
+    ((s2 - s1 * s1 / k) / (k - 1.0)).max(0.0)
+}
+
+/// Runs the study: one row per (sampler, integrand, count), and the slopes with their
+/// bootstrap intervals. `progress(sampler, n)` is called after each count.
 pub fn run(
     config: &Config,
     progress: &(dyn Fn(&str, u64) + Sync),
 ) -> Result<(Vec<Row>, Vec<Slope>)> {
     check(config)?;
     let mut rows = Vec::new();
+    // the estimates behind each row, for the bootstrap
+    let mut estimates_of: Vec<Vec<f64>> = Vec::new();
     let mut powers: Vec<(Integrand, u32, Vec<f64>)> = Vec::new();
     for entry in &config.samplers {
-        // the integrands this sampler can evaluate: 2D always; D-dimensional if it has them
         let integrands: Vec<Integrand> = config
             .integrands
             .iter()
@@ -209,40 +365,40 @@ pub fn run(
             continue;
         }
         let wanted = integrands.iter().map(|f| f.dimensions()).max().unwrap_or(2);
-        for n in counts_for(entry.counts, config.min_n, config.max_n) {
-            // a construction may not reach D dimensions at every count (an orthogonal array
-            // over q symbols has at most q or q + 1 columns): then only the 2D integrands
-            let dims = if wanted > 2 && entry.build_nd(&Params::new(n), wanted).is_err() {
+        let counts = counts_for(entry.counts, config.min_n, config.max_n);
+        let dims_at = |n: u64| {
+            if wanted > 2 && entry.build_nd(&Params::new(n), wanted).is_err() {
                 2
             } else {
                 wanted
-            };
+            }
+        };
+        // time every count first (largest first: it decides the number of seeds)
+        let mut timings = Vec::with_capacity(counts.len());
+        for &n in counts.iter().rev() {
+            timings.push(time_sets(entry, n, dims_at(n))?);
+        }
+        timings.reverse();
+        let seeds = config
+            .seeds
+            .for_cost(timings.last().map_or(0.0, |t| t.median));
+        for (&n, timing) in counts.iter().zip(&timings) {
+            let dims = dims_at(n);
             let integrands: Vec<Integrand> = integrands
                 .iter()
                 .copied()
                 .filter(|f| f.dimensions() <= dims)
                 .collect();
-            let sets: Vec<(Vec<f32>, f64)> = (0..config.seeds as u64)
+            let sets: Vec<Vec<f32>> = (0..u64::from(seeds))
                 .into_par_iter()
                 .map(|s| realization(entry, n, s, dims))
                 .collect::<Result<_>>()?;
-            // Time generation on its own, one core, not under the parallel run's contention: the
-            // fastest of up to 7 generations (one when a set takes over 20 ms).
-            let mut best = f64::INFINITY;
-            for s in 0..7u64.min(config.seeds as u64) {
-                best = best.min(realization(entry, n, s, dims)?.1);
-                if best > 2e7 {
-                    break;
-                }
-            }
-            let ns_per_sample = best / n as f64;
-            // the 2D spectrum of the first two dimensions, for the predictions
             let spectrum = if config.predict && integrands.iter().any(|f| f.dimensions() == 2) {
+                // the prediction averages at most 32 realizations: the spectrum converges
+                // much faster than the slopes need seeds
                 let k = ((4.0 * (n as f64).sqrt()) as u32 / 2 * 2).clamp(32, 256);
-                // each set's first two dimensions, converted as the realizations are needed
-                let spectrum = expected_spectrum(config.seeds, k, |r| {
+                let spectrum = expected_spectrum(seeds.min(32), k, |r| {
                     Ok(sets[r as usize]
-                        .0
                         .chunks_exact(dims as usize)
                         .map(|c| Point2::new(c[0], c[1]))
                         .collect())
@@ -254,7 +410,7 @@ pub fn run(
             for &f in &integrands {
                 let estimates: Vec<f64> = sets
                     .par_iter()
-                    .map(|(v, _)| {
+                    .map(|v| {
                         v.chunks_exact(dims as usize)
                             .map(|p| f.eval(p))
                             .sum::<f64>()
@@ -263,13 +419,6 @@ pub fn run(
                     .collect();
                 let k = estimates.len() as f64;
                 let mean = estimates.iter().sum::<f64>() / k;
-                // shifted by the first estimate, so that identical estimates (a deterministic
-                // pattern) give exactly zero rather than rounding noise
-                let e0 = estimates[0];
-                let (s1, s2) = estimates.iter().fold((0.0, 0.0), |(a, b), e| {
-                    (a + (e - e0), b + (e - e0) * (e - e0))
-                });
-                let variance = ((s2 - s1 * s1 / k) / (k - 1.0)).max(0.0);
                 let exact = f.exact();
                 let rmse = (estimates.iter().map(|e| (e - exact).powi(2)).sum::<f64>() / k).sqrt();
                 let predicted = match (&spectrum, f.dimensions()) {
@@ -289,13 +438,18 @@ pub fn run(
                     sampler: entry.name,
                     integrand: f,
                     n,
-                    seeds: config.seeds,
+                    seeds,
                     mean,
-                    variance,
+                    variance: variance(estimates.iter().copied()),
                     rmse,
-                    ns_per_sample,
+                    ns_per_sample: timing.median / n as f64,
+                    set_ns: timing.median,
+                    set_ns_min: timing.min,
+                    set_ns_max: timing.max,
+                    one_time_ns: timing.one_time,
                     predicted_variance: predicted,
                 });
+                estimates_of.push(estimates);
             }
             progress(entry.name, n);
         }
@@ -303,23 +457,189 @@ pub fn run(
     let mut slopes = Vec::new();
     for entry in &config.samplers {
         for &f in &config.integrands {
-            let pts: Vec<(f64, f64)> = rows
-                .iter()
-                .filter(|r| r.sampler == entry.name && r.integrand == f)
-                .map(|r| (r.n as f64, r.variance))
+            let idx: Vec<usize> = (0..rows.len())
+                .filter(|&i| rows[i].sampler == entry.name && rows[i].integrand == f)
                 .collect();
-            if pts.is_empty() {
+            if idx.is_empty() {
                 continue;
             }
+            let pts: Vec<(f64, f64)> = idx
+                .iter()
+                .map(|&i| (rows[i].n as f64, rows[i].variance))
+                .collect();
+            let series: Vec<(f64, &[f64])> = idx
+                .iter()
+                .map(|&i| (rows[i].n as f64, estimates_of[i].as_slice()))
+                .collect();
             slopes.push(Slope {
                 sampler: entry.name,
                 integrand: f,
                 slope: fit_slope(&pts),
                 expected: entry.rates.on(f),
+                interval: bootstrap_interval(&series, crate::hash::hash_u64(f as u64, 0x5107)),
             });
         }
     }
     Ok((rows, slopes))
+}
+
+/// The 95% bootstrap interval of the slope of `log variance` against `log N`: each resample
+/// draws seeds with replacement, the same seeds at every count (estimates of one seed at
+/// different counts can be correlated: a progressive sequence's small set is a prefix of its
+/// large one), and refits the slope. `None` when the counts have different numbers of
+/// estimates or fewer than 90% of the resamples give a slope.
+pub fn bootstrap_interval(series: &[(f64, &[f64])], key: u64) -> Option<(f64, f64)> {
+    let k = series.first()?.1.len();
+    if k == 0 || series.iter().any(|s| s.1.len() != k) {
+        return None;
+    }
+    let mut slopes = Vec::with_capacity(BOOTSTRAP);
+    let mut picks = vec![0usize; k];
+    for b in 0..BOOTSTRAP as u64 {
+        for (j, p) in picks.iter_mut().enumerate() {
+            let r = crate::hash::hash_u64(key, b * k as u64 + j as u64);
+            *p = ((u128::from(r) * k as u128) >> 64) as usize;
+        }
+        let pts: Vec<(f64, f64)> = series
+            .iter()
+            .map(|&(n, est)| (n, variance(picks.iter().map(|&i| est[i]))))
+            .collect();
+        if let Some(s) = fit_slope(&pts) {
+            slopes.push(s);
+        }
+    }
+    if slopes.len() * 10 < BOOTSTRAP * 9 {
+        return None;
+    }
+    slopes.sort_by(f64::total_cmp);
+    let q = |p: f64| slopes[((slopes.len() - 1) as f64 * p).round() as usize];
+    Some((q(0.025), q(0.975)))
+}
+
+/// The least-squares line `log y = a + b log x` over the pairs with `x, y > 0`: `(a, b)`.
+fn fit_line(points: &[(f64, f64)]) -> Option<(f64, f64)> {
+    let b = fit_slope(points)?;
+    let p: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    let n = p.len() as f64;
+    let (mx, my) = (
+        p.iter().map(|q| q.0).sum::<f64>() / n,
+        p.iter().map(|q| q.1).sum::<f64>() / n,
+    );
+    Some((my - b * mx, b))
+}
+
+/// The largest count [`time_to_error`] considers (beyond it a target counts as out of reach).
+pub const MAX_PROJECTED_COUNT: f64 = 1e12;
+
+/// The count at which the power law fitted to `(count, error)` pairs (log-log least squares)
+/// falls to `target`: `None` when the fitted error does not fall with the count (exponent
+/// above -0.05), fewer than two pairs are usable, or the count would exceed
+/// [`MAX_PROJECTED_COUNT`]. At least 1.
+pub fn count_to_reach(errors: &[(f64, f64)], target: f64) -> Option<f64> {
+    let (a, b) = fit_line(errors)?;
+    if b > -0.05 || target <= 0.0 {
+        return None;
+    }
+    let n = ((target.ln() - a) / b).exp().max(1.0);
+    (n.is_finite() && n <= MAX_PROJECTED_COUNT).then_some(n)
+}
+
+/// The indices of the points `(cost, error)` that no other point beats on both axes (lower or
+/// equal cost and error, one strictly lower), by increasing cost: the Pareto front.
+pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..points.len())
+        .filter(|&i| points[i].0.is_finite() && points[i].1.is_finite())
+        .collect();
+    order.sort_by(|&a, &b| {
+        points[a]
+            .0
+            .total_cmp(&points[b].0)
+            .then(points[a].1.total_cmp(&points[b].1))
+    });
+    let mut best = f64::INFINITY;
+    order
+        .into_iter()
+        .filter(|&i| {
+            let keep = points[i].1 < best;
+            best = best.min(points[i].1);
+            keep
+        })
+        .collect()
+}
+
+/// The power law fitted to `(count, value)` pairs (log-log least squares), at `count`.
+pub fn power_law_at(pairs: &[(f64, f64)], count: f64) -> Option<f64> {
+    let (a, b) = fit_line(pairs)?;
+    Some((a + b * count.ln()).exp())
+}
+
+/// For each integrand, target (RMSE relative to the integral) and sampler: the smallest
+/// allowed count whose RMSE, on the power law fitted to the measured RMSEs, is at most the
+/// target, and the time of a set of that count on the power law fitted to the measured set
+/// times. Samplers whose RMSE does not fall with `N` (fitted exponent above -0.05), or would
+/// need more than [`MAX_PROJECTED_COUNT`] points, get no row; nor do deterministic patterns
+/// (zero variance at every count, such as `regular`), whose error follows how the grid meets
+/// the integrand rather than a power law. Rows are sorted by integrand,
+/// target, then time (cheapest first).
+pub fn time_to_error(rows: &[Row], samplers: &[&Entry], targets: &[f64]) -> Vec<TimeToError> {
+    let mut out = Vec::new();
+    let mut integrands: Vec<Integrand> = rows.iter().map(|r| r.integrand).collect();
+    integrands.dedup();
+    integrands.sort_by_key(|f| *f as u8);
+    integrands.dedup();
+    for f in integrands {
+        for &target in targets {
+            let mut block = Vec::new();
+            for e in samplers {
+                let mine: Vec<&Row> = rows
+                    .iter()
+                    .filter(|r| r.sampler == e.name && r.integrand == f)
+                    .collect();
+                if mine.iter().all(|r| r.variance == 0.0) {
+                    continue; // deterministic: the error follows the grid's alignment, no law
+                }
+                let err: Vec<(f64, f64)> = mine.iter().map(|r| (r.n as f64, r.rmse)).collect();
+                let time: Vec<(f64, f64)> = mine.iter().map(|r| (r.n as f64, r.set_ns)).collect();
+                let Some(n_star) = count_to_reach(&err, target * f.exact().abs()) else {
+                    continue;
+                };
+                let want = n_star.ceil() as u64;
+                let n = if e.counts.allows(want) {
+                    want
+                } else {
+                    match e
+                        .counts
+                        .counts_between(want, want.saturating_mul(4).saturating_add(64))
+                        .first()
+                    {
+                        Some(&c) => c,
+                        None => continue,
+                    }
+                };
+                let Some(ns) = power_law_at(&time, n as f64) else {
+                    continue;
+                };
+                let (lo, hi) = mine
+                    .iter()
+                    .fold((u64::MAX, 0), |(l, h), r| (l.min(r.n), h.max(r.n)));
+                block.push(TimeToError {
+                    integrand: f,
+                    target,
+                    sampler: e.name,
+                    n,
+                    ns,
+                    extrapolated: n < lo || n > hi,
+                });
+            }
+            block.sort_by(|x, y| x.ns.total_cmp(&y.ns));
+            out.extend(block);
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -335,6 +655,27 @@ mod tests {
         assert!((fit_slope(&pts).unwrap() + 1.5).abs() < 1e-12);
         assert_eq!(fit_slope(&[(4.0, 1.0)]), None);
         assert_eq!(fit_slope(&[(4.0, 0.0), (8.0, 0.0)]), None);
+    }
+
+    #[test]
+    fn the_pareto_front_keeps_the_undominated() {
+        let p = [
+            (1.0, 5.0),
+            (2.0, 3.0),
+            (2.5, 4.0),
+            (3.0, 1.0),
+            (0.5, 9.0),
+            (3.0, 2.0),
+        ];
+        assert_eq!(pareto_front(&p), vec![4, 0, 1, 3]);
+        // a projected count: error 1/n, so 1e-2 needs n = 100; no fall, no count
+        let e: Vec<(f64, f64)> = [10.0, 20.0, 40.0]
+            .iter()
+            .map(|&n: &f64| (n, 1.0 / n))
+            .collect();
+        assert!((count_to_reach(&e, 1e-2).unwrap() - 100.0).abs() < 1e-9);
+        assert_eq!(count_to_reach(&[(10.0, 1.0), (20.0, 1.0)], 0.5), None);
+        assert!((power_law_at(&e, 80.0).unwrap() - 1.0 / 80.0).abs() < 1e-12);
     }
 
     #[test]

@@ -11,7 +11,9 @@ mod plot;
 
 pub use canvas::{Canvas, Rgb};
 #[cfg(feature = "spectrum")]
-pub use plot::{LinePlot, PALETTE, Series, label, overview_row_label, radial_plot};
+pub use plot::{
+    LinePlot, Marker, PALETTE, Series, label, overview_row_label, panel_grid, radial_plot,
+};
 
 use std::io::Write;
 use std::path::Path;

@@ -25,6 +25,35 @@ fn rgb(c: Rgb) -> RGBColor {
     RGBColor(c.0[0], c.0[1], c.0[2])
 }
 
+/// The marker drawn at each point of a [`Series`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Marker {
+    /// A filled circle.
+    Circle,
+    /// A filled square.
+    Square,
+    /// A filled triangle.
+    Triangle,
+    /// A cross.
+    Cross,
+    /// A hollow circle.
+    Ring,
+    /// A filled diamond.
+    Diamond,
+}
+
+impl Marker {
+    /// Every marker, for cycling through with colours.
+    pub const ALL: [Marker; 6] = [
+        Marker::Circle,
+        Marker::Square,
+        Marker::Triangle,
+        Marker::Cross,
+        Marker::Ring,
+        Marker::Diamond,
+    ];
+}
+
 /// One line of a [`LinePlot`].
 #[derive(Clone, Debug)]
 pub struct Series {
@@ -38,6 +67,12 @@ pub struct Series {
     pub dashed: bool,
     /// Draw a marker at every point.
     pub markers: bool,
+    /// The marker's shape.
+    pub marker: Marker,
+    /// Line width in pixels.
+    pub width: u32,
+    /// Drawn pale (mixed with white), for context behind the highlighted lines.
+    pub faint: bool,
 }
 
 impl Series {
@@ -49,6 +84,9 @@ impl Series {
             colour,
             dashed: false,
             markers: true,
+            marker: Marker::Circle,
+            width: 2,
+            faint: false,
         }
     }
 
@@ -60,6 +98,9 @@ impl Series {
             colour,
             dashed: true,
             markers: false,
+            marker: Marker::Circle,
+            width: 2,
+            faint: false,
         }
     }
 }
@@ -83,6 +124,8 @@ pub struct LinePlot {
     pub y_range: Option<(f64, f64)>,
     /// The lines.
     pub series: Vec<Series>,
+    /// Draw the legend in a column right of the data instead of over it.
+    pub legend_outside: bool,
 }
 
 /// A palette of distinguishable colours (Okabe-Ito, then darker tones), for plots with many lines.
@@ -117,6 +160,7 @@ impl LinePlot {
             x_range: None,
             y_range: None,
             series: Vec::new(),
+            legend_outside: false,
         }
     }
 
@@ -156,8 +200,17 @@ impl LinePlot {
             .y_range
             .unwrap_or_else(|| self.data_range(|p| p.1, self.log_y));
         {
-            let root =
+            let full =
                 BitMapBackend::with_buffer(canvas.data_mut(), (width, height)).into_drawing_area();
+            let legend_width = if self.legend_outside {
+                self.legend_width()
+            } else {
+                0
+            };
+            let (root, side) = full.split_horizontally(width.saturating_sub(legend_width));
+            if self.legend_outside {
+                self.draw_legend(&side);
+            }
             // Drawing into memory cannot fail except on invalid ranges, which `data_range`
             // rules out; a failed plot leaves a blank canvas rather than an error.
             let _ = match (self.log_x, self.log_y) {
@@ -166,9 +219,39 @@ impl LinePlot {
                 (false, true) => self.draw(&root, x.0..x.1, (y.0..y.1).log_scale()),
                 (true, true) => self.draw(&root, (x.0..x.1).log_scale(), (y.0..y.1).log_scale()),
             };
-            let _ = root.present();
+            let _ = full.present();
         }
         canvas
+    }
+
+    /// The width of the outside legend column: the longest name at about 7 pixels a character.
+    fn legend_width(&self) -> u32 {
+        let longest = self
+            .series
+            .iter()
+            .map(|s| s.name.chars().count())
+            .max()
+            .unwrap_or(0) as u32;
+        if longest == 0 { 0 } else { 44 + 7 * longest }
+    }
+
+    /// The legend in its own column: a line sample with the marker, and the name.
+    fn draw_legend<DB: DrawingBackend>(&self, area: &DrawingArea<DB, plotters::coord::Shift>) {
+        let mut y = 40;
+        for s in self.series.iter().filter(|s| !s.name.is_empty()) {
+            let colour = rgb(shade(s));
+            let style = ShapeStyle::from(&colour).stroke_width(s.width);
+            let _ = area.draw(&PathElement::new(vec![(6, y), (30, y)], style));
+            if s.markers {
+                let _ = draw_marker(area, s.marker, (18, y), colour);
+            }
+            let _ = area.draw(&Text::new(
+                s.name.clone(),
+                (36, y - 7),
+                ("sans-serif", 12).into_font().color(&BLACK),
+            ));
+            y += 18;
+        }
     }
 
     fn draw<DB, X, Y>(
@@ -205,9 +288,15 @@ impl LinePlot {
             .draw()
             .map_err(e)?;
         let mut any_legend = false;
-        for s in &self.series {
-            let colour = rgb(s.colour);
-            let style = ShapeStyle::from(&colour).stroke_width(2);
+        // faint lines first, so that the highlighted ones are drawn over them
+        let order = self
+            .series
+            .iter()
+            .filter(|s| s.faint)
+            .chain(self.series.iter().filter(|s| !s.faint));
+        for s in order {
+            let colour = rgb(shade(s));
+            let style = ShapeStyle::from(&colour).stroke_width(s.width);
             let pts: Vec<(f64, f64)> = s
                 .points
                 .iter()
@@ -223,7 +312,7 @@ impl LinePlot {
                     .draw_series(LineSeries::new(pts.clone(), style))
                     .map_err(e)?
             };
-            if !s.name.is_empty() {
+            if !s.name.is_empty() && !self.legend_outside {
                 any_legend = true;
                 anno.label(s.name.clone()).legend(move |(lx, ly)| {
                     PathElement::new(
@@ -233,9 +322,11 @@ impl LinePlot {
                 });
             }
             if s.markers {
-                chart
-                    .draw_series(pts.iter().map(|&p| Circle::new(p, 2, colour.filled())))
-                    .map_err(e)?;
+                // the root area starts at the canvas's origin, so backend pixels are its own
+                let area = chart.plotting_area();
+                for &p in &pts {
+                    draw_marker(root, s.marker, area.map_coordinate(&p), colour).map_err(e)?;
+                }
             }
         }
         if any_legend {
@@ -250,6 +341,68 @@ impl LinePlot {
         }
         Ok(())
     }
+}
+
+/// A series' drawing colour: its own, or mixed 60% toward white when faint.
+fn shade(s: &Series) -> Rgb {
+    if s.faint {
+        s.colour.mix(Rgb::WHITE, 0.6)
+    } else {
+        s.colour
+    }
+}
+
+/// Draws `marker` centred at pixel `at`.
+fn draw_marker<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    marker: Marker,
+    at: (i32, i32),
+    colour: RGBColor,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let (x, y) = at;
+    let r = 4;
+    match marker {
+        Marker::Circle => area.draw(&Circle::new(at, r, colour.filled())),
+        Marker::Ring => area.draw(&Circle::new(at, r, colour.stroke_width(2))),
+        Marker::Square => area.draw(&Rectangle::new(
+            [(x - r + 1, y - r + 1), (x + r - 1, y + r - 1)],
+            colour.filled(),
+        )),
+        Marker::Triangle => area.draw(&Polygon::new(
+            vec![(x, y - r - 1), (x - r, y + r - 1), (x + r, y + r - 1)],
+            colour.filled(),
+        )),
+        Marker::Diamond => area.draw(&Polygon::new(
+            vec![(x, y - r - 1), (x + r, y), (x, y + r + 1), (x - r, y)],
+            colour.filled(),
+        )),
+        Marker::Cross => {
+            let style = colour.stroke_width(2);
+            area.draw(&PathElement::new(
+                vec![(x - r, y - r), (x + r, y + r)],
+                style,
+            ))?;
+            area.draw(&PathElement::new(
+                vec![(x - r, y + r), (x + r, y - r)],
+                style,
+            ))
+        }
+    }
+}
+
+/// Panels of equal size in a grid of `columns` columns, row by row, on a white canvas.
+pub fn panel_grid(panels: &[Canvas], columns: usize) -> Canvas {
+    let columns = columns.max(1);
+    let (w, h) = panels
+        .iter()
+        .fold((1, 1), |(w, h), p| (w.max(p.width()), h.max(p.height())));
+    let rows = panels.len().div_ceil(columns).max(1);
+    let mut out = Canvas::new(w * columns as u32, h * rows as u32, Rgb::WHITE);
+    for (k, p) in panels.iter().enumerate() {
+        let (cx, cy) = ((k % columns) as u32 * w, (k / columns) as u32 * h);
+        out.paste(p, i64::from(cx), i64::from(cy));
+    }
+    out
 }
 
 /// An axis tick label: integers without decimals, small and large values in scientific form,

@@ -36,6 +36,44 @@ impl Parameter {
     }
 }
 
+/// The families of samplers, as the lecture groups them (one panel each in `tradeoff`'s plots).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[non_exhaustive]
+pub enum Family {
+    /// Random, regular, jittered, N-rooks, multi-jittered.
+    Classic,
+    /// Progressive multi-jittered sequences.
+    Pmj,
+    /// Poisson disk, best candidate, relaxation, blue-noise nets.
+    BlueNoise,
+    /// Low-discrepancy sequences and lattices.
+    Qmc,
+    /// Patterns stratified in D dimensions at once (Latin hypercube, orthogonal arrays).
+    Multidim,
+}
+
+impl Family {
+    /// Every family, in display order.
+    pub const ALL: [Family; 5] = [
+        Family::Classic,
+        Family::Pmj,
+        Family::BlueNoise,
+        Family::Qmc,
+        Family::Multidim,
+    ];
+
+    /// A short display name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Family::Classic => "classic",
+            Family::Pmj => "PMJ",
+            Family::BlueNoise => "blue noise",
+            Family::Qmc => "QMC",
+            Family::Multidim => "D-dimensional",
+        }
+    }
+}
+
 /// A parameter a sampler takes, with its default and what is allowed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ParameterSpec {
@@ -240,6 +278,8 @@ pub struct Entry {
     pub description: &'static str,
     /// Where it comes from.
     pub paper: &'static str,
+    /// The family it belongs to (for grouped tables and plots).
+    pub family: Family,
     /// True for progressive sequences, false for fixed-count sets.
     pub progressive: bool,
     /// The counts it accepts.

@@ -13,7 +13,7 @@
 
 mod entry;
 
-pub use entry::{CountRule, Entry, Parameter, ParameterSpec, Params, Rates};
+pub use entry::{CountRule, Entry, Family, Parameter, ParameterSpec, Params, Rates};
 
 use crate::error::{Error, Result};
 use crate::sampler::{Sampler, SamplerNd};

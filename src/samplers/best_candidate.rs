@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::float::unit_f32_from_f64;
 use crate::grid::TorusGrid;
 use crate::hash::stream_seed;
-use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::{Point2, Progression, Sampler, Seed};
 
 /// The default candidate factor `k`.
@@ -33,6 +33,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: "best-candidate",
     description: "Mitchell's best candidate, progressive (--candidates K per existing point, default 1)",
     paper: "Mitchell 1991",
+    family: Family::BlueNoise,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[ParameterSpec {

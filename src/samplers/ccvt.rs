@@ -35,7 +35,7 @@ use super::{SetGenerator, Sets};
 use crate::error::{Error, Result};
 use crate::grid::{TorusGrid, torus_distance_squared, wrap_unit};
 use crate::hash::stream_seed;
-use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 
 /// Discrete points per site.
 pub const DEFAULT_CAPACITY: u32 = 256;
@@ -61,6 +61,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: "ccvt",
     description: "capacity-constrained Voronoi tessellation until no swap is left (--capacity C points per site, default 256; --iterations K caps the passes, default 10000)",
     paper: "Balzer, Schlömer, Deussen 2009",
+    family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
     parameters: &[

@@ -28,7 +28,7 @@ use crate::float::{Strata, unit_f32_from_u32};
 use crate::hash::{DivMod, Stream, hash32, mix64, owen_scramble, stream_seed};
 use crate::prelude::*;
 #[cfg(feature = "std")]
-use crate::registry::{CountRule, Entry, Rates};
+use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 
 /// The number of prime bases (dimensions) available.
@@ -64,6 +64,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: NAME,
     description: "Halton, Owen-scrambled digits, progressive, any --dims up to 1000",
     paper: "Halton 1960",
+    family: Family::Qmc,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[],

@@ -9,7 +9,7 @@
 use super::{BlockCursor, Blocks};
 use crate::float::Strata;
 use crate::hash::{DivMod, hash_u64};
-use crate::registry::{CountRule, Entry, Rates};
+use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Seed, StrataGrid};
 
 /// The registry entry of `jittered`.
@@ -17,6 +17,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: "jittered",
     description: "one uniform point per cell of an s x s grid (N = s^2)",
     paper: "Cook 1986",
+    family: Family::Classic,
     progressive: false,
     counts: CountRule::Square,
     parameters: &[],

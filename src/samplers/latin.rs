@@ -9,7 +9,7 @@
 use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
 use crate::float::Strata;
 use crate::hash::{Permutation, Stream, hash_u64};
-use crate::registry::{CountRule, Entry, Rates};
+use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Seed, StrataGrid};
 
 /// The registry entry of `nrooks`.
@@ -17,6 +17,7 @@ pub(crate) const NROOKS: Entry = Entry {
     name: "nrooks",
     description: "N-rooks / 2D Latin hypercube, one point per row and column",
     paper: "Shirley 1991",
+    family: Family::Classic,
     progressive: false,
     counts: CountRule::Any,
     parameters: &[],
@@ -32,6 +33,7 @@ pub(crate) const LATIN: Entry = Entry {
     name: "latin",
     description: "Latin hypercube in D dimensions (--dims D): one point per 1/N stratum of every axis",
     paper: "McKay et al. 1979",
+    family: Family::Multidim,
     progressive: false,
     counts: CountRule::Any,
     parameters: &[],

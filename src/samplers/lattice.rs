@@ -28,7 +28,7 @@ use crate::hash::hash_u64;
 use crate::hash::stream_seed;
 use crate::prelude::*;
 #[cfg(feature = "std")]
-use crate::registry::{CountRule, Entry, Rates};
+use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 
 /// The first 100 components of Cools, Kuo and Nuyens' embedded base-2 generating vector
@@ -54,6 +54,7 @@ pub(crate) const LATTICE: Entry = Entry {
     name: LATTICE_NAME,
     description: "extensible rank-1 lattice (Cools-Kuo-Nuyens vector), toroidally shifted, progressive, up to 100 --dims",
     paper: "Cools, Kuo, Nuyens 2006",
+    family: Family::Qmc,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[],
@@ -70,6 +71,7 @@ pub(crate) const FIBONACCI: Entry = Entry {
     name: "fibonacci",
     description: "Fibonacci lattice, N = F_k points with z = (1, F_(k-1)), toroidally shifted",
     paper: "Niederreiter 1992",
+    family: Family::Qmc,
     progressive: false,
     counts: CountRule::Fibonacci,
     parameters: &[],

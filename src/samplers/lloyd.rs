@@ -20,7 +20,7 @@ use crate::error::{Error, Result};
 use crate::float::{unit_f64_from_u32, unit_f64_from_u64};
 use crate::grid::{relative_radius_max, wrap_unit as wrap};
 use crate::hash::{Stream, hash_u64, stream_seed};
-use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 
 /// The convergence tolerance: relaxation stops once the mean distance from a point to its
 /// cell's centroid falls below this fraction of `r_max(N)`. At N = 1024 this takes a few
@@ -46,6 +46,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: "lloyd",
     description: "Lloyd relaxation on the periodic Voronoi diagram from random points, to convergence (at most --iterations K, default 1000)",
     paper: "Lloyd 1982",
+    family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
     parameters: &[ParameterSpec {

@@ -16,7 +16,7 @@
 use super::{BlockCursor, Blocks};
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, Stream, hash_u64, hash32};
-use crate::registry::{CountRule, Entry, Rates};
+use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Seed, StrataGrid};
 
 /// The registry entry of `multijittered`.
@@ -24,6 +24,7 @@ pub(crate) const MULTIJITTERED: Entry = Entry {
     name: "multijittered",
     description: "jittered and N-rooks at once (N = n^2)",
     paper: "Chiu, Shirley, Wang 1994",
+    family: Family::Classic,
     progressive: false,
     counts: CountRule::Square,
     parameters: &[],
@@ -39,6 +40,7 @@ pub(crate) const CMJ: Entry = Entry {
     name: "cmj",
     description: "correlated multi-jittered, any N",
     paper: "Kensler 2013",
+    family: Family::Classic,
     progressive: false,
     counts: CountRule::Any,
     parameters: &[],

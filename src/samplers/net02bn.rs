@@ -27,7 +27,7 @@
 use crate::error::{Error, Result};
 use crate::grid::relative_radius_max;
 use crate::hash::{hash_u64, stream_seed};
-use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::samplers::blocks::{SetGenerator, Sets};
 use crate::samplers::sobol;
 
@@ -51,6 +51,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: "net02bn",
     description: "a (0,m,2)-net of N = 2^m points made blue by net-preserving swaps in the boxes of area 2/N (--iterations K caps the sweeps, default 64)",
     paper: "Ahmed, Wonka 2021",
+    family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::PowerOfTwo,
     parameters: &[ParameterSpec {

@@ -27,7 +27,7 @@ use super::{BlockCursor, Blocks, MAX_FIXED_COUNT, check_dims};
 use crate::error::{Error, Result};
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, Stream, hash_u64, hash32, key32, stream_seed};
-use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::{Seed, StrataGrid};
 
 /// The registry entry of `oa-bose`.
@@ -35,6 +35,7 @@ pub(crate) const BOSE: Entry = Entry {
     name: "oa-bose",
     description: "orthogonal array, strength 2 (N = q^2, up to q+1 dims), multi-jittered",
     paper: "Jarosz et al. 2019",
+    family: Family::Multidim,
     progressive: false,
     counts: CountRule::OaPower(2),
     parameters: &[],
@@ -50,6 +51,7 @@ pub(crate) const BUSH: Entry = Entry {
     name: "oa-bush",
     description: "orthogonal array, strength T (--strength T; N = q^T, up to q dims), multi-jittered",
     paper: "Jarosz et al. 2019",
+    family: Family::Multidim,
     progressive: false,
     counts: CountRule::OaPower(3),
     parameters: &[ParameterSpec {

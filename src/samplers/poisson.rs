@@ -31,7 +31,7 @@ use crate::error::{Error, Result};
 use crate::float::unit_f64_from_u64;
 use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared, wrap_unit as wrap};
 use crate::hash::stream_seed;
-use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 
 /// The default relative radius.
 pub const DEFAULT_RHO: f64 = 0.7;
@@ -55,6 +55,7 @@ pub(crate) const POISSON: Entry = Entry {
     name: "poisson",
     description: "Poisson disk by dart throwing to exactly N points (--radius RHO, default 0.7)",
     paper: "Cook 1986; Ebeida et al. 2011",
+    family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
     parameters: &[RADIUS],
@@ -76,6 +77,7 @@ pub(crate) const BRIDSON: Entry = Entry {
     name: "bridson",
     description: "Poisson disk by Bridson's algorithm, periodic, N points (--radius RHO, default 0.7)",
     paper: "Bridson 2007",
+    family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
     parameters: &[RADIUS],

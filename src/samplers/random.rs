@@ -11,7 +11,7 @@ use rand_pcg::Pcg32;
 
 use crate::float::unit_f32_from_u32;
 use crate::hash::stream_seed;
-use crate::registry::{CountRule, Entry, Rates};
+use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed};
 
 /// The registry entry of `random`.
@@ -19,6 +19,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: "random",
     description: "independent uniform points (PCG32); progressive",
     paper: "-",
+    family: Family::Classic,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[],

@@ -8,7 +8,7 @@
 use super::{BlockCursor, Blocks};
 use crate::float::Strata;
 use crate::hash::DivMod;
-use crate::registry::{CountRule, Entry, Rates};
+use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Seed, StrataGrid};
 
 /// The registry entry of `regular`.
@@ -16,6 +16,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: "regular",
     description: "cell centres of an s x s grid (N = s^2); deterministic",
     paper: "-",
+    family: Family::Classic,
     progressive: false,
     counts: CountRule::Square,
     parameters: &[],

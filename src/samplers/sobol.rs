@@ -28,7 +28,7 @@ use crate::float::unit_f32_from_u32;
 use crate::hash::{Stream, hash32, owen_scramble_rev, stream_seed};
 use crate::prelude::*;
 #[cfg(feature = "std")]
-use crate::registry::{CountRule, Entry, Rates};
+use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 
 /// Direction vectors of one dimension: column `k` (for index bit `k`) as a 32-bit fixed-point
@@ -280,6 +280,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: NAME,
     description: "Sobol' (Joe-Kuo directions), Owen-scrambled by hashing, progressive, any --dims",
     paper: "Sobol' 1967; Joe, Kuo 2008; Burley 2020",
+    family: Family::Qmc,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[],

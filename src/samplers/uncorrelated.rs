@@ -11,7 +11,7 @@
 use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, hash_u64};
-use crate::registry::{CountRule, Entry, Rates};
+use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Seed, StrataGrid};
 
 /// The registry entry of `uncorrelated`.
@@ -19,6 +19,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: "uncorrelated",
     description: "uncorrelated jitter: jittered pairs (0,1), (2,3), ... in random orders (N = s^2)",
     paper: "Cook 1986",
+    family: Family::Multidim,
     progressive: false,
     counts: CountRule::Square,
     parameters: &[],

@@ -35,7 +35,7 @@ use crate::error::{Error, Result};
 use crate::float::unit_f32_from_u32;
 use crate::grid::relative_radius_max;
 use crate::hash::{hash_u64, stream_seed};
-use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 use crate::samplers::{Epochs, sobol};
 
@@ -59,6 +59,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: "pmj02bn",
     description: "a (0,2)-sequence whose Owen-scrambling flags are chosen for blue noise at every power-of-two prefix up to N (--iterations K caps the sweeps, default 4)",
     paper: "Christensen et al. 2018; Doignies et al. 2024",
+    family: Family::Pmj,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[ParameterSpec {

@@ -58,7 +58,7 @@ use crate::error::{Error, Result};
 use crate::float::unit_f32_from_u32;
 use crate::prelude::*;
 #[cfg(feature = "std")]
-use crate::registry::{CountRule, Entry, Parameter, ParameterSpec, Rates};
+use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::StrataGrid;
 #[cfg(feature = "std")]
 use crate::sampler::{Point2, Progression, Sampler, Seed};
@@ -86,6 +86,7 @@ pub(crate) const PMJ: Entry = Entry {
     name: "pmj",
     description: "progressive multi-jittered: 1D strata and squarest grid at every power of two",
     paper: "Christensen, Kensler, Kilpatrick 2018",
+    family: Family::Pmj,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[],
@@ -102,6 +103,7 @@ pub(crate) const PMJBN: Entry = Entry {
     name: "pmjbn",
     description: "pmj with best-candidate blue noise (--candidates K, default 100)",
     paper: "Christensen et al. 2018; Mitchell 1991",
+    family: Family::Pmj,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[CANDIDATES],
@@ -121,6 +123,7 @@ pub(crate) const PMJ02: Entry = Entry {
     name: "pmj02",
     description: "progressive (0,m,2)-nets at every power of two (Pharr's strata enumeration)",
     paper: "Christensen et al. 2018; Pharr 2019",
+    family: Family::Pmj,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[],

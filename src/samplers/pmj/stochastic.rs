@@ -26,7 +26,7 @@ use crate::float::unit_f32_from_u32;
 use crate::hash::{hash_u64, stream_seed};
 use crate::prelude::*;
 #[cfg(feature = "std")]
-use crate::registry::{CountRule, Entry, Rates};
+use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 
 use super::{MAX_SEQUENCE_LEN, pmj_grids};
@@ -164,6 +164,7 @@ pub(crate) const ENTRY: Entry = Entry {
     name: NAME,
     description: "pmj02 by stochastic generation, O(1) per sample",
     paper: "Helmer, Christensen, Kensler 2021",
+    family: Family::Pmj,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[],
