@@ -123,6 +123,15 @@ pub trait SamplerNd: Send {
         }
     }
 
+    /// Moves `n` points on in constant time, as `n` calls of
+    /// [`next_point`](SamplerNd::next_point) would, where the sampler can (true); otherwise
+    /// does nothing and returns false. Lets a caller fill one long stream in parallel, each
+    /// thread with its own sampler started at its own offset. Sobol' can.
+    fn skip(&mut self, n: u64) -> bool {
+        let _ = n;
+        false
+    }
+
     /// The grid on which the 2D projection onto dimensions `x` (columns) and `y` (rows) of a
     /// complete set is stratified, every cell holding the same number of points; `None` where
     /// the sampler promises no such grid (for drawing; the tests count the cells).

@@ -42,6 +42,26 @@ impl Epochs {
         (start, key)
     }
 
+    /// Moves `n` samples on, as `n` calls of [`advance`](Epochs::advance) would. Returns the
+    /// epoch it ends in when that differs from the one it started in (the sampler must then
+    /// re-key: epoch 0 with its initial key, a later one with [`key`](Epochs::key)).
+    pub(crate) fn skip(&mut self, n: u64) -> Option<u64> {
+        // absolute position, in samples taken; a full epoch stays "exhausted" (next == len)
+        // so that the next take starts the following epoch with its key, as advance does
+        let p = (self.epoch as u128) * (self.len as u128) + self.next as u128 + n as u128;
+        let len = self.len as u128;
+        let (mut e, mut next) = (p / len, p % len);
+        if next == 0 && e > 0 {
+            e -= 1;
+            next = len;
+        }
+        let e = u64::try_from(e).unwrap_or(u64::MAX);
+        let changed = e != self.epoch;
+        self.epoch = e;
+        self.next = next as u64;
+        changed.then_some(e)
+    }
+
     /// Up to `max` (>= 1) next samples inside one sequence: the first index, how many, and the
     /// key of the new epoch when they start one.
     #[inline]
@@ -70,6 +90,22 @@ mod tests {
         assert_eq!(got[..3], [(0, None), (1, None), (2, None)]);
         assert_eq!(got[3], (0, Some(stream_seed(5, 1))));
         assert_eq!(got[6], (0, Some(stream_seed(5, 2))));
+        // skipping equals taking, across epochs
+        for n in 0..25u64 {
+            let (mut a, mut b) = (Epochs::new(Seed(5), 3), Epochs::new(Seed(5), 3));
+            let mut last = 0;
+            for _ in 0..n {
+                if let (_, Some(_)) = a.advance() {
+                    last += 1;
+                }
+            }
+            let moved = b.skip(n);
+            assert_eq!(moved.unwrap_or(0), last, "n = {n}");
+            assert_eq!(a.advance(), {
+                let (i, key) = b.advance();
+                (i, key)
+            });
+        }
         let mut e = Epochs::new(Seed(5), 10);
         assert_eq!(e.take(4), (0, 4, None));
         assert_eq!(e.take(100), (4, 6, None));

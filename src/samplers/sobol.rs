@@ -25,7 +25,7 @@ use super::Epochs;
 use super::pmj::MAX_SEQUENCE_LEN;
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
-use crate::hash::{Stream, hash32, owen_scramble_rev, stream_seed};
+use crate::hash::{Stream, hash32, owen_scramble_rev, owen_scrambled_unit_f32x4, stream_seed};
 use crate::prelude::*;
 #[cfg(feature = "std")]
 use crate::registry::{CountRule, Entry, Family, Rates};
@@ -271,6 +271,67 @@ impl Scramble {
     }
 }
 
+/// Consecutive points of one epoch of [`SobolNd`], from tables and seeds looked up once.
+struct Rows<'a> {
+    tables: &'a [&'static [[u32; 256]; 4]],
+    seeds: &'a [u32],
+    scramble: Scramble,
+}
+
+impl Rows<'_> {
+    /// Points `start, start + 1, ..` into `out` (`D` values each), four dimensions per SIMD
+    /// step.
+    #[inline(always)]
+    fn fill(&self, start: u32, out: &mut [f32]) {
+        let d = self.tables.len();
+        for (i, chunk) in (u64::from(start)..).zip(out.chunks_exact_mut(d)) {
+            let ir = self.scramble.index_rev(i as u32);
+            let mut k = 0;
+            while k + 4 <= d {
+                let n = [0, 1, 2, 3].map(|j| lookup(self.tables[k + j], ir));
+                let s = [0, 1, 2, 3].map(|j| self.seeds[k + j]);
+                chunk[k..k + 4].copy_from_slice(&owen_scrambled_unit_f32x4(n, s));
+                k += 4;
+            }
+            self.tail(ir, k, chunk);
+        }
+    }
+
+    /// Dimensions `k..` of one point, one at a time.
+    #[inline(always)]
+    fn tail(&self, ir: u32, k: usize, chunk: &mut [f32]) {
+        let rest = self.tables[k..].iter().zip(&self.seeds[k..]);
+        for (o, (t, s)) in chunk[k..].iter_mut().zip(rest) {
+            *o = unit_f32_from_u32(owen_scramble_rev(lookup(t, ir), *s).reverse_bits());
+        }
+    }
+
+    /// As [`fill`](Rows::fill), eight dimensions per step in plain lane loops that the
+    /// compiler turns into AVX2 (`vpmulld`, byte-shuffle bit reversal); the same bits.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx2")]
+    unsafe fn fill_avx2(&self, start: u32, out: &mut [f32]) {
+        let d = self.tables.len();
+        for (i, chunk) in (u64::from(start)..).zip(out.chunks_exact_mut(d)) {
+            let ir = self.scramble.index_rev(i as u32);
+            let mut k = 0;
+            while k + 8 <= d {
+                let n: [u32; 8] = core::array::from_fn(|j| lookup(self.tables[k + j], ir));
+                let s: [u32; 8] = core::array::from_fn(|j| self.seeds[k + j]);
+                let v = crate::hash::owen_scramble_rev_lanes(n, s);
+                for (o, x) in chunk[k..k + 8].iter_mut().zip(v) {
+                    *o = unit_f32_from_u32(x.reverse_bits());
+                }
+                k += 8;
+            }
+            self.tail(ir, k, chunk);
+        }
+    }
+}
+
 /// The registered name.
 const NAME: &str = "sobol";
 
@@ -363,6 +424,7 @@ impl Sampler for Sobol {
 pub struct SobolNd {
     epochs: Epochs,
     dims: u32,
+    seed: u64,
     scramble: Scramble,
 }
 
@@ -379,8 +441,20 @@ impl SobolNd {
         Ok(SobolNd {
             epochs: Epochs::new(seed, MAX_SEQUENCE_LEN),
             dims,
+            seed: seed.0,
             scramble: Scramble::new(seed.0),
         })
+    }
+}
+
+impl SobolNd {
+    /// The scramble of epoch `e` (epoch 0 keyed by the seed itself, as the constructor does).
+    fn epoch_scramble(&self, e: u64) -> Scramble {
+        if e == 0 {
+            Scramble::new(self.seed)
+        } else {
+            Scramble::new(self.epochs.key(e))
+        }
     }
 }
 
@@ -397,6 +471,47 @@ impl SamplerNd for SobolNd {
         Progression::Progressive
     }
 
+    /// Constant time: the epoch and the index, re-keyed when the epoch changes.
+    fn skip(&mut self, n: u64) -> bool {
+        if let Some(e) = self.epochs.skip(n) {
+            self.scramble = self.epoch_scramble(e);
+        }
+        true
+    }
+
+    /// As many `next_point` calls, bit-identical, with the per-dimension tables and scramble
+    /// seeds looked up once per call and the dimensions scrambled in SIMD lanes (eight with
+    /// AVX2 where the CPU has it, four with SSE2 otherwise).
+    fn fill(&mut self, out: &mut [f32]) {
+        let d = self.dims as usize;
+        let tables: Vec<&'static [[u32; 256]; 4]> = (0..self.dims)
+            .map(|k| dim_tables(k).expect("checked at construction"))
+            .collect();
+        let total = out.len() / d;
+        let mut done = 0usize;
+        while done < total {
+            let (start, count, new_epoch) = self.epochs.take((total - done) as u64);
+            if let Some(key) = new_epoch {
+                self.scramble = Scramble::new(key);
+            }
+            let seeds: Vec<u32> = (0..self.dims).map(|k| self.scramble.dim_seed(k)).collect();
+            let rows = Rows {
+                tables: &tables,
+                seeds: &seeds,
+                scramble: self.scramble,
+            };
+            let block = &mut out[done * d..(done + count as usize) * d];
+            done += count as usize;
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU has AVX2, checked just above.
+                unsafe { rows.fill_avx2(start as u32, block) };
+                continue;
+            }
+            rows.fill(start as u32, block);
+        }
+    }
+
     fn next_point(&mut self, out: &mut [f32]) {
         let i = advance(&mut self.epochs, &mut self.scramble);
         // one index shuffle for all dimensions of the point
@@ -411,6 +526,39 @@ impl SamplerNd for SobolNd {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn fill_and_skip_equal_point_by_point_across_an_epoch() {
+        for dims in [1u32, 2, 3, 4, 5, 8, 9, 13] {
+            let mut a = SobolNd::new(dims, Seed(11)).unwrap();
+            let mut b = a.clone();
+            // near the end of the first 2^32-point sequence, so that both cross into epoch 1
+            a.skip((1 << 32) - 5);
+            b.skip((1 << 32) - 7);
+            let mut p = vec![0f32; dims as usize];
+            b.next_point(&mut p);
+            b.next_point(&mut p);
+            let mut filled = vec![0f32; 12 * dims as usize];
+            a.fill(&mut filled);
+            for (k, chunk) in filled.chunks_exact(dims as usize).enumerate() {
+                b.next_point(&mut p);
+                assert_eq!(
+                    chunk.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                    p.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                    "dims {dims}, point {k}"
+                );
+            }
+            // and from the start
+            let mut c = SobolNd::new(dims, Seed(3)).unwrap();
+            let mut d = c.clone();
+            let mut filled = vec![0f32; 40 * dims as usize];
+            c.fill(&mut filled);
+            for chunk in filled.chunks_exact(dims as usize) {
+                d.next_point(&mut p);
+                assert_eq!(chunk, &p[..]);
+            }
+        }
+    }
 
     #[test]
     fn first_dimensions_are_van_der_corput_and_pascal() {

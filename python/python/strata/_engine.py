@@ -1,0 +1,135 @@
+"""``strata.Engine``: every sampler as a ``scipy.stats.qmc.QMCEngine``."""
+
+from __future__ import annotations
+
+import operator
+from typing import Any, Dict, Optional, Union
+
+import numpy as np
+from scipy.stats import qmc
+
+from . import _strata
+from . import _validate as _v
+
+#: Points drawn at once when fast-forwarding (bounds the memory of a long skip).
+_SKIP_CHUNK = 1 << 16
+
+
+class Engine(qmc.QMCEngine):
+    """Sampler ``name`` in ``d`` dimensions as a ``scipy.stats.qmc.QMCEngine``: ``random``,
+    ``integers``, ``reset`` and ``fast_forward`` work as for scipy's engines, and so do
+    ``qmc.discrepancy``, ``qmc.scale`` and ``scipy.integrate.qmc_quad(..., qrng=engine)``.
+
+    * A **progressive** sampler (``sobol``, ``halton``, ``pmj02``, ``random``, ...) is one
+      endless sequence: ``random(n)`` returns its next ``n`` points, so ``random(5)`` then
+      ``random(11)`` give the same 16 points as ``strata.points(name, 16, seed=seed,
+      dims=d)``; ``reset`` starts again; ``fast_forward(n)`` skips ``n`` points.
+    * A **fixed-count** sampler (``jittered``, ``poisson``, ``oa-bose``, ``ccvt``, ...) makes
+      sets of a count it accepts (``Engine.counts`` says which; a refused count raises
+      ``ValueError`` naming the nearest allowed ones): each ``random(n)`` returns the next
+      independent set of ``n`` points, the first one equal to ``strata.points(name, n,
+      seed=seed, dims=d)``; ``fast_forward(n)`` skips one set of ``n``.
+
+    ``seed``: an int (0 to 2^64 - 1), a ``numpy.random.Generator`` (a seed is drawn from it,
+    as ``qmc_quad`` does to make independent copies) or ``None`` (fresh entropy; the seed drawn
+    is ``engine.seed``). ``params``: the sampler's optional parameters (``radius``,
+    ``iterations``, ``strength``, ``candidates``, ``capacity``).
+
+    Points are returned as float64 (scipy's type) holding the sampler's float32 values
+    exactly.
+    """
+
+    def __init__(
+        self,
+        name: str,
+        d: int,
+        *,
+        seed: Union[int, np.random.Generator, None] = None,
+        **params: Any,
+    ) -> None:
+        entry = next((e for e in _strata.registry_entries() if e["name"] == name), None)
+        if entry is None:
+            _strata.nearest_count(name, 1)  # raises the crate's "unknown sampler" error
+        assert entry is not None
+        d = _v.whole(d, "d", 1, _strata.MAX_DIMENSIONS)
+        self._params: Dict[str, Any] = _v.sampler_params(params, "Engine")
+        if seed is None:
+            seed = np.random.default_rng()
+        base_rng = seed if isinstance(seed, np.random.Generator) else None
+        self.seed: int = _v.seed_value(seed)
+        if base_rng is None:
+            base_rng = np.random.default_rng(self.seed)
+        try:
+            super().__init__(d=d, rng=base_rng)
+        except TypeError:  # scipy < 1.15 calls it `seed`
+            super().__init__(d=d, seed=base_rng)
+        self.name: str = entry["name"]
+        self.progressive: bool = bool(entry["progressive"])
+        #: The counts a fixed-count sampler accepts, in words ("perfect squares", ...).
+        self.counts: str = "any N >= 1" if self.progressive else entry["counts"]
+        # what qmc_quad passes to type(engine)(seed=..., **engine._init_quad)
+        self._init_quad = {"name": name, "d": d, **self._params}
+        self._sets: Dict[int, Any] = {}
+        self._sequence: Optional[Any] = None
+        if self.progressive:
+            self._sequence = self._build(1)
+        elif entry["dimensions"] == "2" and d != 2:
+            self._build(_strata.nearest_count(name, 1))  # raises the crate's error
+
+    def _build(self, count: int) -> Any:
+        return _strata.Sampler(self.name, count, self.seed, self.d, **self._params)
+
+    def allowed_counts(self, lo: int, hi: int) -> list:
+        """The counts in ``[lo, hi]`` that ``random`` accepts."""
+        if self.progressive:
+            return list(range(max(lo, 1), hi + 1))
+        return list(_strata.allowed_counts(self.name, lo, hi))
+
+    def _random(self, n: int = 1, *, workers: int = 1) -> np.ndarray:
+        n = _v.whole(n, "n", 0, _v.U64_MAX)
+        out = np.empty((n, self.d), dtype=np.float32)
+        if n == 0:
+            return out.astype(np.float64)
+        if self.progressive:
+            assert self._sequence is not None
+            self._sequence.fill(out)
+        else:
+            err = _strata.count_error(self.name, n)
+            if err is not None:
+                raise ValueError(
+                    f"{err}; a fixed-count engine returns sets of a count it accepts "
+                    f"({self.counts}), one independent set per call"
+                )
+            s = self._sets.get(n)
+            if s is None:
+                s = self._sets[n] = self._build(n)
+            s.fill(out)
+        return out.astype(np.float64)
+
+    def reset(self) -> "Engine":
+        """Starts the sequence (or the sets) again from the beginning."""
+        super().reset()
+        self._sets.clear()
+        if self.progressive:
+            self._sequence = self._build(1)
+        return self
+
+    def fast_forward(self, n: int) -> "Engine":
+        """Skips ``n`` points of a progressive sequence (one set of ``n`` of a fixed-count
+        sampler)."""
+        n = operator.index(n)
+        if not self.progressive:
+            return super().fast_forward(n)
+        scratch = np.empty((min(n, _SKIP_CHUNK), self.d), dtype=np.float32)
+        left = n
+        assert self._sequence is not None
+        while left > 0:
+            k = min(left, _SKIP_CHUNK)
+            self._sequence.fill(scratch[:k])
+            left -= k
+        self.num_generated += n
+        return self
+
+    def __repr__(self) -> str:
+        extra = "".join(f", {k}={v!r}" for k, v in self._params.items())
+        return f"Engine({self.name!r}, d={self.d}, seed={self.seed}{extra})"

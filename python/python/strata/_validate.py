@@ -1,0 +1,164 @@
+"""Argument checks shared by the public functions: each turns a bad argument into a
+``TypeError`` (wrong kind of thing) or ``ValueError`` (wrong value) that says what was given
+and what is allowed, before anything reaches the compiled module."""
+
+from __future__ import annotations
+
+import difflib
+import operator
+from typing import Any, Dict
+
+import numpy as np
+
+#: The optional sampler parameters and their Python types (see ``strata.samplers()``).
+SAMPLER_PARAMETERS = ("radius", "iterations", "strength", "candidates", "capacity")
+
+U32_MAX = 2**32 - 1
+U64_MAX = 2**64 - 1
+
+#: The largest float32 below 1: float64 coordinates in [0, 1) that would round up to 1.0 in
+#: float32 are stored as this value.
+BELOW_ONE_F32 = np.nextafter(np.float32(1.0), np.float32(0.0))
+
+
+def whole(value: Any, what: str, lo: int, hi: int) -> int:
+    """``value`` as a Python int in ``[lo, hi]`` (bools and floats are refused)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{what} must be a whole number, not a bool")
+    try:
+        v = operator.index(value)
+    except TypeError:
+        raise TypeError(
+            f"{what} must be a whole number ({lo} to {hi}), not {type(value).__name__} {value!r}"
+        ) from None
+    if v < lo or v > hi:
+        raise ValueError(f"{what} = {v} is out of range; allowed: {lo} to {hi}")
+    return v
+
+
+def seed_value(seed: Any, what: str = "seed") -> int:
+    """A 64-bit seed from an int, or drawn from a ``numpy.random.Generator``."""
+    if isinstance(seed, np.random.Generator):
+        return int(seed.integers(0, 2**64, dtype=np.uint64))
+    return whole(seed, what, 0, U64_MAX)
+
+
+def sampler_params(params: Dict[str, Any], function: str) -> Dict[str, Any]:
+    """Checks the names and types of the optional sampler parameters (which samplers take
+    which, and their ranges, the crate checks)."""
+    out: Dict[str, Any] = {}
+    for key, value in params.items():
+        if key not in SAMPLER_PARAMETERS:
+            close = difflib.get_close_matches(key, SAMPLER_PARAMETERS, n=1)
+            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            raise TypeError(
+                f"{function}() got an unexpected keyword argument '{key}'{hint}; sampler "
+                f"parameters: {', '.join(SAMPLER_PARAMETERS)}"
+            )
+        if value is None:
+            continue
+        if key == "radius":
+            if isinstance(value, (bool, np.bool_)) or not isinstance(
+                value, (int, float, np.integer, np.floating)
+            ):
+                raise TypeError(f"radius must be a number, not {type(value).__name__}")
+            r = float(value)
+            if not np.isfinite(r):
+                raise ValueError(f"radius = {r} is not allowed: a finite number, 0 < radius < 1")
+            out[key] = r
+        else:
+            out[key] = whole(value, key, 0, U32_MAX)
+    return out
+
+
+def float_array(points: Any, what: str) -> np.ndarray:
+    """``points`` as a float32 or float64 ndarray (lists and tuples are converted to float64;
+    ndarrays must already be float32 or float64, C-contiguous)."""
+    if isinstance(points, (str, bytes)):
+        raise TypeError(f"{what}: points must be an array of shape (n, d), not a string")
+    if not isinstance(points, np.ndarray):
+        try:
+            points = np.asarray(points, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise TypeError(
+                f"{what}: points must be an array of shape (n, d), float32 or float64 ({e})"
+            ) from None
+        return points
+    if points.dtype not in (np.float32, np.float64):
+        raise TypeError(
+            f"{what}: points have dtype {points.dtype}; float32 or float64 is needed "
+            f"(convert with points.astype(np.float64))"
+        )
+    if not points.flags.c_contiguous:
+        raise ValueError(
+            f"{what}: points are a non-contiguous view (strides {points.strides}); pass "
+            f"np.ascontiguousarray(points), which copies"
+        )
+    return points
+
+
+def points_any(points: Any, what: str) -> np.ndarray:
+    """A ``(n, d)`` float32 or float64 C-contiguous array, not empty."""
+    a = float_array(points, what)
+    if a.ndim != 2 or a.shape[0] == 0 or a.shape[1] == 0:
+        raise ValueError(
+            f"{what}: points have shape {a.shape}; (n, d) with n >= 1 and d >= 1 is needed"
+        )
+    return a
+
+
+def points_2d(points: Any, what: str) -> np.ndarray:
+    """A ``(n, 2)`` float32 C-contiguous array with coordinates in [0, 1) (float64 input is
+    checked, then rounded to float32, values just below 1 to the largest float32 below 1)."""
+    a = float_array(points, what)
+    if a.ndim != 2 or a.shape[1] != 2 or a.shape[0] == 0:
+        raise ValueError(f"{what}: points have shape {a.shape}; (n, 2) with n >= 1 is needed")
+    if a.dtype == np.float32:
+        return a  # the crate checks the range
+    bad = ~((a >= 0.0) & (a < 1.0))
+    if bad.any():
+        i = int(np.argmax(bad.any(axis=1)))
+        raise ValueError(
+            f"{what}: point {i} is ({a[i, 0]!r}, {a[i, 1]!r}); coordinates must be finite "
+            f"and in [0, 1)"
+        )
+    f = a.astype(np.float32)
+    np.minimum(f, BELOW_ONE_F32, out=f)
+    return f
+
+
+def point_sets(sets: Any, what: str) -> list:
+    """One or more ``(n, 2)`` sets: a ``(n, 2)`` array is one set, a ``(r, n, 2)`` array or a
+    sequence of ``(n, 2)`` arrays is ``r`` sets."""
+    if isinstance(sets, (str, bytes)):
+        raise TypeError(f"{what}: a point set or a sequence of point sets is needed, not a string")
+    if isinstance(sets, (list, tuple)) and sets and not any(
+        isinstance(s, np.ndarray) for s in sets
+    ):
+        try:  # nested lists of numbers: one set (n, 2) or several (r, n, 2)
+            sets = np.asarray(sets, dtype=np.float64)
+        except (TypeError, ValueError):
+            pass  # sets of different sizes: a sequence of sets
+    if isinstance(sets, np.ndarray):
+        if sets.ndim == 2:
+            return [points_2d(sets, what)]
+        if sets.ndim == 3:
+            return [points_2d(s, f"{what}: set {k}") for k, s in enumerate(sets)]
+        raise ValueError(
+            f"{what}: an array of shape {sets.shape}; (n, 2) or (r, n, 2) is needed"
+        )
+    try:
+        items = list(sets)
+    except TypeError:
+        raise TypeError(f"{what}: a point set or a sequence of point sets is needed") from None
+    if not items:
+        raise ValueError(f"{what}: no point set given; at least one is needed")
+    return [points_2d(s, f"{what}: set {k}") for k, s in enumerate(items)]
+
+
+def method_name(method: Any, allowed: tuple, what: str) -> str:
+    """``method`` if it is one of ``allowed``."""
+    if not isinstance(method, str) or method not in allowed:
+        raise ValueError(f"{what}: unknown method {method!r}; allowed: {', '.join(allowed)}")
+    return method
+

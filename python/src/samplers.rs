@@ -1,0 +1,311 @@
+//! The registry (names, descriptions, count rules, parameters) and the samplers it builds, as
+//! a Python class that fills numpy arrays.
+
+use std::sync::Mutex;
+
+use glam::Vec2;
+use numpy::PyArray2;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use strata::registry::{self, CountRule, Entry, Params};
+use strata::{Progression, Sampler, SamplerNd};
+
+use crate::{borrow_output, output_slice, to_py_err, value_error};
+
+/// A sampler of the registry, 2D or D-dimensional.
+#[derive(Debug)]
+enum Inner {
+    /// Built by [`Entry::build`]: what `points` uses for `--dims 2`.
+    Two(Box<dyn Sampler>),
+    /// Built by [`Entry::build_nd`]: what `points` uses for any other `--dims`.
+    Nd(Box<dyn SamplerNd>),
+}
+
+impl Inner {
+    fn progression(&self) -> Progression {
+        match self {
+            Inner::Two(s) => Sampler::progression(&**s),
+            Inner::Nd(s) => s.progression(),
+        }
+    }
+
+    /// The next `values.len() / dims` points, point-major.
+    fn fill(&mut self, values: &mut [f32]) {
+        match self {
+            Inner::Two(s) => Sampler::fill(&mut **s, bytemuck::cast_slice_mut::<f32, Vec2>(values)),
+            Inner::Nd(s) => s.fill(values),
+        }
+    }
+}
+
+/// A registered sampler built from its name, count, seed, dimensions and parameters, exactly
+/// as the `points` program builds it; `fill` writes its next points into a float32 array.
+///
+/// The stream continues from call to call: a progressive sampler's next points, a fixed-count
+/// sampler's next block (each complete block of `count` points is one independent set).
+#[pyclass(module = "strata._strata", name = "Sampler", frozen)]
+#[derive(Debug)]
+pub struct PySampler {
+    /// The sampler and the number of points it has given so far.
+    inner: Mutex<(Inner, u64)>,
+    entry: &'static Entry,
+    params: Params,
+    name: &'static str,
+    dims: u32,
+    count: u64,
+    progressive: bool,
+}
+
+#[pymethods]
+impl PySampler {
+    /// Builds sampler `name` for `count` points per set, seeded by `seed`, with `dims`
+    /// coordinates per point and the optional parameters (each `None` for the default).
+    #[new]
+    #[pyo3(signature = (name, count, seed, dims, radius=None, iterations=None, strength=None, candidates=None, capacity=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        name: &str,
+        count: u64,
+        seed: u64,
+        dims: u32,
+        radius: Option<f64>,
+        iterations: Option<u32>,
+        strength: Option<u32>,
+        candidates: Option<u32>,
+        capacity: Option<u32>,
+    ) -> PyResult<Self> {
+        let entry = registry::find(name).map_err(to_py_err)?;
+        let params = params(
+            count, seed, radius, iterations, strength, candidates, capacity,
+        );
+        // some constructions do their work up front (Poisson disk, CCVT, Lloyd)
+        let inner = py
+            .detach(|| {
+                if dims == 2 {
+                    entry.build(&params).map(Inner::Two)
+                } else {
+                    entry.build_nd(&params, dims).map(Inner::Nd)
+                }
+            })
+            .map_err(to_py_err)?;
+        let progressive = inner.progression().is_progressive();
+        Ok(PySampler {
+            inner: Mutex::new((inner, 0)),
+            entry,
+            params,
+            name: entry.name,
+            dims,
+            count,
+            progressive,
+        })
+    }
+
+    /// Writes the next `out.shape[0]` points into `out`, a C-contiguous, writable float32
+    /// array of shape `(n, dims)`; the GIL is released meanwhile.
+    fn fill(&self, py: Python<'_>, out: &Bound<'_, PyArray2<f32>>) -> PyResult<()> {
+        let mut rw = borrow_output(out, "Sampler.fill")?;
+        let values = output_slice(&mut rw, "Sampler.fill", self.dims as usize)?;
+        // lock inside `detach`: a thread waiting for the lock must not hold the GIL
+        py.detach(|| {
+            let mut guard = self.inner.lock().unwrap_or_else(|e| e.into_inner());
+            let (inner, drawn) = &mut *guard;
+            if !self.fill_in_parallel(inner, *drawn, values) {
+                inner.fill(values);
+            }
+            *drawn += (values.len() / self.dims as usize) as u64;
+        });
+        Ok(())
+    }
+
+    /// The registered name.
+    #[getter]
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    /// Coordinates per point.
+    #[getter]
+    fn dims(&self) -> u32 {
+        self.dims
+    }
+
+    /// The count the sampler was built for (the size of each set of a fixed-count sampler).
+    #[getter]
+    fn count(&self) -> u64 {
+        self.count
+    }
+
+    /// True for a progressive sequence, false for a fixed-count set.
+    #[getter]
+    fn progressive(&self) -> bool {
+        self.progressive
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Sampler({:?}, count={}, dims={}, {})",
+            self.name,
+            self.count,
+            self.dims,
+            if self.progressive {
+                "progressive"
+            } else {
+                "fixed-count"
+            }
+        )
+    }
+}
+
+/// The parameters of a sampler, as the command line's flags set them.
+pub(crate) fn params(
+    count: u64,
+    seed: u64,
+    radius: Option<f64>,
+    iterations: Option<u32>,
+    strength: Option<u32>,
+    candidates: Option<u32>,
+    capacity: Option<u32>,
+) -> Params {
+    let mut p = Params::new(count).seed(seed);
+    p.radius = radius;
+    p.iterations = iterations;
+    p.strength = strength;
+    p.candidates = candidates;
+    p.capacity = capacity;
+    p
+}
+
+/// Values per thread below which a fill stays on one thread.
+const PARALLEL_GRAIN: usize = 1 << 18;
+
+impl PySampler {
+    /// Fills `values` (the points after the first `drawn`) on rayon's threads when the
+    /// sampler can skip ahead in constant time (`SamplerNd::skip`): each thread builds its own
+    /// sampler from the same parameters and skips to its share; `inner` then skips past all
+    /// of them. Bit-identical to one serial fill. False (nothing done) when it cannot.
+    fn fill_in_parallel(&self, inner: &mut Inner, drawn: u64, values: &mut [f32]) -> bool {
+        let Inner::Nd(main) = inner else {
+            return false;
+        };
+        let d = self.dims as usize;
+        let threads = rayon::current_num_threads().min(values.len() / PARALLEL_GRAIN);
+        if threads < 2 {
+            return false;
+        }
+        let points = values.len() / d;
+        let per = points.div_ceil(threads);
+        let mut forks = Vec::with_capacity(threads);
+        for t in 0..threads {
+            let Ok(mut s) = self.entry.build_nd(&self.params, self.dims) else {
+                return false;
+            };
+            if !s.skip(drawn + (t * per) as u64) {
+                return false;
+            }
+            forks.push(s);
+        }
+        if !main.skip(points as u64) {
+            return false;
+        }
+        use rayon::prelude::*;
+        values
+            .par_chunks_mut(per * d)
+            .zip(forks.par_iter_mut())
+            .for_each(|(chunk, s)| s.fill(chunk));
+        true
+    }
+}
+
+/// The facts of one registry entry as a dict.
+fn entry_dict<'py>(py: Python<'py>, e: &Entry) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("name", e.name)?;
+    d.set_item("description", e.description)?;
+    d.set_item("paper", e.paper)?;
+    d.set_item("progressive", e.progressive)?;
+    d.set_item("counts", e.counts.to_string())?;
+    d.set_item("dimensions", if e.has_dimensions() { "D" } else { "2" })?;
+    let params = PyList::empty(py);
+    for p in e.parameters {
+        let pd = PyDict::new(py);
+        pd.set_item("name", p.parameter.name())?;
+        pd.set_item("default", p.default)?;
+        pd.set_item("allowed", p.allowed)?;
+        params.append(pd)?;
+    }
+    d.set_item("parameters", params)?;
+    d.set_item("promise", e.promise)?;
+    let rates = PyDict::new(py);
+    rates.set_item("discontinuous", e.rates.discontinuous)?;
+    rates.set_item("smooth", e.rates.smooth)?;
+    rates.set_item("higher", e.rates.higher)?;
+    d.set_item("rates", rates)?;
+    d.set_item("expensive", e.expensive)?;
+    Ok(d)
+}
+
+/// Every registered sampler, in the registry's order, as a list of dicts: name, description,
+/// paper, progressive, counts (the count rule in words), dimensions ("2" or "D"), parameters
+/// (name, default, allowed), promise, rates (published variance exponents) and expensive.
+#[pyfunction]
+fn registry_entries(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
+    let list = PyList::empty(py);
+    for e in registry::entries() {
+        list.append(entry_dict(py, e)?)?;
+    }
+    Ok(list)
+}
+
+/// Whether sampler `name` accepts `n` points (always true for progressive samplers, n >= 1).
+#[pyfunction]
+fn allows_count(name: &str, n: u64) -> PyResult<bool> {
+    let e = registry::find(name).map_err(to_py_err)?;
+    Ok(n >= 1 && (e.progressive || e.counts.allows(n)))
+}
+
+/// The count nearest to `n` that sampler `name` accepts (the smaller one on a tie).
+#[pyfunction]
+fn nearest_count(name: &str, n: u64) -> PyResult<u64> {
+    let e = registry::find(name).map_err(to_py_err)?;
+    Ok(e.counts.nearest(n))
+}
+
+/// The largest range `allowed_counts` lists for samplers that take any count.
+const MAX_LISTED_RANGE: u64 = 1 << 24;
+
+/// The counts in `[lo, hi]` that sampler `name` accepts, in increasing order.
+#[pyfunction]
+fn allowed_counts(name: &str, lo: u64, hi: u64) -> PyResult<Vec<u64>> {
+    let e = registry::find(name).map_err(to_py_err)?;
+    if matches!(e.counts, CountRule::Any) && hi.saturating_sub(lo) > MAX_LISTED_RANGE {
+        return Err(value_error(format!(
+            "{} takes any count; listing {lo} to {hi} would make {} numbers (at most {MAX_LISTED_RANGE})",
+            e.name,
+            hi - lo + 1
+        )));
+    }
+    Ok(e.counts.counts_between(lo, hi))
+}
+
+/// The error the crate gives for a fixed-count sampler asked for `n` points (`None` when `n`
+/// is allowed), so that Python can say which counts the sampler takes without building it.
+#[pyfunction]
+fn count_error(name: &str, n: u64) -> PyResult<Option<String>> {
+    let e = registry::find(name).map_err(to_py_err)?;
+    if e.progressive {
+        return Ok((n == 0).then(|| format!("{} cannot make 0 samples: at least 1", e.name)));
+    }
+    Ok(e.counts.check(e.name, n).err().map(|err| err.to_string()))
+}
+
+/// Adds the sampler class and the registry functions to the module.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PySampler>()?;
+    m.add_function(wrap_pyfunction!(registry_entries, m)?)?;
+    m.add_function(wrap_pyfunction!(allows_count, m)?)?;
+    m.add_function(wrap_pyfunction!(nearest_count, m)?)?;
+    m.add_function(wrap_pyfunction!(allowed_counts, m)?)?;
+    m.add_function(wrap_pyfunction!(count_error, m)?)?;
+    Ok(())
+}

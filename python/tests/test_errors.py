@@ -1,0 +1,184 @@
+"""Bad input: every wrong dtype, shape, layout, value, name, count or keyword raises
+``ValueError`` or ``TypeError`` with a message that says what was wrong and what is allowed;
+nothing crashes the interpreter (the compiled functions called directly included)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import strata
+from strata import _strata
+
+GOOD = np.random.default_rng(0).random((64, 2))
+
+
+@pytest.mark.parametrize(
+    "call,exc,match",
+    [
+        (lambda: strata.points("sobel", 4), ValueError, "unknown sampler 'sobel'; known samplers: random, regular"),
+        (lambda: strata.points("sobol", -5), ValueError, r"n = -5 is out of range; allowed: 0 to"),
+        (lambda: strata.points("sobol", 0), ValueError, "sobol cannot make 0 samples"),
+        (lambda: strata.points("sobol", 4.0), TypeError, "n must be a whole number"),
+        (lambda: strata.points("sobol", True), TypeError, "not a bool"),
+        (lambda: strata.points("jittered", 10), ValueError, r"perfect square \(nearest allowed: 9 or 16\)"),
+        (lambda: strata.points("poisson", 16, raduis=0.5), TypeError, "did you mean 'radius'"),
+        (lambda: strata.points("jittered", 16, radius=0.5), ValueError, "jittered takes no radius; samplers that do: poisson, bridson"),
+        (lambda: strata.points("poisson", 16, radius=1.5), ValueError, "radius = 1.5 is not allowed"),
+        (lambda: strata.points("poisson", 16, radius=float("nan")), ValueError, "finite"),
+        (lambda: strata.points("poisson", 16, radius="big"), TypeError, "radius must be a number"),
+        (lambda: strata.points("ccvt", 16, iterations=-1), ValueError, "iterations = -1 is out of range"),
+        (lambda: strata.points("sobol", 4, dims=0), ValueError, "dims = 0 is out of range"),
+        (lambda: strata.points("jittered", 16, dims=3), ValueError, "2-dimensional points only; samplers with D dimensions: random, sobol"),
+        (lambda: strata.points("sobol", 4, dims=1001), ValueError, "sobol: dims = 1001 is not allowed: 1 to 1000"),
+        (lambda: strata.points("sobol", 4, seed=-1), ValueError, "seed = -1 is out of range"),
+        (lambda: strata.points("sobol", 4, seed=2**64), ValueError, "seed = 18446744073709551616 is out of range"),
+        (lambda: strata.points("oa-bose", 49, dims=9), ValueError, "oa-bose"),
+    ],
+)
+def test_points_arguments(call, exc, match):
+    with pytest.raises(exc, match=match):
+        call()
+
+
+NONCONTIGUOUS = np.random.default_rng(1).random((64, 4))[:, ::2]  # a strided view
+
+
+def _with(value, at=(5, 1)):
+    a = GOOD.copy()
+    a[at] = value
+    return a
+
+
+@pytest.mark.parametrize("fn", [
+    lambda p: strata.spectrum(p, 16),
+    lambda p: strata.expected_spectrum([p], 16),
+    lambda p: strata.psa(p),
+    lambda p: strata.min_distance(p),
+    lambda p: strata.nearest_distances(p),
+])
+@pytest.mark.parametrize(
+    "points,exc,match",
+    [
+        (np.random.default_rng(2).random((64, 3)), ValueError, r"shape \(64, 3\); \(n, 2\)"),
+        (GOOD.astype(np.float16), TypeError, "dtype float16; float32 or float64 is needed"),
+        ((GOOD * 100).astype(np.int64), TypeError, "dtype int64"),
+        (NONCONTIGUOUS, ValueError, "non-contiguous view"),
+        (_with(np.nan), ValueError, r"point 5 is .*nan.*coordinates must be finite and in \[0, 1\)"),
+        (_with(1.0), ValueError, r"point 5 is .*1\.0.*in \[0, 1\)"),
+        (_with(-1e-50), ValueError, r"point 5 .*in \[0, 1\)"),
+        (_with(np.inf).astype(np.float32), ValueError, r"point 5 is \(.*inf\).*in \[0, 1\)"),
+        (_with(1.0).astype(np.float32), ValueError, r"point 5 is .*in \[0, 1\)"),
+        (GOOD[:0], ValueError, r"shape \(0, 2\)"),
+        (GOOD[:, 0].copy(), ValueError, r"shape \(64,\)"),
+        ([[0.1, 0.2], [0.3]], (TypeError, ValueError), r"points must be an array|shape \(2,\)"),
+        ("points", TypeError, "not a string"),
+    ],
+)
+def test_point_set_inputs(fn, points, exc, match):
+    with pytest.raises(exc, match=match):
+        fn(points)
+
+
+def test_lists_and_float64_just_below_one_are_accepted():
+    pts = [[0.1, 0.2], [0.3, 0.4], [1 - 1e-12, 0.5]]  # rounds to 1.0 in float32: kept below
+    assert strata.spectrum(pts, 8).shape == (9, 9)
+    assert strata.min_distance(pts) > 0
+
+
+@pytest.mark.parametrize(
+    "call,exc,match",
+    [
+        (lambda: strata.spectrum(GOOD, 15), ValueError, "resolution = 15 is not allowed: an even number from 2 to 2048"),
+        (lambda: strata.spectrum(GOOD, 4096), ValueError, "an even number from 2 to 2048"),
+        (lambda: strata.spectrum(GOOD, -2), ValueError, "resolution = -2 is out of range"),
+        (lambda: strata.spectrum(GOOD, 16, method="fft"), ValueError, "unknown method 'fft'; allowed: nufft, direct"),
+        (lambda: strata.expected_spectrum([GOOD, GOOD[:10]], 16), ValueError, "realization 1 has 10 points, realization 0 has 64"),
+        (lambda: strata.expected_spectrum([], 16), ValueError, "no point set given"),
+        (lambda: strata.expected_spectrum(np.zeros((2, 2, 2, 2)), 16), ValueError, r"\(n, 2\) or \(r, n, 2\)"),
+        (lambda: strata.psa([GOOD, GOOD[:10]]), ValueError, "all must have the same count"),
+        (lambda: strata.min_distance(GOOD[:1]), ValueError, "at least 2 are needed"),
+        (lambda: strata.radial(np.zeros((16, 16))), ValueError, r"\(K\+1, K\+1\) array with K even"),
+        (lambda: strata.radial(np.zeros((17, 9))), ValueError, r"shape \[17, 9\]"),
+        (lambda: strata.radial(np.full((17, 17), np.nan)), ValueError, "values must be finite"),
+        (lambda: strata.radial(np.zeros(17)), ValueError, "a \\(K\\+1, K\\+1\\) array is needed"),
+        (lambda: strata.radial(np.array([["a"]])), TypeError, "real numbers"),
+        (lambda: strata.discrepancy(GOOD, "L2"), ValueError, "unknown method 'L2'; allowed: CD, WD, MD, L2-star, star"),
+        (lambda: strata.discrepancy(GOOD + 1, "CD"), ValueError, r"outside \[0, 1\]"),
+        (lambda: strata.discrepancy(_with(np.nan), "WD"), ValueError, r"coordinate NaN is outside \[0, 1\]"),
+        (lambda: strata.discrepancy(GOOD.astype(np.float16), "CD"), TypeError, "float16"),
+        (lambda: strata.discrepancy(NONCONTIGUOUS, "CD"), ValueError, "non-contiguous"),
+        (lambda: strata.discrepancy(np.zeros((3, 3)), "star"), ValueError, "2D sets; these points have 3 dimensions"),
+        (lambda: strata.net_t_value(np.zeros((4, 3))), ValueError, r"\(n, 2\) is needed"),
+        (lambda: strata.convergence("jittered", "disc", [16], 4), ValueError, "unknown integrand 'disc'; known integrands: disk"),
+        (lambda: strata.convergence("jittered", "disk", [10], 4), ValueError, r"no allowed count between 10 and 10 \(it takes perfect squares"),
+        (lambda: strata.convergence("jittered", "disk", [16], 1), ValueError, "seeds = 1 is out of range; allowed: 2 to"),
+        (lambda: strata.convergence("jittered", 3, [16], 4), TypeError, "a name, a list of names or a callable"),
+        (lambda: strata.convergence("sobol", lambda x: x[:, 0][:5], [16], 4), ValueError, r"returned shape \(5,\) for 16 points"),
+    ],
+)
+def test_analysis_arguments(call, exc, match):
+    with pytest.raises(exc, match=match):
+        call()
+
+
+@pytest.mark.parametrize(
+    "call,exc,match",
+    [
+        (lambda: strata.PixelSampler("pmj", 16), ValueError, "no path-tracer adapter for 'pmj'; samplers with one: random, jittered"),
+        (lambda: strata.PixelSampler("jittered", 10), ValueError, r"square number of samples per pixel \(nearest allowed: 9 or 16\)"),
+        (lambda: strata.PixelSampler("sobol", 0), ValueError, "at least 1 sample per pixel"),
+        (lambda: strata.PixelSampler("sobol", 16, -3), ValueError, "seed = -3"),
+        (lambda: strata.PixelSampler("zsobol", 16, resolution=(0, 4)), ValueError, "zsobol"),
+        (lambda: strata.PixelSampler("zsobol", 16, resolution=5), TypeError, "pair"),
+        (lambda: strata.PixelSampler("sobol", 16).sample([1.5, 2], [0]), TypeError, "pixels must be integers, not float64"),
+        (lambda: strata.PixelSampler("sobol", 16).sample([-1, 2], [0]), ValueError, "pixels holds -1; allowed: 0 to 4294967295"),
+        (lambda: strata.PixelSampler("sobol", 16).sample([2**32, 2], [0]), ValueError, "pixels holds 4294967296"),
+        (lambda: strata.PixelSampler("sobol", 16).sample([[1, 2, 3]], [0]), ValueError, r"pixels have shape \(1, 3\); \(\.\.\., 2\)"),
+        (lambda: strata.PixelSampler("sobol", 16).sample([1, 2], [-4]), ValueError, "indices holds -4"),
+        (lambda: strata.PixelSampler("sobol", 16).sample([1, 2], [0.5]), TypeError, "indices must be integers"),
+        (lambda: strata.PixelSampler("sobol", 16).sample([[1, 2]] * 3, [0, 1]), ValueError, "do not broadcast"),
+        (lambda: strata.PixelSampler("sobol", 16).sample([1, 2], [0], dims=0), ValueError, "dims = 0"),
+    ],
+)
+def test_pixel_sampler_arguments(call, exc, match):
+    with pytest.raises(exc, match=match):
+        call()
+
+
+def test_the_compiled_functions_refuse_bad_arrays_without_crashing():
+    s = _strata.Sampler("sobol", 16, 1, 3)
+    with pytest.raises(TypeError):
+        s.fill(np.zeros((16, 3), np.float64))  # wrong dtype
+    with pytest.raises(ValueError, match="3 columns are needed|has 2 columns"):
+        s.fill(np.zeros((16, 2), np.float32))
+    with pytest.raises(ValueError, match="C-contiguous"):
+        s.fill(np.zeros((3, 16), np.float32).T)
+    ro = np.zeros((16, 3), np.float32)
+    ro.flags.writeable = False
+    with pytest.raises(ValueError, match="cannot be written"):
+        s.fill(ro)
+    with pytest.raises(TypeError):
+        _strata.periodogram(GOOD, 16)  # float64 where float32 is taken
+    with pytest.raises(ValueError, match="C-contiguous"):
+        _strata.periodogram(np.zeros((2, 8), np.float32).T, 16)
+    with pytest.raises(ValueError, match=r"\(n, 2\) is needed"):
+        _strata.periodogram(np.zeros((8, 3), np.float32), 16)
+    with pytest.raises(OverflowError):
+        _strata.Sampler("sobol", -1, 1, 2)
+    ps = _strata.PixelSampler("sobol", 16, 1)
+    with pytest.raises(ValueError, match=r"\(2, 2\) is needed"):
+        ps.fill(np.zeros((3, 2), np.uint32), np.zeros(2, np.uint64), np.zeros((2, 2), np.float32))
+    with pytest.raises(ValueError, match="output has shape"):
+        ps.fill(np.zeros((2, 2), np.uint32), np.zeros(2, np.uint64), np.zeros((3, 2), np.float32))
+    # the array is fine after all that
+    out = np.zeros((16, 3), np.float32)
+    s.fill(out)
+    assert (out > 0).any()
+
+
+def test_a_huge_count_fails_cleanly():
+    with pytest.raises((MemoryError, ValueError)):
+        strata.points("sobol", 2**62, dims=4)
+    with pytest.raises(ValueError, match="cannot make"):
+        strata.points("jittered", 2**62)  # refused before anything is allocated
