@@ -82,7 +82,9 @@ fn parse() -> Result<Option<Args>, CliError> {
             Long("out") => args.out = Some(parser.value()?.into()),
             Long("resolution") => {
                 let v = common::string_value("--resolution", parser.value()?)?;
-                args.resolution = common::parse_int("--resolution", &v, 2, 4096)? as u32;
+                args.resolution =
+                    common::parse_int("--resolution", &v, 2, u64::from(spectrum::MAX_RESOLUTION))?
+                        as u32;
                 spectrum::check_resolution(args.resolution)?;
             }
             Short('h') | Long("help") => {

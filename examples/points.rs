@@ -263,7 +263,8 @@ fn main() -> ExitCode {
                     if d > 0 {
                         line.push(',');
                     }
-                    line.push_str(&v.to_string());
+                    // the f32 widened: its shortest f64 form reads back exactly as f32 or f64
+                    line.push_str(&f64::from(*v).to_string());
                 }
                 writeln!(out, "{line}")?;
             }

@@ -82,20 +82,23 @@ struct Args {
     markdown: Option<PathBuf>,
 }
 
+/// The items named in a comma-separated list (or all of them), each once, in the order given.
 fn list<T>(
     value: &str,
     all: impl Fn() -> Vec<T>,
     one: impl Fn(&str) -> Result<T, strata::Error>,
+    name_of: impl Fn(&T) -> &'static str,
 ) -> Result<Vec<T>, CliError> {
     if value == "all" {
         return Ok(all());
     }
-    let items: Vec<T> = value
-        .split(',')
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(one)
-        .collect::<Result<_, _>>()?;
+    let mut items: Vec<T> = Vec::new();
+    for name in value.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let item = one(name)?;
+        if !items.iter().any(|i| name_of(i) == name_of(&item)) {
+            items.push(item);
+        }
+    }
     if items.is_empty() {
         return Err(cli_error(format!(
             "{value:?} names nothing; give names separated by commas, or all"
@@ -122,11 +125,21 @@ fn parse() -> Result<Option<Args>, CliError> {
         match arg {
             Long("samplers") => {
                 let v = string_value("--samplers", p.value()?)?;
-                a.samplers = list(&v, || registry::entries().iter().collect(), registry::find)?;
+                a.samplers = list(
+                    &v,
+                    || registry::entries().iter().collect(),
+                    registry::find,
+                    |e| e.name,
+                )?;
             }
             Long("integrands") => {
                 let v = string_value("--integrands", p.value()?)?;
-                a.integrands = list(&v, || Integrand::ALL.to_vec(), Integrand::by_name)?;
+                a.integrands = list(
+                    &v,
+                    || Integrand::ALL.to_vec(),
+                    Integrand::by_name,
+                    |f| f.name(),
+                )?;
             }
             Long("min-n") => {
                 a.min_n = parse_int(
@@ -168,6 +181,8 @@ fn parse() -> Result<Option<Args>, CliError> {
                             })
                     })
                     .collect::<Result<_, _>>()?;
+                a.targets.sort_by(|x, y| y.total_cmp(x));
+                a.targets.dedup();
             }
             Long("no-predict") => a.predict = false,
             Long("out") => a.out = p.value()?.into(),

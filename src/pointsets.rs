@@ -436,8 +436,10 @@ pub fn write(out: &mut impl Write, format: Format, sets: &[PointSet]) -> Result<
 }
 
 /// Writes one set of `f32` coordinates (`dims` per point) in `format`, as `points` does: the
-/// text formats print each `f32` in its shortest round-trip form, UTK binary stores `f32`
-/// (data type 4), so every format holds exactly the generated values.
+/// text formats print each value as the shortest decimal that reads back as the same `f64`
+/// (the `f32` widened, so that a reader parsing `f64`, this module's or numpy's, gets the
+/// generated value exactly: the shortest `f32` form can read back as an `f64` just beside it,
+/// across a dyadic cell edge); UTK binary stores `f32` (data type 4).
 pub fn write_f32(out: &mut impl Write, format: Format, dims: usize, values: &[f32]) -> Result<()> {
     if dims == 0 || values.is_empty() || !values.len().is_multiple_of(dims) {
         return Err(Error::input(
@@ -448,7 +450,11 @@ pub fn write_f32(out: &mut impl Write, format: Format, dims: usize, values: &[f3
             ),
         ));
     }
-    write_values(out, format, &[(dims, values)])
+    if format == Format::UtkBin {
+        return write_values(out, format, &[(dims, values)]);
+    }
+    let wide: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
+    write_values(out, format, &[(dims, &wide[..])])
 }
 
 /// The writers' common part: sets as (dims, point-major values) of any number type.

@@ -118,6 +118,21 @@ impl PySampler {
         Ok(())
     }
 
+    /// Moves `n` points on in constant time where the sampler can (Sobol'): returns True;
+    /// otherwise changes nothing and returns False (the caller then draws and drops them).
+    fn skip(&self, n: u64) -> bool {
+        let mut guard = self.inner.lock().unwrap_or_else(|e| e.into_inner());
+        let (inner, drawn) = &mut *guard;
+        let skipped = match inner {
+            Inner::Nd(s) => s.skip(n),
+            Inner::Two(_) => false,
+        };
+        if skipped {
+            *drawn += n;
+        }
+        skipped
+    }
+
     /// The registered name.
     #[getter]
     fn name(&self) -> &'static str {

@@ -113,3 +113,28 @@ def test_engine_errors():
         strata.Engine("sobol", 2, radius=0.5)
     with pytest.raises(ValueError, match="d = 0 is out of range"):
         strata.Engine("sobol", 0)
+
+
+@pytest.mark.parametrize("name", ["sobol", "halton"])
+def test_fast_forward_continues_the_sequence(name):
+    # sobol (3 dims) skips in constant time in the crate, halton draws and drops: both must
+    # land on the same points as drawing them
+    e = strata.Engine(name, 3, seed=4)
+    e.fast_forward(1000)
+    got = e.random(10)
+    want = strata.points(name, 1010, seed=4, dims=3)[1000:]
+    assert np.array_equal(got.astype(np.float32), want)
+    assert e.num_generated == 1010
+    with pytest.raises(ValueError):
+        e.fast_forward(-1)
+    with pytest.raises(TypeError):
+        e.fast_forward(True)
+
+
+def test_fast_forward_is_constant_time_for_sobol():
+    # 2^40 points would take hours to draw; the skip is O(1), then the stream goes on
+    e = strata.Engine("sobol", 4, seed=2)
+    e.fast_forward(1 << 40)
+    assert e.num_generated == 1 << 40
+    x = e.random(8)
+    assert x.shape == (8, 4) and np.all((x >= 0) & (x < 1))

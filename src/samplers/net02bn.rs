@@ -234,7 +234,11 @@ impl State {
         let res = self.res as isize;
         let cx = ((p[0] * self.res as f64) as isize).min(res - 1);
         let cy = ((p[1] * self.res as f64) as isize).min(res - 1);
-        let span: &[isize] = if res >= 3 { &[-1, 0, 1] } else { &[0, 1] };
+        let span: &[isize] = match res {
+            1 => &[0],
+            2 => &[0, 1],
+            _ => &[-1, 0, 1],
+        };
         let mut e = 0.0;
         for &dy in span {
             let y = (cy + dy).rem_euclid(res) as usize;

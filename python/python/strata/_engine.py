@@ -117,12 +117,15 @@ class Engine(qmc.QMCEngine):
     def fast_forward(self, n: int) -> "Engine":
         """Skips ``n`` points of a progressive sequence (one set of ``n`` of a fixed-count
         sampler)."""
-        n = operator.index(n)
+        n = _v.whole(n, "fast_forward: n", 0, _v.U64_MAX)
         if not self.progressive:
             return super().fast_forward(n)
+        assert self._sequence is not None
+        if self._sequence.skip(n):  # constant time where the crate can (Sobol')
+            self.num_generated += n
+            return self
         scratch = np.empty((min(n, _SKIP_CHUNK), self.d), dtype=np.float32)
         left = n
-        assert self._sequence is not None
         while left > 0:
             k = min(left, _SKIP_CHUNK)
             self._sequence.fill(scratch[:k])

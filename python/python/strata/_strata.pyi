@@ -30,6 +30,9 @@ class Sampler:
     ) -> None: ...
     def fill(self, out: npt.NDArray[np.float32]) -> None:
         """Writes the next ``out.shape[0]`` points into the C-contiguous ``(n, dims)`` array."""
+    def skip(self, n: int) -> bool:
+        """Moves ``n`` points on in constant time where the sampler can (Sobol'); False and
+        nothing changed otherwise."""
     @property
     def name(self) -> str: ...
     @property
