@@ -78,6 +78,14 @@ fn list_names_every_sampler() {
 fn bad_input_is_a_one_line_error() {
     let cases: &[(&[&str], &str)] = &[
         (&["--sampler", "jittered", "-n", "0"], "allowed"),
+        (
+            &["--sampler", "random", "-n", "100000000000000000000"],
+            "is out of range",
+        ),
+        (
+            &["--sampler", "random", "-n", "12x"],
+            "is not a whole number",
+        ),
         (&["--sampler", "nosuch", "-n", "4"], "known samplers"),
         (&["--sampler", "jittered", "-n", "10"], "9 or 16"),
         (&["--sampler", "regular", "-n", "99"], "81 or 100"),

@@ -45,10 +45,12 @@ pub fn string_value(flag: &str, value: std::ffi::OsString) -> Result<String, Cli
 
 /// Parses a flag's value as an integer in `[min, max]`.
 pub fn parse_int(flag: &str, value: &str, min: u64, max: u64) -> Result<u64, CliError> {
-    let v: u64 = value.trim().parse().map_err(|_| {
-        cli_error(format!(
-            "{flag} {value:?} is not a whole number; allowed: {min} to {max}"
-        ))
+    let v: u64 = value.trim().parse().map_err(|e: std::num::ParseIntError| {
+        let what = match e.kind() {
+            std::num::IntErrorKind::PosOverflow => "is out of range",
+            _ => "is not a whole number",
+        };
+        cli_error(format!("{flag} {value:?} {what}; allowed: {min} to {max}"))
     })?;
     if v < min || v > max {
         return Err(cli_error(format!(
