@@ -823,26 +823,6 @@ fn error_image_canvas(e: &ErrorImage, errors: &[f64], scale: f64) -> Canvas {
     c
 }
 
-/// The least-squares slope of `log y` against `log x`.
-fn slope(points: &[(f64, f64)]) -> Option<f64> {
-    let pts: Vec<(f64, f64)> = points
-        .iter()
-        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
-        .map(|(x, y)| (x.ln(), y.ln()))
-        .collect();
-    if pts.len() < 2 {
-        return None;
-    }
-    let n = pts.len() as f64;
-    let (mx, my) = (
-        pts.iter().map(|p| p.0).sum::<f64>() / n,
-        pts.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    (sxx > 0.0).then(|| sxy / sxx)
-}
-
 /// A label's width in pixels at `size` (the bundled font averages about 0.55 em per glyph).
 fn label_width(text: &str, size: u32) -> u32 {
     (text.chars().count() as f32 * size as f32 * 0.56).ceil() as u32
@@ -1004,7 +984,7 @@ fn main() -> ExitCode {
         for (k, (name, _)) in sequences.iter().enumerate() {
             let mine: Vec<&Row> = rows.iter().filter(|r| &r.name == name).collect();
             let pts: Vec<(f64, f64)> = mine.iter().map(|r| (r.spp as f64, r.rmse)).collect();
-            let fitted = slope(&pts);
+            let fitted = study::fit_slope(&pts);
             table.push_str(&format!(
                 "| {name} | {} | {} |\n",
                 mine.iter()

@@ -173,7 +173,7 @@ impl Pmj02Bn {
             .trailing_zeros()
             .clamp(FIRST_PREFIX_LOG2, MAX_OPTIMIZED_LOG2);
         let epochs = Epochs::new(seed, MAX_SEQUENCE_LEN);
-        let flags = optimize(epochs.key(0), log2, sweeps).flags;
+        let flags = optimize(epochs.key(0), log2, sweeps);
         Ok(Pmj02Bn {
             epochs,
             log2,
@@ -209,7 +209,7 @@ impl Sampler for Pmj02Bn {
         let (i, new_epoch) = self.epochs.advance();
         if let Some(key) = new_epoch {
             // a new, independent sequence
-            self.flags = optimize(key, self.log2, self.sweeps).flags;
+            self.flags = optimize(key, self.log2, self.sweeps);
         }
         self.sample(i as u32)
     }
@@ -217,11 +217,6 @@ impl Sampler for Pmj02Bn {
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
         pmj_grids(n, true)
     }
-}
-
-/// What [`optimize`] did.
-struct Optimized {
-    flags: Flags,
 }
 
 /// One prefix's neighbour grid and kernel.
@@ -256,9 +251,12 @@ fn torus_d2(a: [u32; 2], b: [u32; 2]) -> f64 {
 }
 
 /// Coordinate descent on the flags of the first `2^m` points (see the module docs).
-fn optimize(key: u64, m: u32, sweeps: u32) -> Optimized {
+fn optimize(key: u64, m: u32, sweeps: u32) -> Flags {
     let depth = m + 1;
     let mut flags = Flags::random(key, depth);
+    if sweeps == 0 {
+        return flags;
+    }
     let n = 1usize << m;
     let base: Vec<[u32; 2]> = (0..n as u32)
         .map(|i| {
@@ -272,9 +270,6 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Optimized {
         .iter()
         .map(|b| [flags.scramble(0, b[0]), flags.scramble(1, b[1])])
         .collect();
-    if sweeps == 0 {
-        return Optimized { flags };
-    }
     // the points in the order of each plain coordinate: a node's points are contiguous
     let order: [Vec<u32>; 2] = [0, 1].map(|ax| {
         let mut o: Vec<u32> = (0..n as u32).collect();
@@ -326,7 +321,7 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Optimized {
             break;
         }
     }
-    Optimized { flags }
+    flags
 }
 
 /// The objective's part that involves the points `s` (each pair inside `s` once).
