@@ -1,104 +1,226 @@
-//! The path-tracer adapter: time per 2D value, drawn one at a time (`get_2d`) and two at a time
-//! (`get_4d`), for every adapter sequence (random, padded jittered, pmj02, Sobol', Halton, the
-//! lattice, Z-ordered Sobol' and pmj02), against the `sobol_burley` crate (Owen-scrambled
-//! Sobol', the peer; `sample` and `sample_4d`) in the same run.
+//! The path-tracer adapter against `sobol_burley` (Owen-scrambled Sobol', the crate a renderer
+//! would pick instead), in one run, single thread.
 //!
-//! Each iteration renders a 32 x 32 "image": for every pixel and sample index (16 spp) it starts
-//! the pixel sample and draws four 2D values (dimensions 0-7), as a path tracer would.
-//! `cargo bench --bench pixel`; `python3 tools/criterion_table.py pixel sobol_burley-sample`.
+//! * `pixel/get_2d`: a 32 x 32 "image" at 16 spp, four 2D values (dimensions 0-7) per pixel
+//!   sample, as a path tracer asks for them: every adapter sequence by `get_2d` and by
+//!   `get_4d`, and the peer's `sample_4d` with a per-pixel seed (two calls per pixel sample) and
+//!   its scalar `sample`. Time per 2D value.
+//! * `pixel/65536x8` and `pixel/4096x4`: Sobol' and pmj02 at 65536 pixel samples x 8 dimensions
+//!   (64 x 64 pixels x 16 spp) and 4096 x 4 (16 x 16 x 16), beside the peer's `sample_4d`.
+//! * `pixel/one-value`: one value per call, `sobol::owen_scrambled(index, dim, seed)` against
+//!   `sobol_burley::sample(index, dim, seed)`: time per value.
+//! * `pixel/whole-point`: a 4D point of a research sequence per call, `SobolNd::fill` against
+//!   `sample_4d`: time per point.
+//!
+//! `cargo bench --bench pixel`; `python3 tools/criterion_table.py pixel sobol_burley-sample_4d`.
 
 use std::hint::black_box;
 use std::time::Duration;
 
-use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{
+    BenchmarkGroup, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main,
+};
 use strata::pixel::{PixelSampler, Sequence};
+use strata::samplers::{SobolNd, sobol};
+use strata::{SamplerNd, Seed};
 
-const SIDE: u32 = 32;
-const SPP: u32 = 16;
-const PAIRS: u32 = 4;
+/// `side x side` pixels, `spp` samples each, `pairs` 2D values per sample.
+#[derive(Clone, Copy)]
+struct Shape {
+    side: u32,
+    spp: u32,
+    pairs: u32,
+}
+
+impl Shape {
+    fn values(&self) -> u64 {
+        (self.side * self.side * self.spp * self.pairs) as u64
+    }
+}
+
+fn get_2d(s: &mut PixelSampler, shape: Shape) -> f32 {
+    let mut acc = 0.0f32;
+    for y in 0..shape.side {
+        for x in 0..shape.side {
+            for i in 0..shape.spp as u64 {
+                s.start_pixel_sample([x, y], i, 0);
+                for _ in 0..shape.pairs {
+                    let v = s.get_2d();
+                    acc += v.x + v.y;
+                }
+            }
+        }
+    }
+    acc
+}
+
+fn get_4d(s: &mut PixelSampler, shape: Shape) -> f32 {
+    let mut acc = 0.0f32;
+    for y in 0..shape.side {
+        for x in 0..shape.side {
+            for i in 0..shape.spp as u64 {
+                s.start_pixel_sample([x, y], i, 0);
+                for _ in 0..shape.pairs / 2 {
+                    let v = s.get_4d();
+                    acc += v.x + v.y + v.z + v.w;
+                }
+            }
+        }
+    }
+    acc
+}
+
+/// The peer as a renderer uses it: one seed per pixel (its own decorrelation), dimensions
+/// `0..2 pairs` of its padded Sobol', four at a time.
+fn peer_4d(shape: Shape) -> f32 {
+    let mut acc = 0.0f32;
+    for y in 0..shape.side {
+        for x in 0..shape.side {
+            let seed = y * shape.side + x;
+            for i in 0..shape.spp {
+                for set in 0..shape.pairs / 2 {
+                    let v = sobol_burley::sample_4d(i, set, seed);
+                    acc += v[0] + v[1] + v[2] + v[3];
+                }
+            }
+        }
+    }
+    acc
+}
+
+fn peer_scalar(shape: Shape) -> f32 {
+    let mut acc = 0.0f32;
+    for y in 0..shape.side {
+        for x in 0..shape.side {
+            let seed = y * shape.side + x;
+            for i in 0..shape.spp {
+                for d in 0..shape.pairs {
+                    acc += sobol_burley::sample(i, 2 * d, seed)
+                        + sobol_burley::sample(i, 2 * d + 1, seed);
+                }
+            }
+        }
+    }
+    acc
+}
+
+fn group<'a>(c: &'a mut Criterion, name: &str, elements: u64) -> BenchmarkGroup<'a, WallTime> {
+    let mut g = c.benchmark_group(name);
+    g.throughput(Throughput::Elements(elements));
+    g.sample_size(30)
+        .measurement_time(Duration::from_secs(3))
+        .warm_up_time(Duration::from_secs(1));
+    g
+}
 
 fn pixel(c: &mut Criterion) {
-    let values = (SIDE * SIDE * SPP * PAIRS) as u64;
-    let mut group = c.benchmark_group("pixel/get_2d");
-    group.throughput(Throughput::Elements(values));
-    group
-        .sample_size(30)
-        .measurement_time(Duration::from_secs(3));
+    let shape = Shape {
+        side: 32,
+        spp: 16,
+        pairs: 4,
+    };
+    let mut g = group(c, "pixel/get_2d", shape.values());
     for name in Sequence::NAMES {
-        let sequence = Sequence::by_name_at(name, [SIDE, SIDE]).unwrap();
-        let mut s = PixelSampler::new(sequence, SPP, strata::Seed(1)).unwrap();
-        group.bench_function(BenchmarkId::from_parameter(name), |b| {
-            b.iter(|| {
-                let mut acc = 0.0f32;
-                for y in 0..SIDE {
-                    for x in 0..SIDE {
-                        for i in 0..SPP as u64 {
-                            s.start_pixel_sample([x, y], i, 0);
-                            for _ in 0..PAIRS {
-                                let v = s.get_2d();
-                                acc += v.x + v.y;
-                            }
-                        }
-                    }
-                }
-                black_box(acc)
-            })
+        let sequence = Sequence::by_name_at(name, [shape.side, shape.side]).unwrap();
+        let mut s = PixelSampler::new(sequence, shape.spp, Seed(1)).unwrap();
+        g.bench_function(BenchmarkId::from_parameter(name), |b| {
+            b.iter(|| black_box(get_2d(&mut s, shape)))
         });
-        group.bench_function(BenchmarkId::from_parameter(format!("{name}-get_4d")), |b| {
-            b.iter(|| {
-                let mut acc = 0.0f32;
-                for y in 0..SIDE {
-                    for x in 0..SIDE {
-                        for i in 0..SPP as u64 {
-                            s.start_pixel_sample([x, y], i, 0);
-                            for _ in 0..PAIRS / 2 {
-                                let v = s.get_4d();
-                                acc += v.x + v.y + v.z + v.w;
-                            }
-                        }
-                    }
-                }
-                black_box(acc)
-            })
+        g.bench_function(BenchmarkId::from_parameter(format!("{name}-get_4d")), |b| {
+            b.iter(|| black_box(get_4d(&mut s, shape)))
         });
     }
-    // The peer: one seed per pixel (its own decorrelation), dimensions 0..7 of its padded
-    // Sobol'. `sample` is its scalar path (two calls per 2D value); `sample_4d` its SIMD path.
-    group.bench_function(BenchmarkId::from_parameter("sobol_burley-sample"), |b| {
+    g.bench_function(BenchmarkId::from_parameter("sobol_burley-sample"), |b| {
+        b.iter(|| black_box(peer_scalar(shape)))
+    });
+    g.bench_function(BenchmarkId::from_parameter("sobol_burley-sample_4d"), |b| {
+        b.iter(|| black_box(peer_4d(shape)))
+    });
+    g.finish();
+
+    for (label, shape) in [
+        (
+            "pixel/65536x8",
+            Shape {
+                side: 64,
+                spp: 16,
+                pairs: 4,
+            },
+        ),
+        (
+            "pixel/4096x4",
+            Shape {
+                side: 16,
+                spp: 16,
+                pairs: 2,
+            },
+        ),
+    ] {
+        let mut g = group(c, label, shape.values());
+        for name in ["sobol", "pmj02"] {
+            let mut s =
+                PixelSampler::new(Sequence::by_name(name).unwrap(), shape.spp, Seed(1)).unwrap();
+            g.bench_function(BenchmarkId::from_parameter(name), |b| {
+                b.iter(|| black_box(get_2d(&mut s, shape)))
+            });
+            g.bench_function(BenchmarkId::from_parameter(format!("{name}-get_4d")), |b| {
+                b.iter(|| black_box(get_4d(&mut s, shape)))
+            });
+        }
+        g.bench_function(BenchmarkId::from_parameter("sobol_burley-sample_4d"), |b| {
+            b.iter(|| black_box(peer_4d(shape)))
+        });
+        g.finish();
+    }
+
+    // one value per call: 4096 indices x 8 dimensions, one seed per index block
+    let mut g = group(c, "pixel/one-value", 4096 * 8);
+    g.bench_function(BenchmarkId::from_parameter("owen_scrambled"), |b| {
         b.iter(|| {
             let mut acc = 0.0f32;
-            for y in 0..SIDE {
-                for x in 0..SIDE {
-                    let seed = y * SIDE + x;
-                    for i in 0..SPP {
-                        for d in 0..PAIRS {
-                            acc += sobol_burley::sample(i, 2 * d, seed)
-                                + sobol_burley::sample(i, 2 * d + 1, seed);
-                        }
-                    }
+            for i in 0..4096u32 {
+                for d in 0..8 {
+                    acc += sobol::owen_scrambled(i, d, (i >> 4) as u64).unwrap_or(0.0);
                 }
             }
             black_box(acc)
         })
     });
-    group.bench_function(BenchmarkId::from_parameter("sobol_burley-sample_4d"), |b| {
+    g.bench_function(BenchmarkId::from_parameter("sobol_burley-sample"), |b| {
         b.iter(|| {
             let mut acc = 0.0f32;
-            for y in 0..SIDE {
-                for x in 0..SIDE {
-                    let seed = y * SIDE + x;
-                    for i in 0..SPP {
-                        for set in 0..PAIRS / 2 {
-                            let v = sobol_burley::sample_4d(i, set, seed);
-                            acc += v[0] + v[1] + v[2] + v[3];
-                        }
-                    }
+            for i in 0..4096u32 {
+                for d in 0..8 {
+                    acc += sobol_burley::sample(i, d, i >> 4);
                 }
             }
             black_box(acc)
         })
     });
-    group.finish();
+    g.finish();
+
+    // whole points: 65536 4D points of one sequence
+    let mut g = group(c, "pixel/whole-point", 65536);
+    let mut nd = SobolNd::new(4, Seed(3)).unwrap();
+    let mut buf = vec![0f32; 65536 * 4];
+    g.bench_function(BenchmarkId::from_parameter("SobolNd-fill"), |b| {
+        b.iter(|| {
+            nd.fill(&mut buf);
+            black_box(buf[12345])
+        })
+    });
+    g.bench_function(BenchmarkId::from_parameter("sobol_burley-sample_4d"), |b| {
+        b.iter(|| {
+            let mut acc = 0.0f32;
+            for i in 0..65536u32 {
+                let v = sobol_burley::sample_4d(i, 0, 3);
+                acc += v[0] + v[1] + v[2] + v[3];
+            }
+            black_box(acc)
+        })
+    });
+    g.finish();
 }
 
 criterion_group!(benches, pixel);

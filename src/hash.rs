@@ -16,6 +16,9 @@
 //! * `DivMod` divides by a run-time constant with a multiplication (Lemire, Kaser, Kurz,
 //!   "Faster Remainder by Direct Computation", 2019), for the per-point index arithmetic of the
 //!   stateless samplers.
+//!
+//! The scrambles of the digital sequences (Owen scrambling, the nested index shuffle) are in
+//! [`crate::scramble`].
 
 /// The 64-bit golden-ratio increment of SplitMix64, used to separate streams.
 pub const GOLDEN_GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
@@ -45,14 +48,8 @@ pub(crate) enum Stream {
     OaSubstrata = 0x5eed,
     /// Sobol': the scramble of a seed.
     SobolScramble = 0x50b0,
-    /// Sobol': the index shuffle.
-    SobolShuffle = 0x79c6_8e4a,
     /// Halton: the digit permutations of dimension 0 (dimension `d` adds `d`).
     HaltonDigits = 0x4a17,
-    /// Z-ordered adapter sequences: the base-4 scramble of the pixels' Morton codes.
-    ZOrderedPixels = 0x7a01,
-    /// Z-ordered adapter sequences: the global sequence of each dimension.
-    ZOrderedDraws = 0x7a02,
     /// Lloyd: the jitter that separates coincident points.
     #[cfg(feature = "lloyd")]
     LloydJitter = 0x110d,
@@ -126,148 +123,6 @@ pub const fn hash32(x: u32, key: u32) -> u32 {
     x ^= x >> 15;
     x = x.wrapping_mul(0x846c_a68b);
     x ^ (x >> 16)
-}
-
-/// An Owen scramble in the bit-reversed domain: every output bit is the input bit flipped by a
-/// function of the *less* significant input bits and `seed`, which after reversing is a nested
-/// uniform (Owen) scramble: each digit flipped by a function of the digits above it. This is
-/// the hash of Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020) with Vegdahl's
-/// improved constants (as in pbrt-v4's fast Owen scrambler): multiplications by even
-/// constants, an addition and a multiplication by an odd number only carry upward. `seed`
-/// should be well mixed.
-#[inline]
-pub const fn owen_scramble_rev(mut n: u32, seed: u32) -> u32 {
-    n ^= n.wrapping_mul(0x3d20_adea);
-    n = n.wrapping_add(seed);
-    n = n.wrapping_mul((seed >> 16) | 1);
-    n ^= n.wrapping_mul(0x0552_6c56);
-    n ^ n.wrapping_mul(0x53a2_2864)
-}
-
-/// [`owen_scramble_rev`] on `N` lanes at once: each step over the whole array, so that the
-/// compiler keeps the lanes in SIMD registers (SSE2, NEON). Lane `k` is exactly
-/// `owen_scramble_rev(n[k], seed[k])`.
-#[inline(always)]
-pub(crate) fn owen_scramble_rev_lanes<const N: usize>(mut n: [u32; N], seed: [u32; N]) -> [u32; N] {
-    for v in &mut n {
-        *v ^= v.wrapping_mul(0x3d20_adea);
-    }
-    for (v, s) in n.iter_mut().zip(seed) {
-        *v = v.wrapping_add(s);
-    }
-    for (v, s) in n.iter_mut().zip(seed) {
-        *v = v.wrapping_mul((s >> 16) | 1);
-    }
-    for v in &mut n {
-        *v ^= v.wrapping_mul(0x0552_6c56);
-    }
-    for v in &mut n {
-        *v ^= v.wrapping_mul(0x53a2_2864);
-    }
-    n
-}
-
-/// Four values in the bit-reversed domain, each Owen-scrambled with its seed
-/// ([`owen_scramble_rev`]), brought back to natural bit order and converted to `f32` in
-/// `[0, 1)` ([`crate::float::unit_f32_from_u32`]): the end of every Owen-scrambled draw of the
-/// path-tracer adapter, four at a time. SSE2 on x86-64 (the 32-bit multiplies as pairs of
-/// `pmuludq`), lane by lane elsewhere; the same bits either way (a test checks it).
-#[inline(always)]
-pub(crate) fn owen_scrambled_unit_f32x4(n: [u32; 4], seed: [u32; 4]) -> [f32; 4] {
-    #[cfg(target_arch = "x86_64")]
-    {
-        // SAFETY: SSE2 is part of the x86-64 baseline.
-        unsafe { sse2::owen_scrambled_unit_f32x4(n, seed) }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        owen_scramble_rev_lanes(n, seed).map(|v| crate::float::unit_f32_from_u32(v.reverse_bits()))
-    }
-}
-
-#[cfg(target_arch = "x86_64")]
-mod sse2 {
-    use core::arch::x86_64::*;
-
-    /// Lane-wise 32-bit multiplication (low halves), from two 32x32->64 multiplies.
-    #[inline(always)]
-    unsafe fn mullo(a: __m128i, b: __m128i) -> __m128i {
-        // SAFETY: SSE2 only, available on every x86-64.
-        unsafe {
-            let even = _mm_mul_epu32(a, b);
-            let odd = _mm_mul_epu32(_mm_srli_epi64(a, 32), _mm_srli_epi64(b, 32));
-            _mm_unpacklo_epi32(
-                _mm_shuffle_epi32(even, 0b00_00_10_00),
-                _mm_shuffle_epi32(odd, 0b00_00_10_00),
-            )
-        }
-    }
-
-    /// Swaps the bit groups of width `shift` selected by `mask` with their neighbours.
-    #[inline(always)]
-    unsafe fn swap<const SHIFT: i32>(x: __m128i, mask: i32) -> __m128i {
-        // SAFETY: SSE2 only.
-        unsafe {
-            let m = _mm_set1_epi32(mask);
-            let lo = _mm_slli_epi32(_mm_and_si128(x, m), SHIFT);
-            let hi = _mm_and_si128(_mm_srli_epi32(x, SHIFT), m);
-            _mm_or_si128(lo, hi)
-        }
-    }
-
-    /// See [`super::owen_scrambled_unit_f32x4`].
-    #[inline(always)]
-    pub(super) unsafe fn owen_scrambled_unit_f32x4(n: [u32; 4], seed: [u32; 4]) -> [f32; 4] {
-        // SAFETY: SSE2 only; the loads and the store are unaligned and within the arrays.
-        unsafe {
-            let mut x = _mm_loadu_si128(n.as_ptr().cast());
-            let s = _mm_loadu_si128(seed.as_ptr().cast());
-            let c = |v: u32| _mm_set1_epi32(v as i32);
-            x = _mm_xor_si128(x, mullo(x, c(0x3d20_adea)));
-            x = _mm_add_epi32(x, s);
-            x = mullo(x, _mm_or_si128(_mm_srli_epi32(s, 16), c(1)));
-            x = _mm_xor_si128(x, mullo(x, c(0x0552_6c56)));
-            x = _mm_xor_si128(x, mullo(x, c(0x53a2_2864)));
-            // reverse the bits of each lane
-            x = swap::<1>(x, 0x5555_5555);
-            x = swap::<2>(x, 0x3333_3333);
-            x = swap::<4>(x, 0x0f0f_0f0f);
-            x = swap::<8>(x, 0x00ff_00ff);
-            x = _mm_or_si128(_mm_slli_epi32(x, 16), _mm_srli_epi32(x, 16));
-            // (x >> 8) * 2^-24, exact
-            let f = _mm_mul_ps(
-                _mm_cvtepi32_ps(_mm_srli_epi32(x, 8)),
-                _mm_set1_ps(1.0 / 16_777_216.0),
-            );
-            let mut out = [0f32; 4];
-            _mm_storeu_ps(out.as_mut_ptr(), f);
-            out
-        }
-    }
-}
-
-/// A nested uniform scramble in base 4, in the bit-reversed domain: every base-4 digit (an
-/// aligned pair of bits) permuted by a function of the less significant digits and `seed`.
-/// Vegdahl's hash ("A fast hash for base-4 Owen scrambling", 2022, as in Blender Cycles):
-/// [`owen_scramble_rev`] with a step that mixes the two bits of every pair.
-#[inline]
-pub(crate) const fn owen_scramble_base4_rev(mut n: u32, seed: u32) -> u32 {
-    const PAIRS: u32 = 0x5555_5555;
-    n ^= n.wrapping_mul(0x3d20_adea);
-    n ^= (n >> 1) & (n << 1) & PAIRS;
-    n = n.wrapping_add(seed);
-    n = n.wrapping_mul((seed >> 16) | 1);
-    n ^= (n >> 1) & (n << 1) & PAIRS;
-    n ^= n.wrapping_mul(0x0552_6c56);
-    n ^ n.wrapping_mul(0x53a2_2864)
-}
-
-/// The Owen scramble of a 32-bit fixed-point value (see [`owen_scramble_rev`]): the points of any
-/// aligned dyadic interval map to an aligned dyadic interval of the same size, so the scramble
-/// keeps every (t,m,s)-net property of a point set while randomizing it.
-#[inline]
-pub const fn owen_scramble(x: u32, seed: u32) -> u32 {
-    owen_scramble_rev(x.reverse_bits(), seed).reverse_bits()
 }
 
 /// A 32-bit key derived from a 64-bit one (for [`permute`], whose key is 32 bits).
@@ -493,23 +348,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn four_lane_scrambles_match_the_scalar_path() {
-        let mut h = 5u64;
-        for _ in 0..10_000 {
-            h = mix64(h);
-            let n = [h as u32, (h >> 32) as u32, (h >> 16) as u32, !(h as u32)];
-            let seed = [(h >> 7) as u32, (h >> 40) as u32, h as u32 ^ 0x9e37, 0];
-            let lanes = owen_scrambled_unit_f32x4(n, seed);
-            for k in 0..4 {
-                let scalar = crate::float::unit_f32_from_u32(
-                    owen_scramble_rev(n[k], seed[k]).reverse_bits(),
-                );
-                assert_eq!(lanes[k].to_bits(), scalar.to_bits());
-            }
-        }
-    }
-
-    #[test]
     fn divmod_matches_hardware_division() {
         let divisors = [
             1u32,
@@ -567,29 +405,6 @@ mod tests {
                     let dm = DivMod::new(l).unwrap();
                     assert_eq!(Permutation::with_divider(&dm, p), perm);
                 }
-            }
-        }
-    }
-
-    #[test]
-    fn owen_scramble_is_a_bijection_that_keeps_aligned_intervals() {
-        for seed in [1u32, 0x9e37_79b9, u32::MAX] {
-            let s = hash32(seed, 7);
-            // values sharing their top k bits keep sharing their top k bits
-            for k in [1u32, 4, 10, 20] {
-                for base in [0u32, 0x1234_5678, 0xfedc_ba98] {
-                    let top = |v: u32| v >> (32 - k);
-                    let a = owen_scramble(base, s);
-                    let b = owen_scramble(base ^ ((1 << (32 - k)) - 1), s);
-                    assert_eq!(top(a), top(b), "k={k}");
-                }
-            }
-            // a bijection on 12-bit prefixes
-            let mut seen = vec![false; 1 << 12];
-            for v in 0..1u32 << 12 {
-                let w = owen_scramble(v << 20, s) >> 20;
-                assert!(!seen[w as usize]);
-                seen[w as usize] = true;
             }
         }
     }

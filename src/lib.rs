@@ -26,9 +26,12 @@
 //!
 //! [`pixel`] has the guarantees, the dimension layout of a bouncing renderer, a `rand` bridge
 //! and mappings of 2D draws; [`conformance`] checks any sequence (yours too) for bias,
-//! independence and stratification. With `default-features = false` the crate is `no_std` (it
-//! needs `alloc` only for the pmj02 table) and depends only on `rand` and `glam` (re-exported as
-//! [`glam`], with `libm`): see [Features](#features).
+//! independence and stratification. With `default-features = false` the crate is `no_std`
+//! (with `alloc`) and depends only on `rand` and `glam` (re-exported as [`glam`]): see
+//! [Features](#features). On a GPU: the draws of six of the sequences are 32-bit integer
+//! arithmetic ([`pixel::kernel`]), and [`pixel::WGSL`] is the same kernel as a WGSL shader,
+//! tested bit for bit against the CPU on a Vulkan device ([`pixel`](pixel#on-a-gpu) says
+//! exactly what is covered).
 //!
 //! ## The idea in brief
 //!
@@ -60,7 +63,7 @@
 //!
 //! * Points lie in `[0,1)^2`; `f32` coordinates never equal 1.0 ([`float`] explains how).
 //! * Everything is seeded ([`Seed`]): same seed, same bits, on every platform and with any
-//!   number of threads.
+//!   number of threads (see [Stability of values](#stability-of-values)).
 //! * Constructors validate their parameters and return [`Result`]; the [`Error`] says what was
 //!   wrong and what is allowed. Nothing panics on user input.
 //!
@@ -74,15 +77,36 @@
 //! # Ok::<(), strata::Error>(())
 //! ```
 //!
+//! ## Stability of values
+//!
+//! The values are part of the interface: a renderer's images, a study's tables and a test's
+//! expectations depend on them. Within a minor version (`0.y.*`, and `x.*` from 1.0), for the
+//! same seed, parameters, index and dimension, every registered sampler, every
+//! [`PixelSampler`] sequence and every stateless function (`sobol::owen_scrambled`,
+//! `Pmj02Stochastic::point_at`, `halton::scrambled_radical_inverse`, [`scramble`], [`digital`],
+//! [`pixel::kernel`]) gives the same bits, whatever the platform (x86-64 with or without SIMD,
+//! other architectures), the number of threads, or the order of calls. A release that changes
+//! any of them bumps the minor version and lists the change in `CHANGELOG.md` under
+//! "value-breaking". What pins this: golden digests of every sampler and sequence
+//! (`tests/golden.rs`, run by CI once with the SIMD lane types compiled out,
+//! `--cfg strata_portable`), the GPU test of the WGSL kernel, and tests that the SIMD lanes,
+//! the bulk `fill` paths and the thread counts give the scalar bits. Floating point: samplers
+//! compute in integer fixed point or with IEEE operations that are exact or correctly rounded
+//! (`+ - * /`, `sqrt`); the optimisers' `exp` is `libm`'s, not the platform's. Not covered: the
+//! [`pixel::warp`] mappings and the analysis tools, which use the platform's `sin`, `cos`, `ln`
+//! and `exp`.
+//!
 //! ## Features
 //!
 //! * `std` (default): the standard library, every sampler, [`registry`], [`conformance`],
-//!   [`analysis`]. Without it (`default-features = false`) the crate is `#![no_std]`, for
-//!   rust-gpu shaders, embedded and WASM renderers: [`PixelSampler`] with every
-//!   [`Sequence`], and the stateless functions ([`samplers::sobol::owen_scrambled`],
+//!   [`analysis`]. Without it (`default-features = false`) the crate is `#![no_std]` (with
+//!   `alloc`), for embedded and WASM renderers: [`PixelSampler`] with every [`Sequence`], and
+//!   the stateless functions ([`samplers::sobol::owen_scrambled`],
 //!   [`samplers::Pmj02Stochastic::point_at`], [`samplers::halton::scrambled_radical_inverse`],
-//!   the lattice's [`samplers::lattice::GENERATOR`], [`hash`], [`float`]), none of which
-//!   allocates; `alloc` holds the pmj02 adapter's table and the samplers' stored points.
+//!   the lattice's [`samplers::lattice::GENERATOR`], [`scramble`], [`digital`], [`hash`],
+//!   [`float`]), none of which allocates; `alloc` holds the samplers' stored points. For a GPU
+//!   the crate gives its kernel as WGSL ([`pixel::WGSL`]); the Rust code itself is not compiled
+//!   for GPU targets here (its kernel is 32-bit arithmetic, but no rust-gpu build is tested).
 //! * `spectrum` (default): power spectra, point-set measures and the convergence studies
 //!   ([`spectrum`], [`analysis`]).
 //! * `io` (default): pictures, EXR and CSV output and plots ([`io`]).
@@ -109,6 +133,7 @@ mod prelude {
 pub mod analysis;
 #[cfg(feature = "std")]
 pub mod conformance;
+pub mod digital;
 mod error;
 pub mod float;
 #[cfg(feature = "std")]
@@ -127,6 +152,7 @@ pub mod pointsets;
 pub mod registry;
 mod sampler;
 pub mod samplers;
+pub mod scramble;
 #[cfg(feature = "spectrum")]
 pub mod spectrum;
 #[cfg(feature = "std")]

@@ -84,7 +84,9 @@ fn the_stateless_core_allocates_nothing() {
             }
             black_box(Pmj02Stochastic::point_at(Seed(7), i));
             black_box(hash::permute(i % 1000, 1000, i));
-            black_box(float::unit_f32_from_u32(hash::owen_scramble(i, 9)));
+            black_box(float::unit_f32_from_u32(strata::scramble::owen_scramble(
+                i, 9,
+            )));
             black_box(float::f32_in_stratum(i as u64 % 3, 3, 0.5));
         }
     });

@@ -30,15 +30,23 @@ fn values_stay_in_the_unit_interval_everywhere() {
                 1 << 32,
                 u64::MAX,
             ] {
-                for dim in [0u32, 1, 2, 7, 1000, u32::MAX - 1] {
+                for dim in [0u32, 1, 2, 7, 1000, u32::MAX - 3, u32::MAX - 1, u32::MAX] {
                     let v = s.sample_2d(pixel, index, dim);
                     let w = s.sample(pixel, index, dim);
-                    for x in [v.x, v.y, w] {
+                    let q = s.sample_4d(pixel, index, dim);
+                    for x in [v.x, v.y, w, q.x, q.y, q.z, q.w] {
                         assert!(
                             (0.0..1.0).contains(&x),
                             "{}: {x} at {pixel:?} {index} {dim}",
                             seq.name()
                         );
+                    }
+                    // the 32-bit values are the floats' source, where the kernel has them
+                    if let Some(u) = s.sample_2d_u32(pixel, index, dim) {
+                        let f = u.map(strata::float::unit_f32_from_u32);
+                        assert_eq!([v.x, v.y], f, "{}", seq.name());
+                    } else {
+                        assert!(!seq.runs_on_gpu(), "{}", seq.name());
                     }
                 }
             }
@@ -210,7 +218,11 @@ fn the_rand_bridge_hands_out_successive_dimensions() {
             (c >> 8) as f32 / 16_777_216.0,
             top24(s.sample([2, 7], 9, 6))
         );
-        assert_eq!(top24(d as f32), top24(s.sample([2, 7], 9, 7)));
+        // (an f64's top 24 bits, truncated: `as f32` would round to nearest)
+        assert_eq!(
+            (d * 16_777_216.0) as u32 as f32 / 16_777_216.0,
+            top24(s.sample([2, 7], 9, 7))
+        );
         assert_eq!(s.dimension(), 4 + 4 + 2);
         assert!(bytes.iter().any(|&x| x != 0));
     }
@@ -351,8 +363,8 @@ fn z_ordering_moves_the_error_of_a_shared_integrand_to_high_frequencies() {
     // sequences the error image is white (about 5% of its power below 1/8 cycle per pixel);
     // along the Z curve, neighbours' samples complement each other and the error is blue.
     let (w, h) = (64u32, 64u32);
-    let measure = |seq: Sequence, spp: u32| {
-        let s = PixelSampler::new(seq, spp, strata::Seed(3)).unwrap();
+    let measure = |seq: Sequence, spp: u32, seed: u64| {
+        let s = PixelSampler::new(seq, spp, strata::Seed(seed)).unwrap();
         let e: Vec<f64> = (0..w * h)
             .map(|k| {
                 let p = [k % w, k / w];
@@ -367,21 +379,38 @@ fn z_ordering_moves_the_error_of_a_shared_integrand_to_high_frequencies() {
             .collect();
         strata::spectrum::error_image(&e, w, h).unwrap()
     };
+    // Per seed, each case: the low band at most 0.65x and the blurred error at most 0.75x the
+    // white sequence's (over 16 seeds the worst ratios were 0.57 and 0.62); over the seeds, the
+    // mean low-band ratio at most 0.45 (measured 0.29-0.39).
+    let seeds = [3u64, 4, 5, 6];
     for spp in [1u32, 4, 16] {
         for (white, blue) in [
             (Sequence::sobol(), Sequence::zsobol(w, h).unwrap()),
             (Sequence::pmj02(), Sequence::zpmj02(w, h).unwrap()),
         ] {
-            let (a, b) = (measure(white.clone(), spp), measure(blue.clone(), spp));
-            assert!(a.lowband > 0.03, "{} at {spp}: {}", white.name(), a.lowband);
+            let mut ratios = Vec::new();
+            for seed in seeds {
+                let (a, b) = (
+                    measure(white.clone(), spp, seed),
+                    measure(blue.clone(), spp, seed),
+                );
+                assert!(a.lowband > 0.03, "{} at {spp}: {}", white.name(), a.lowband);
+                assert!(
+                    b.lowband < 0.65 * a.lowband && b.blur2_rmse < 0.75 * a.blur2_rmse,
+                    "{} at {spp}, seed {seed}: low band {:.4} vs {:.4}, blur2 {:.5} vs {:.5}",
+                    blue.name(),
+                    b.lowband,
+                    a.lowband,
+                    b.blur2_rmse,
+                    a.blur2_rmse
+                );
+                ratios.push(b.lowband / a.lowband);
+            }
+            let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
             assert!(
-                b.lowband < 0.5 * a.lowband && b.blur2_rmse < 0.7 * a.blur2_rmse,
-                "{} at {spp}: low band {:.4} vs {:.4}, blur2 {:.5} vs {:.5}",
-                blue.name(),
-                b.lowband,
-                a.lowband,
-                b.blur2_rmse,
-                a.blur2_rmse
+                mean < 0.45,
+                "{} at {spp}: mean low-band ratio {mean:.3}",
+                blue.name()
             );
         }
     }

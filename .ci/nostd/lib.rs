@@ -62,5 +62,5 @@ pub extern "C" fn strata_halton(dim: u32, index: u64, seed: u64) -> f32 {
 #[unsafe(no_mangle)]
 pub extern "C" fn strata_hash(i: u32, len: u32, key: u64) -> f32 {
     let p = hash::permute(i % len.max(1), len.max(1), hash::hash32(i, key as u32));
-    float::unit_f32_from_u32(hash::owen_scramble(p, hash::mix64(key) as u32))
+    float::unit_f32_from_u32(strata::scramble::owen_scramble(p, hash::mix64(key) as u32))
 }

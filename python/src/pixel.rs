@@ -45,20 +45,10 @@ impl PyPixelSampler {
     /// pixel, seeded by `seed`; `resolution` is the image of the Z-ordered sequences.
     #[new]
     #[pyo3(signature = (sequence, spp, seed, resolution=(256, 256)))]
-    fn new(
-        py: Python<'_>,
-        sequence: &str,
-        spp: u32,
-        seed: u64,
-        resolution: (u32, u32),
-    ) -> PyResult<Self> {
-        // pmj02 builds its shared table on first use
-        let inner = py
-            .detach(|| {
-                let seq = Sequence::by_name_at(sequence, [resolution.0, resolution.1])?;
-                PixelSampler::new(seq, spp, Seed(seed))
-            })
-            .map_err(to_py_err)?;
+    fn new(sequence: &str, spp: u32, seed: u64, resolution: (u32, u32)) -> PyResult<Self> {
+        let seq =
+            Sequence::by_name_at(sequence, [resolution.0, resolution.1]).map_err(to_py_err)?;
+        let inner = PixelSampler::new(seq, spp, Seed(seed)).map_err(to_py_err)?;
         Ok(PyPixelSampler { inner })
     }
 

@@ -5,12 +5,27 @@
 //! takes dimensions in order: [`get_pixel_2d`](PixelSampler::get_pixel_2d) (dimensions 0-1),
 //! then [`get_2d`](PixelSampler::get_2d) and [`get_1d`](PixelSampler::get_1d) for the lens, the
 //! light, time, each bounce... [`get_4d`](PixelSampler::get_4d) takes two 2D draws at once
-//! (the same values as two `get_2d`, with the hashing of both in SIMD lanes: about 25% less
-//! time per value for Sobol' and pmj02). Every value is a pure function of (seed, pixel, index,
-//! dimension), so the order in which pixels, samples or threads run never changes the image;
-//! [`sample`](PixelSampler::sample), [`sample_2d`](PixelSampler::sample_2d) and
-//! [`sample_4d`](PixelSampler::sample_4d) are the stateless forms. The adapter is `no_std`
-//! (the crate without its `std` feature).
+//! (the same values as two `get_2d`, the value scrambles four lanes at a time). Every value is
+//! a pure function of (seed, pixel, index, dimension), so the order in which pixels, samples or
+//! threads run never changes the image; [`sample`](PixelSampler::sample),
+//! [`sample_2d`](PixelSampler::sample_2d) and [`sample_4d`](PixelSampler::sample_4d) are the
+//! stateless forms. The adapter is `no_std` (the crate without its `std` feature) and
+//! allocation-free.
+//!
+//! # On a GPU
+//!
+//! The draws of `random`, `sobol`, `pmj02`, `lattice`, `zsobol` and `zpmj02` are the
+//! [`kernel`]'s 32-bit integer arithmetic, and [`WGSL`] is the same kernel as a WGSL shader
+//! module (`shaders/strata.wgsl` in the repository): include it in a compute or fragment
+//! shader, upload [`PixelSampler::gpu_parameters`] as a uniform, and call
+//! `strata_get_2d(params, pixel, index, dim)` for the `f32` pair or `strata_draw` for the
+//! 32-bit fixed-point values. The repository's GPU test runs the shader through `wgpu` on the
+//! Vulkan adapter present (Mesa's lavapipe CPU driver in CI) and compares `2^22` draws of every
+//! one of the six sequences bit for bit with [`PixelSampler::sample_2d_u32`]; that is what is
+//! claimed, nothing more. The shader's domain is sample indices below `2^32`: at and past
+//! `2^32` the CPU draws from a fresh key per block of `2^32` ([`Key::epoch`]), which a renderer
+//! that goes that far computes on the CPU and uploads. `jittered` and `halton` divide by their
+//! block sizes in 64-bit arithmetic and are CPU-only.
 //!
 //! # Guarantees
 //!
@@ -22,26 +37,31 @@
 //!   and per pair of dimensions. A scene that never asks for lens or time dimensions never
 //!   computes them.
 //! * **Stratified draws.** Per pixel and draw: `pmj02` and `sobol` are (0,m,2)-nets at every
-//!   power-of-two prefix; `jittered` has one point per cell of `s x s` in each block of `spp`;
+//!   power-of-two prefix; `lattice` has one point per `1/n` in each coordinate at every power of
+//!   two `n`; `zsobol` and `zpmj02` are nets at every power of two up to the samples per pixel
+//!   (rounded up to a power of two); `jittered` has one point per cell of `s x s` in each block of `spp`;
 //!   `halton` one per cell of `2^a x 3^b` in each block of `M = 2^a 3^b >= spp` samples. How
 //!   each sequence is randomized is in [`sequence`](self#sequences).
 //! * **Limits.** Sample indices are `u64`; at `2^32` and beyond, a draw uses the index modulo
 //!   `2^32` in a fresh, independently hashed copy (so nothing panics and nothing repeats; the
 //!   blocks of `jittered` and `halton` count from each multiple of `2^32`, so the block that
 //!   straddles one is not a full set).
-//!   pmj02 reads a shared table of `2^16` points and computes later points of the same sequence
-//!   on demand, with the same guarantees. Dimensions are unlimited (`u32`), pixels are any
+//!   Dimensions are unlimited (`u32`), pixels are any
 //!   `(u32, u32)`. Values are `f32` in `[0,1)`, never 1.0. After construction nothing
 //!   allocates.
 //!
 //! # Sequences
 //!
-//! [`Sequence`]: `random` (hashed uniform), `jittered` (`spp` must be a square), `pmj02` (a stochastic pmj02
-//! table built once and shared), `sobol` (Owen-scrambled Sobol', Burley 2020), `halton`
-//! (scrambled bases 2 and 3). The samples-per-pixel count given to [`PixelSampler::new`] is
-//! used only by `jittered` (the size of its sets) and `halton` (the size of its blocks); the
-//! progressive `random`, `pmj02` and `sobol` give the same values whatever it is, so a renderer
-//! may take any number of samples from them and stop at any power of two.
+//! [`Sequence`]: `random` (hashed uniform), `jittered` (`spp` must be a square), `pmj02`
+//! (Owen-scrambled digital pmj02), `sobol` (Owen-scrambled Sobol', Burley 2020), `halton`
+//! (scrambled bases 2 and 3), `lattice` (the extensible rank-1 lattice of Cools, Kuo and
+//! Nuyens, shifted), `zsobol` and `zpmj02` (pixels along a scrambled Z curve of one global
+//! sequence: screen-space blue-noise error; they need the image's resolution). The
+//! samples-per-pixel count given to [`PixelSampler::new`] is used only by `jittered` (the size
+//! of its sets), `halton` (the size of its blocks) and the Z-ordered sequences (the block each
+//! pixel takes); the progressive `random`, `pmj02`, `sobol` and `lattice` give the same values
+//! whatever it is, so a renderer may take any number of samples from them and stop at any
+//! power of two.
 //!
 //! # Dimensions in a renderer that bounces
 //!
@@ -102,6 +122,7 @@
 //! # Ok::<(), strata::Error>(())
 //! ```
 
+pub mod kernel;
 mod rng;
 mod sequence;
 #[cfg(feature = "std")]
@@ -109,14 +130,51 @@ pub mod warp;
 
 use glam::{Vec2, Vec4};
 
+pub use kernel::Key;
 pub use rng::PixelRng;
-pub use sequence::{DEFAULT_Z_RESOLUTION, MAX_Z_RESOLUTION, PMJ02_TABLE_LEN, Sequence};
-use sequence::{NO_Z, SampleIndex, SamplesPerPixel};
+use sequence::SamplesPerPixel;
+pub use sequence::{DEFAULT_Z_RESOLUTION, MAX_Z_RESOLUTION, Sequence};
 
 use crate::error::Result;
-use crate::hash::{GOLDEN_GAMMA, Stream, mix64, stream_seed};
 use crate::prelude::*;
 use crate::sampler::Seed;
+use kernel::PixelKeys;
+
+/// The WGSL port of the [`kernel`] (`shaders/strata.wgsl`): a shader module to include, with
+/// `strata_get_2d`, `strata_draw` and the parameter struct `StrataParameters` (see the
+/// [module docs](self#on-a-gpu)).
+pub const WGSL: &str = include_str!("../../shaders/strata.wgsl");
+
+/// A sample index below `2^32` with its bit reversal, which the nets-based sequences need
+/// and which is the same for every draw of a pixel sample: computed once per sample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct SampleIndex {
+    index: u32,
+    reversed: u32,
+}
+
+impl SampleIndex {
+    /// The index `index`.
+    #[inline]
+    pub(crate) fn new(index: u32) -> Self {
+        SampleIndex {
+            index,
+            reversed: index.reverse_bits(),
+        }
+    }
+
+    /// The index.
+    #[inline]
+    pub(crate) fn get(&self) -> u32 {
+        self.index
+    }
+
+    /// The index with its 32 bits reversed.
+    #[inline]
+    pub(crate) fn reversed(&self) -> u32 {
+        self.reversed
+    }
+}
 
 /// Where each bounce of a path starts in the dimensions of a pixel sample: the camera takes
 /// dimensions `0..camera`, bounce `k` the `per_bounce` dimensions from `camera + k per_bounce`.
@@ -152,19 +210,68 @@ impl DimensionLayout {
     }
 }
 
+/// What a shader needs to compute the draws of a [`PixelSampler`] ([`WGSL`]'s
+/// `StrataParameters`, in this field order, eight `u32` words: [`words`](Self::words)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GpuParameters {
+    /// The image's [`Key`].
+    pub key: [u32; 4],
+    /// The image of a Z-ordered sequence (`[0, 0]` for the others).
+    pub resolution: [u32; 2],
+    /// The sequence: 0 `random`, 1 `sobol`, 2 `pmj02`, 3 `lattice`, 4 `zsobol`, 5 `zpmj02`.
+    pub sequence: u32,
+    /// `log2` of the samples per pixel rounded up to a power of two (the Z-ordered sequences'
+    /// block of each pixel).
+    pub z_bits: u32,
+}
+
+impl GpuParameters {
+    /// The parameters as the eight words of the shader's uniform.
+    pub fn words(&self) -> [u32; 8] {
+        let k = self.key;
+        [
+            k[0],
+            k[1],
+            k[2],
+            k[3],
+            self.resolution[0],
+            self.resolution[1],
+            self.sequence,
+            self.z_bits,
+        ]
+    }
+}
+
+/// The keys and the index the draws of one pixel sample read: the pixel's own copy, or, for
+/// the Z-ordered sequences inside the pixel's block, the tile and place of the global sequence.
+#[derive(Clone, Copy, Debug)]
+struct SampleState {
+    keys: PixelKeys,
+    index: SampleIndex,
+}
+
+/// What a pixel sample needs of its pixel, kept while the pixel stays the same.
+#[derive(Clone, Copy, Debug)]
+struct PixelState {
+    pixel: [u32; 2],
+    epoch: u32,
+    /// The pixel's own keys (of the key of its epoch, `2^32` samples).
+    own: PixelKeys,
+    /// The Z-ordered sequences' place of the pixel (epoch 0, inside the image).
+    z: Option<u32>,
+    /// The last tile of the global sequence read, with its keys.
+    tile: Option<(u32, PixelKeys)>,
+}
+
 /// The per-thread sampler state of a path tracer.
 #[derive(Clone, Debug)]
 pub struct PixelSampler {
     sequence: Sequence,
     spp: SamplesPerPixel,
-    seed: u64,
+    key: Key,
     layout: DimensionLayout,
-    pixel: PixelKeys,
-    /// The key of the global sequence of the Z-ordered sequences.
-    z_key: u64,
-    /// The current sample: its index modulo `2^32` and which `2^32` block it is in.
-    sample: SampleIndex,
-    epoch: u32,
+    pixel: PixelState,
+    current: SampleState,
     dim: u32,
     /// The end of the current bounce's dimensions (checked in debug builds).
     limit: u32,
@@ -173,28 +280,35 @@ pub struct PixelSampler {
 impl PixelSampler {
     /// A sampler over `sequence` with `samples_per_pixel` samples per pixel, seeded by `seed`.
     ///
-    /// Only `jittered` (whose sets are `s x s = samples_per_pixel`) and `halton` (whose blocks
-    /// are the smallest `2^a 3^b >= samples_per_pixel`) use the count; the other sequences are
-    /// progressive and give the same values for any count.
+    /// Only `jittered` (whose sets are `s x s = samples_per_pixel`), `halton` (whose blocks
+    /// are the smallest `2^a 3^b >= samples_per_pixel`) and the Z-ordered sequences (whose
+    /// pixels take blocks of the count rounded up to a power of two) use the count; the other
+    /// sequences are progressive and give the same values for any count.
     pub fn new(sequence: Sequence, samples_per_pixel: u32, seed: Seed) -> Result<Self> {
         sequence.check_spp(samples_per_pixel)?;
-        let seed = seed.0;
-        Ok(PixelSampler {
+        let key = Key::new(seed);
+        let mut s = PixelSampler {
             sequence,
             spp: SamplesPerPixel::new(samples_per_pixel),
-            seed,
+            key,
             layout: DimensionLayout::default(),
-            pixel: PixelKeys {
-                key: pixel_key(seed, [0, 0]),
-                z: NO_Z,
-                z_tile_key: 0,
+            pixel: PixelState {
+                pixel: [0, 0],
+                epoch: 0,
+                own: kernel::pixel_keys(&key, [0, 0]),
+                z: None,
+                tile: None,
             },
-            z_key: stream_seed(seed, Stream::ZOrderedDraws.id()),
-            sample: SampleIndex::new(0),
-            epoch: 0,
+            current: SampleState {
+                keys: kernel::pixel_keys(&key, [0, 0]),
+                index: SampleIndex::new(0),
+            },
             dim: 0,
             limit: u32::MAX,
-        })
+        };
+        s.pixel = s.pixel_state([0, 0], 0);
+        s.start_pixel_sample([0, 0], 0, 0);
+        Ok(s)
     }
 
     /// The same sampler with another [`DimensionLayout`] for
@@ -231,12 +345,31 @@ impl PixelSampler {
         self.sequence.promised_strata(&self.spp, n)
     }
 
+    /// What the [`WGSL`] shader needs to compute this sampler's draws; `None` for `jittered`
+    /// and `halton`, which run on the CPU only.
+    pub fn gpu_parameters(&self) -> Option<GpuParameters> {
+        Some(GpuParameters {
+            key: self.key.words(),
+            resolution: self.sequence.resolution().unwrap_or([0, 0]),
+            sequence: self.sequence.kind().shader_id()?,
+            z_bits: self.spp.z_bits(),
+        })
+    }
+
     /// Starts sample `index` of `pixel`, at dimension `dim` (usually 0).
     #[inline]
     pub fn start_pixel_sample(&mut self, pixel: [u32; 2], index: u64, dim: u32) {
-        self.pixel = self.keys(pixel);
-        self.sample = SampleIndex::new(index as u32);
-        self.epoch = (index >> 32) as u32;
+        let epoch = (index >> 32) as u32;
+        if pixel != self.pixel.pixel || epoch != self.pixel.epoch {
+            self.pixel = self.pixel_state(pixel, epoch);
+            self.current.keys = self.pixel.own;
+        }
+        if self.pixel.z.is_none() {
+            // the pixel's own copy: its keys are already in place
+            self.current.index = SampleIndex::new(index as u32);
+        } else {
+            self.current = Self::sample_state(&self.key, &self.spp, &mut self.pixel, index as u32);
+        }
         self.dim = dim;
         self.limit = u32::MAX;
     }
@@ -278,7 +411,10 @@ impl PixelSampler {
     #[inline]
     pub fn get_1d(&mut self) -> f32 {
         self.check_budget(1);
-        let v = self.value_1d(&self.pixel, self.sample, self.epoch, self.dim);
+        let c = &self.current;
+        let v = self
+            .sequence
+            .sample_1d(&c.keys, c.index, self.dim, &self.spp);
         self.dim = self.dim.wrapping_add(1);
         v
     }
@@ -287,21 +423,27 @@ impl PixelSampler {
     #[inline]
     pub fn get_2d(&mut self) -> Vec2 {
         self.check_budget(2);
-        let v = self.value_2d(&self.pixel, self.sample, self.epoch, self.dim);
+        let c = &self.current;
+        let [x, y] = self
+            .sequence
+            .sample_2d(&c.keys, c.index, self.dim, &self.spp);
         self.dim = self.dim.wrapping_add(2);
-        v
+        Vec2::new(x, y)
     }
 
     /// The next four dimensions as two 2D draws `(x0, y0, x1, y1)`: the same values as two
-    /// calls of [`get_2d`](Self::get_2d), computed together (the hashing of the Owen-scrambled
-    /// sequences runs lane-parallel), for renderers that draw a light sample and a direction
-    /// at once.
+    /// calls of [`get_2d`](Self::get_2d), computed together (the value scrambles of the kernel
+    /// sequences run four lanes at a time), for renderers that draw a light sample and a
+    /// direction at once.
     #[inline]
     pub fn get_4d(&mut self) -> Vec4 {
         self.check_budget(4);
-        let v = self.value_4d(&self.pixel, self.sample, self.epoch, self.dim);
+        let c = &self.current;
+        let v = self
+            .sequence
+            .sample_4d(&c.keys, c.index, self.dim, &self.spp);
         self.dim = self.dim.wrapping_add(4);
-        v
+        Vec4::from_array(v)
     }
 
     /// The position inside the pixel: a 2D draw meant for dimensions 0-1 (call it first).
@@ -319,121 +461,98 @@ impl PixelSampler {
 
     /// Stateless: the 1D value [`get_1d`](Self::get_1d) gives at `dim` for `(pixel, index)`.
     pub fn sample(&self, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
-        let (sample, epoch) = split(index);
-        self.value_1d(&self.keys(pixel), sample, epoch, dim)
+        let c = self.stateless(pixel, index);
+        self.sequence.sample_1d(&c.keys, c.index, dim, &self.spp)
     }
 
     /// Stateless: the 2D value [`get_2d`](Self::get_2d) gives at `dim` for `(pixel, index)`.
     pub fn sample_2d(&self, pixel: [u32; 2], index: u64, dim: u32) -> Vec2 {
-        let (sample, epoch) = split(index);
-        self.value_2d(&self.keys(pixel), sample, epoch, dim)
+        let c = self.stateless(pixel, index);
+        let [x, y] = self.sequence.sample_2d(&c.keys, c.index, dim, &self.spp);
+        Vec2::new(x, y)
     }
 
     /// Stateless: the 4D value [`get_4d`](Self::get_4d) gives at `dim` for `(pixel, index)`.
     pub fn sample_4d(&self, pixel: [u32; 2], index: u64, dim: u32) -> Vec4 {
-        let (sample, epoch) = split(index);
-        self.value_4d(&self.keys(pixel), sample, epoch, dim)
+        let c = self.stateless(pixel, index);
+        Vec4::from_array(self.sequence.sample_4d(&c.keys, c.index, dim, &self.spp))
     }
 
-    /// The copy of the sequence that a draw at `dim` reads: one per pixel, dimension and block
-    /// of `2^32` samples (`epoch`).
-    #[inline(always)]
-    fn stream(&self, pixel_key: u64, epoch: u32, dim: u32) -> u64 {
-        let s = mix64(pixel_key ^ (dim as u64).wrapping_mul(GOLDEN_GAMMA));
-        if epoch == 0 {
-            s
-        } else {
-            stream_seed(s, epoch as u64) // a fresh copy per 2^32 samples
-        }
+    /// Stateless: the 2D draw at `dim` for `(pixel, index)` as the [`kernel`]'s 32-bit
+    /// fixed-point values (`value / 2^32`; [`get_2d`](Self::get_2d) is their top 24 bits), the
+    /// values the [`WGSL`] shader computes; `None` for `jittered` and `halton`.
+    pub fn sample_2d_u32(&self, pixel: [u32; 2], index: u64, dim: u32) -> Option<[u32; 2]> {
+        let c = self.stateless(pixel, index);
+        self.sequence.sample_2d_u32(&c.keys, c.index, dim)
     }
 
-    /// The keys of `pixel`: its own (for the per-pixel sequences) and, for the Z-ordered ones,
-    /// its place along the global sequence.
-    #[inline(always)]
-    fn keys(&self, pixel: [u32; 2]) -> PixelKeys {
-        let z = self.sequence.z_index(pixel, self.seed);
-        // the global index z B + i may pass 2^32: each tile of 2^32 indices reads its own copy
-        let tile = if z == NO_Z {
-            0
-        } else {
-            (z << self.spp.z_bits()) >> 32
+    /// The state of `pixel` in `epoch`.
+    fn pixel_state(&self, pixel: [u32; 2], epoch: u32) -> PixelState {
+        let key = self.key.epoch(epoch);
+        let z = match self.sequence.resolution() {
+            Some(res) if epoch == 0 => kernel::z_place(&self.key, res, pixel),
+            _ => None,
         };
-        PixelKeys {
-            key: pixel_key(self.seed, pixel),
+        PixelState {
+            pixel,
+            epoch,
+            own: kernel::pixel_keys(&key, pixel),
             z,
-            z_tile_key: if tile == 0 {
-                self.z_key
-            } else {
-                stream_seed(self.z_key, tile)
-            },
+            tile: None,
         }
     }
 
-    /// The copy of the sequence a draw reads and the index inside it. For the Z-ordered
-    /// sequences, sample `i < B` (`B` = samples per pixel rounded up to a power of two) of the
-    /// pixel at place `z` is sample `z B + i` of one global sequence per dimension (and per
-    /// `2^32` samples of it); past the pixel's block, or outside the resolution, a draw falls
-    /// back to the pixel's own independent copy.
-    #[inline(always)]
-    fn draw(
-        &self,
-        keys: &PixelKeys,
-        sample: SampleIndex,
-        epoch: u32,
-        dim: u32,
-    ) -> (u64, SampleIndex) {
-        if keys.z != NO_Z && epoch == 0 && sample.get() < self.spp.z_block() {
-            let g = (keys.z << self.spp.z_bits()) | sample.get() as u64;
-            let s = mix64(keys.z_tile_key ^ (dim as u64).wrapping_mul(GOLDEN_GAMMA));
-            return (s, SampleIndex::new(g as u32));
+    /// The state of sample `index` (below `2^32`) of `pixel`: for the Z-ordered sequences,
+    /// sample `i < B` (`B` = samples per pixel rounded up to a power of two) of the pixel at
+    /// place `z` is sample `z B + i` of one global sequence (its own keys per tile of `2^32`
+    /// global samples, kept in `pixel` while the tile stays the same); past the pixel's block,
+    /// outside the image and past the first `2^32` samples a draw reads the pixel's own
+    /// independent copy.
+    #[inline]
+    fn sample_state(
+        key: &Key,
+        spp: &SamplesPerPixel,
+        pixel: &mut PixelState,
+        index: u32,
+    ) -> SampleState {
+        if let Some((tile, g)) = pixel
+            .z
+            .and_then(|z| kernel::z_global(z, spp.z_bits(), index))
+        {
+            let keys = match pixel.tile {
+                Some((t, keys)) if t == tile => keys,
+                _ => {
+                    let keys = kernel::tile_keys(key, tile);
+                    pixel.tile = Some((tile, keys));
+                    keys
+                }
+            };
+            return SampleState {
+                keys,
+                index: SampleIndex::new(g),
+            };
         }
-        (self.stream(keys.key, epoch, dim), sample)
+        SampleState {
+            keys: pixel.own,
+            index: SampleIndex::new(index),
+        }
     }
 
-    #[inline(always)]
-    fn value_1d(&self, keys: &PixelKeys, sample: SampleIndex, epoch: u32, dim: u32) -> f32 {
-        let (s, i) = self.draw(keys, sample, epoch, dim);
-        self.sequence.sample_1d(s, i, &self.spp)
-    }
-
-    #[inline(always)]
-    fn value_2d(&self, keys: &PixelKeys, sample: SampleIndex, epoch: u32, dim: u32) -> Vec2 {
-        let (s, i) = self.draw(keys, sample, epoch, dim);
-        let [x, y] = self.sequence.sample_2d(s, i, &self.spp);
-        Vec2::new(x, y)
-    }
-
-    #[inline(always)]
-    fn value_4d(&self, keys: &PixelKeys, sample: SampleIndex, epoch: u32, dim: u32) -> Vec4 {
-        let (s0, i) = self.draw(keys, sample, epoch, dim);
-        let (s1, _) = self.draw(keys, sample, epoch, dim.wrapping_add(2)); // the same index
-        Vec4::from_array(self.sequence.sample_4d([s0, s1], i, &self.spp))
+    /// The state of sample `index` of `pixel`, without changing `self`.
+    fn stateless(&self, pixel: [u32; 2], index: u64) -> SampleState {
+        let epoch = (index >> 32) as u32;
+        let mut p = if pixel == self.pixel.pixel && epoch == self.pixel.epoch {
+            self.pixel
+        } else {
+            self.pixel_state(pixel, epoch)
+        };
+        Self::sample_state(&self.key, &self.spp, &mut p, index as u32)
     }
 
     /// 40 random bits for the low end of [`PixelRng`]'s words, beyond the sequence's 24.
     #[inline]
     fn low_bits(&self) -> u64 {
-        let s = self.stream(self.pixel.key, self.epoch, self.dim);
-        crate::hash::hash_u64(!s, self.sample.get() as u64)
+        let k = kernel::DrawKeys::new(&self.current.keys, self.dim);
+        crate::hash::hash_u64(!k.stream(), self.current.index.get() as u64)
     }
-}
-
-/// A sample index as its value modulo `2^32` and its block of `2^32`.
-#[inline]
-fn split(index: u64) -> (SampleIndex, u32) {
-    (SampleIndex::new(index as u32), (index >> 32) as u32)
-}
-
-/// A pixel's keys (see [`PixelSampler::keys`]).
-#[derive(Clone, Copy, Debug)]
-struct PixelKeys {
-    key: u64,
-    z: u64,
-    /// The Z-ordered sequences' key of the pixel's tile of `2^32` global indices.
-    z_tile_key: u64,
-}
-
-#[inline]
-fn pixel_key(seed: u64, pixel: [u32; 2]) -> u64 {
-    stream_seed(seed, (pixel[0] as u64) << 32 | pixel[1] as u64)
 }

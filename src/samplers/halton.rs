@@ -9,7 +9,7 @@
 //! Randomization: a nested (Owen) scramble in base `b`, as pbrt-v4's
 //! `OwenScrambledRadicalInverse`: each digit is permuted by a permutation drawn for its node of
 //! the digit tree, hashed from the seed, the dimension and the digits above it. Base 2 uses the
-//! bit-level hash of [`crate::hash::owen_scramble`]; base 3 draws one of its six permutations
+//! bit-level hash of [`crate::scramble::owen_scramble`]; base 3 draws one of its six permutations
 //! per node (two levels per hash); larger bases draw a random affine map `d -> (a d + c) mod b`,
 //! `a != 0` (Matousek's linear scrambling: each digit uniform, each pair of distinct digits
 //! uniform over the distinct pairs). Digits are produced down to weight `2^-24`, including the
@@ -25,11 +25,12 @@
 
 use crate::error::Result;
 use crate::float::{Strata, unit_f32_from_u32};
-use crate::hash::{DivMod, Stream, hash32, mix64, owen_scramble, stream_seed};
+use crate::hash::{DivMod, Stream, hash32, mix64, stream_seed};
 use crate::prelude::*;
 #[cfg(feature = "std")]
 use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
+use crate::scramble::owen_scramble;
 
 /// The number of prime bases (dimensions) available.
 pub const MAX_DIMENSIONS: usize = 1000;
@@ -173,7 +174,7 @@ const PAIRS_3: [[u8; 9]; 1296] = {
 ///
 /// Each base-`b` digit of the radical inverse is permuted by a permutation drawn for its node
 /// of the digit tree (the digits above it): a nested, Owen-style scramble. Base 2 uses the
-/// bit-level hash of [`crate::hash::owen_scramble`]; base 3 draws among its six permutations;
+/// bit-level hash of [`crate::scramble::owen_scramble`]; base 3 draws among its six permutations;
 /// larger bases draw a random affine map `d -> (a d + c) mod b` (`a != 0`: Matousek's linear
 /// scrambling: every digit uniform, every pair of distinct digits uniform over the distinct
 /// pairs). A node's key hashes the seed, the dimension and the digits above it; the keys of

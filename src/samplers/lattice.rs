@@ -30,6 +30,7 @@ use crate::prelude::*;
 #[cfg(feature = "std")]
 use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
+use crate::scramble::Pair;
 
 /// The first 100 components of Cools, Kuo and Nuyens' embedded base-2 generating vector
 /// (`lattice-32001-1024-1048576.3600`); all odd.
@@ -82,6 +83,16 @@ pub(crate) const FIBONACCI: Entry = Entry {
     nd: None,
 };
 
+/// Dimensions 0 and 1 of the lattice point whose radical inverse is `r` (in 32-bit fixed point
+/// `phi_2(i) 2^32` is the bit reversal of `i`), shifted on the torus by `shift`: the point
+/// function of [`Lattice`] and of the path-tracer adapter's `lattice`.
+#[inline(always)]
+pub(crate) fn point_lanes<P: Pair>(r: u32, shift: P) -> P {
+    P::splat(r)
+        .mul(P::new([GENERATOR[0], GENERATOR[1]]))
+        .add(shift)
+}
+
 /// The toroidal shift of dimension `d` for a key (32-bit fixed point).
 #[inline]
 fn shift(key: u64, d: u32) -> u32 {
@@ -115,17 +126,9 @@ impl Lattice {
 
     /// Point `index`, without changing the stream position.
     pub fn sample(&self, index: u32) -> Point2 {
-        let r = index.reverse_bits();
-        Point2::new(
-            unit_f32_from_u32(
-                r.wrapping_mul(GENERATOR[0])
-                    .wrapping_add(shift(self.key, 0)),
-            ),
-            unit_f32_from_u32(
-                r.wrapping_mul(GENERATOR[1])
-                    .wrapping_add(shift(self.key, 1)),
-            ),
-        )
+        let shifts = [shift(self.key, 0), shift(self.key, 1)];
+        let [x, y] = point_lanes(index.reverse_bits(), shifts).unit_f32();
+        Point2::new(x, y)
     }
 }
 

@@ -223,7 +223,7 @@ impl State {
     fn kernel(&self, a: [f64; 2], b: [f64; 2]) -> f64 {
         let d2 = crate::grid::torus_distance_squared(a, b);
         if d2 < self.cutoff2 {
-            (-d2 * self.inv_two_sigma2).exp()
+            libm::exp(-d2 * self.inv_two_sigma2)
         } else {
             0.0
         }

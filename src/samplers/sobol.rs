@@ -10,167 +10,37 @@
 //!   Comput. 30, 2008; BSD-3-Clause, Copyright (c) 2008 Frances Y. Kuo and Stephen Joe), read
 //!   from the `sobol` crate's copy of the table (feature `joe-kuo`, 1000 dimensions). The lean
 //!   build has dimensions 0 and 1.
-//! * Randomization: Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020). The index is
-//!   shuffled by an Owen scramble of its bits (aligned blocks of `2^m` indices map to aligned
-//!   blocks, so prefixes stay nets) and each dimension's value is Owen-scrambled with its own
-//!   seed ([`crate::hash::owen_scramble`]): unbiased, decorrelated across seeds, nets kept.
+//! * Randomization: Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020), with the
+//!   shared functions of [`crate::scramble`] (the same as the path-tracer adapter's Sobol'):
+//!   the index goes through a nested uniform shuffle (aligned blocks of `2^m` indices map to
+//!   aligned blocks, so prefixes stay nets) and each dimension's value is Owen-scrambled with
+//!   its own seed: unbiased, decorrelated across seeds, nets kept. The generator matrices and
+//!   their tables are [`crate::digital`]'s.
 //!
 //! Evaluation is direct (no running state): indices up to `2^32 - 1`, any order, in O(1) by
 //! four 256-entry tables per dimension (one per byte of the index).
 
-#[cfg(feature = "std")]
-use std::sync::OnceLock;
-
 use super::Epochs;
 use super::pmj::MAX_SEQUENCE_LEN;
+use crate::digital::{ByteTables, lookup, sobol_byte_tables, sobol_dimensions};
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
-use crate::hash::{Stream, hash32, owen_scramble_rev, owen_scrambled_unit_f32x4, stream_seed};
+use crate::hash::{GOLDEN_GAMMA, Stream, hash32, mix64};
 use crate::prelude::*;
 #[cfg(feature = "std")]
 use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
+use crate::scramble::{Lanes, X4, owen_scramble_lanes, shuffle_lanes};
 
-/// Direction vectors of one dimension: column `k` (for index bit `k`) as a 32-bit fixed-point
-/// value, most significant bit first.
-type Matrix = [u32; 32];
-
-/// The generator matrices of dimensions 0 and 1, computed.
-const fn first_two() -> [Matrix; 2] {
-    let mut vdc = [0u32; 32];
-    let mut pascal = [0u32; 32];
-    let mut k = 0;
-    while k < 32 {
-        vdc[k] = 1 << (31 - k);
-        // Pascal mod 2: column k has bit (31 - r) set for rows r <= k with binom(k, r) odd.
-        let mut r = 0;
-        while r <= k {
-            if (k & r) == r {
-                pascal[k] |= 1 << (31 - r);
-            }
-            r += 1;
-        }
-        k += 1;
-    }
-    [vdc, pascal]
-}
-
-/// The byte tables of dimensions 0 and 1, built at compile time: the (0,2)-sequence every
-/// draw of the path-tracer adapter reads, with no lazy initialisation on the way.
-static FIRST_TWO: [[[u32; 256]; 4]; 2] = {
-    let m = first_two();
-    [byte_tables(&m[0]), byte_tables(&m[1])]
-};
-
-/// The matrix of a dimension with primitive polynomial of degree `s`, inner coefficients `a`
-/// (bit `s - 1 - l` is `a_l`) and initial direction integers `m` (odd, `m_k < 2^k`), by the
-/// recurrence `V_k = V_{k-s} ^ (V_{k-s} >> s) ^ sum_{l=1}^{s-1} a_l V_{k-l}`.
-#[cfg(any(test, feature = "joe-kuo"))]
-pub(crate) fn direction_matrix(s: usize, a: u32, m: &[u32]) -> [u32; 32] {
-    let mut v = [0u32; 33]; // 1-based
-    for k in 1..=32 {
-        if k <= s {
-            v[k] = m[k - 1] << (32 - k);
-        } else {
-            let mut x = v[k - s] ^ (v[k - s] >> s);
-            for l in 1..s {
-                if (a >> (s - 1 - l)) & 1 == 1 {
-                    x ^= v[k - l];
-                }
-            }
-            v[k] = x;
-        }
-    }
-    let mut out = [0u32; 32];
-    out.copy_from_slice(&v[1..]);
-    out
-}
-
-/// Per dimension, four 256-entry tables in the bit-reversed index domain: table `q` maps byte
-/// `q` of the reversed index to the XOR of the reversed direction vectors of its bits.
-#[cfg(feature = "std")]
-struct Tables {
-    matrices: Vec<Matrix>,
-    bytes: Vec<[[u32; 256]; 4]>,
-}
-
-/// The four byte tables of one generator matrix (see [`Tables`]): the digital-sequence
-/// machinery every base-2 digital sequence of the crate shares.
-pub(crate) const fn byte_tables(m: &Matrix) -> [[u32; 256]; 4] {
-    let mut t = [[0u32; 256]; 4];
-    let mut q = 0;
-    while q < 4 {
-        let mut v = 0;
-        while v < 256 {
-            let mut x = 0u32;
-            let mut j = 0;
-            while j < 8 {
-                if (v >> j) & 1 == 1 {
-                    // reversed-index bit 8q + j is index bit 31 - (8q + j)
-                    x ^= m[31 - (8 * q + j)].reverse_bits();
-                }
-                j += 1;
-            }
-            t[q][v] = x;
-            v += 1;
-        }
-        q += 1;
-    }
-    t
-}
-
-#[cfg(feature = "std")]
-fn build(matrices: Vec<Matrix>) -> Tables {
-    let bytes = matrices.iter().map(byte_tables).collect();
-    Tables { matrices, bytes }
-}
-
-#[cfg(feature = "std")]
-fn tables() -> &'static Tables {
-    static TABLES: OnceLock<Tables> = OnceLock::new();
-    TABLES.get_or_init(|| {
-        #[cfg_attr(not(feature = "joe-kuo"), allow(unused_mut))]
-        let mut matrices: Vec<Matrix> = first_two().to_vec();
-        #[cfg(feature = "joe-kuo")]
-        {
-            // Row d of the file (d >= 2) is our dimension d - 1; dimension 1 (x + 1) is already there.
-            let params = sobol::params::JoeKuoD6::standard();
-            for dim in params.dim_params.iter().skip(1) {
-                matrices.push(direction_matrix(dim.m.len(), dim.a, &dim.m));
-            }
-        }
-        build(matrices)
-    })
-}
-
-/// The byte tables of dimension `dim`: dimensions 0 and 1 from the compile-time tables, the
-/// others (with `std`) from the lazily built ones.
+/// The byte tables of dimension `dim` (see [`crate::digital`]).
 #[inline]
-fn dim_tables(dim: u32) -> Option<&'static [[u32; 256]; 4]> {
-    if dim < 2 {
-        return Some(&FIRST_TWO[dim as usize]);
-    }
-    #[cfg(feature = "std")]
-    return tables().bytes.get(dim as usize);
-    #[cfg(not(feature = "std"))]
-    None
+fn dim_tables(dim: u32) -> Option<&'static ByteTables> {
+    sobol_byte_tables(dim)
 }
 
 /// The number of Sobol' dimensions available (1000 with the `joe-kuo` feature, else 2).
 pub fn max_dimensions() -> u32 {
-    #[cfg(feature = "std")]
-    return tables().matrices.len() as u32;
-    #[cfg(not(feature = "std"))]
-    2
-}
-
-/// The generator matrix of dimension `dim` (columns for index bits 0..32, MSB-first values).
-#[cfg(test)]
-pub(crate) fn matrix(dim: u32) -> Option<[u32; 32]> {
-    #[cfg(feature = "std")]
-    return tables().matrices.get(dim as usize).copied();
-    #[cfg(not(feature = "std"))]
-    first_two().get(dim as usize).copied()
+    sobol_dimensions()
 }
 
 /// Point `index` of dimension `dim` of the plain (unscrambled) Sobol' sequence, 32-bit fixed
@@ -202,30 +72,12 @@ pub fn owen_scrambled(index: u32, dim: u32, seed: u64) -> Option<f32> {
     )))
 }
 
-/// The point of a digital sequence at a bit-reversed index, bit-reversed, from its byte tables.
-#[inline]
-pub(crate) fn lookup(t: &[[u32; 256]; 4], i_rev: u32) -> u32 {
-    t[0][(i_rev & 0xff) as usize]
-        ^ t[1][((i_rev >> 8) & 0xff) as usize]
-        ^ t[2][((i_rev >> 16) & 0xff) as usize]
-        ^ t[3][(i_rev >> 24) as usize]
-}
-
-/// Dimensions 0 and 1 of the plain (unscrambled) sequence at a bit-reversed index, both
-/// bit-reversed: the path-tracer adapter shuffles the index and Owen-scrambles the values
-/// around this, in the reversed domain where both are cheap.
-#[inline]
-pub(crate) fn point01_rev(index_rev: u32) -> [u32; 2] {
-    [
-        lookup(&FIRST_TWO[0], index_rev),
-        lookup(&FIRST_TWO[1], index_rev),
-    ]
-}
-
-/// Seeds of one scrambled copy of the sequence: the index shuffle and one value scramble per
-/// dimension are hashed from it.
+/// Seeds of one scrambled copy of the sequence: the index shuffle's two keys and one value
+/// scramble per dimension are hashed from it. The randomization is [`crate::scramble`]'s, the
+/// same as the path-tracer adapter's Sobol'.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Scramble {
+    even: u32,
     shuffle: u32,
     key: u32,
 }
@@ -233,10 +85,14 @@ pub(crate) struct Scramble {
 impl Scramble {
     /// The scramble for a 64-bit seed.
     pub fn new(seed: u64) -> Self {
-        let s = stream_seed(seed, Stream::SobolScramble.id());
+        // one 64-bit mix (the one-value path pays it on every call): the shuffle's two keys,
+        // and the key of the per-dimension value seeds, which `dim_seed` hashes again
+        let s = mix64(seed ^ Stream::SobolScramble.id().wrapping_mul(GOLDEN_GAMMA));
+        let (lo, hi) = (s as u32, (s >> 32) as u32);
         Scramble {
-            shuffle: hash32(s as u32, Stream::SobolShuffle.id() as u32),
-            key: (s >> 32) as u32,
+            even: lo & !1,
+            shuffle: hi,
+            key: lo.rotate_left(16) ^ hi,
         }
     }
 
@@ -249,7 +105,7 @@ impl Scramble {
     /// The shuffled index, in the bit-reversed domain.
     #[inline]
     fn index_rev(&self, index: u32) -> u32 {
-        owen_scramble_rev(index.reverse_bits(), self.shuffle)
+        shuffle_lanes(index.reverse_bits(), self.even, self.shuffle)
     }
 
     /// Dimensions `dim` and `dim + 1` of point `index`, as 32-bit fixed point (`dim + 1` must
@@ -266,14 +122,14 @@ impl Scramble {
 
     /// Dimension `dim` (byte tables `t`) at an already shuffled index `i_rev`.
     #[inline]
-    fn sample_rev_u32(&self, t: &[[u32; 256]; 4], i_rev: u32, dim: u32) -> u32 {
-        owen_scramble_rev(lookup(t, i_rev), self.dim_seed(dim)).reverse_bits()
+    fn sample_rev_u32(&self, t: &ByteTables, i_rev: u32, dim: u32) -> u32 {
+        owen_scramble_lanes(lookup(t, i_rev), self.dim_seed(dim)).reverse_bits()
     }
 }
 
 /// Consecutive points of one epoch of [`SobolNd`], from tables and seeds looked up once.
 struct Rows<'a> {
-    tables: &'a [&'static [[u32; 256]; 4]],
+    tables: &'a [&'static ByteTables],
     seeds: &'a [u32],
     scramble: Scramble,
 }
@@ -288,9 +144,10 @@ impl Rows<'_> {
             let ir = self.scramble.index_rev(i as u32);
             let mut k = 0;
             while k + 4 <= d {
-                let n = [0, 1, 2, 3].map(|j| lookup(self.tables[k + j], ir));
-                let s = [0, 1, 2, 3].map(|j| self.seeds[k + j]);
-                chunk[k..k + 4].copy_from_slice(&owen_scrambled_unit_f32x4(n, s));
+                let n = X4::new([0, 1, 2, 3].map(|j| lookup(self.tables[k + j], ir)));
+                let s = X4::new([0, 1, 2, 3].map(|j| self.seeds[k + j]));
+                let v = owen_scramble_lanes(n, s).reverse_bits().unit_f32();
+                chunk[k..k + 4].copy_from_slice(&v);
                 k += 4;
             }
             self.tail(ir, k, chunk);
@@ -302,7 +159,7 @@ impl Rows<'_> {
     fn tail(&self, ir: u32, k: usize, chunk: &mut [f32]) {
         let rest = self.tables[k..].iter().zip(&self.seeds[k..]);
         for (o, (t, s)) in chunk[k..].iter_mut().zip(rest) {
-            *o = unit_f32_from_u32(owen_scramble_rev(lookup(t, ir), *s).reverse_bits());
+            *o = unit_f32_from_u32(owen_scramble_lanes(lookup(t, ir), *s).reverse_bits());
         }
     }
 
@@ -311,7 +168,7 @@ impl Rows<'_> {
     ///
     /// # Safety
     /// The CPU must support AVX2.
-    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[cfg(all(feature = "std", target_arch = "x86_64", not(strata_portable)))]
     #[target_feature(enable = "avx2")]
     unsafe fn fill_avx2(&self, start: u32, out: &mut [f32]) {
         let d = self.tables.len();
@@ -321,9 +178,9 @@ impl Rows<'_> {
             while k + 8 <= d {
                 let n: [u32; 8] = core::array::from_fn(|j| lookup(self.tables[k + j], ir));
                 let s: [u32; 8] = core::array::from_fn(|j| self.seeds[k + j]);
-                let v = crate::hash::owen_scramble_rev_lanes(n, s);
+                let v = owen_scramble_lanes(n, s).reverse_bits();
                 for (o, x) in chunk[k..k + 8].iter_mut().zip(v) {
-                    *o = unit_f32_from_u32(x.reverse_bits());
+                    *o = unit_f32_from_u32(x);
                 }
                 k += 8;
             }
@@ -484,7 +341,7 @@ impl SamplerNd for SobolNd {
     /// AVX2 where the CPU has it, four with SSE2 otherwise).
     fn fill(&mut self, out: &mut [f32]) {
         let d = self.dims as usize;
-        let tables: Vec<&'static [[u32; 256]; 4]> = (0..self.dims)
+        let tables: Vec<&'static ByteTables> = (0..self.dims)
             .map(|k| dim_tables(k).expect("checked at construction"))
             .collect();
         let total = out.len() / d;
@@ -502,7 +359,7 @@ impl SamplerNd for SobolNd {
             };
             let block = &mut out[done * d..(done + count as usize) * d];
             done += count as usize;
-            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            #[cfg(all(feature = "std", target_arch = "x86_64", not(strata_portable)))]
             if std::is_x86_feature_detected!("avx2") {
                 // SAFETY: the CPU has AVX2, checked just above.
                 unsafe { rows.fill_avx2(start as u32, block) };
@@ -560,31 +417,6 @@ mod tests {
             for chunk in filled.chunks_exact(dims as usize) {
                 d.next_point(&mut p);
                 assert_eq!(chunk, &p[..]);
-            }
-        }
-    }
-
-    #[test]
-    fn first_dimensions_are_van_der_corput_and_pascal() {
-        // van der Corput: 0, 1/2, 1/4, 3/4, ...
-        let v: Vec<u32> = (0..4).map(|i| sobol_u32(i, 0).unwrap()).collect();
-        assert_eq!(v, [0, 1 << 31, 1 << 30, 3 << 30]);
-        // dimension 1 is the recurrence with s = 1, a = 0, m = [1]
-        assert_eq!(matrix(1).unwrap(), direction_matrix(1, 0, &[1]));
-    }
-
-    #[test]
-    fn byte_tables_match_the_bit_loop() {
-        for dim in 0..max_dimensions().min(40) {
-            let m = matrix(dim).unwrap();
-            for i in [0u32, 1, 2, 3, 255, 256, 0x1234_5678, u32::MAX] {
-                let mut x = 0u32;
-                for (k, col) in m.iter().enumerate() {
-                    if (i >> k) & 1 == 1 {
-                        x ^= col;
-                    }
-                }
-                assert_eq!(sobol_u32(i, dim), Some(x), "dim {dim} index {i}");
             }
         }
     }

@@ -353,7 +353,7 @@ fn energy(s: &[u32], pos: &[[u32; 2]], prefixes: &[Prefix], inside: &dyn Fn(usiz
                         }
                         let d2 = torus_d2(pos[i], pos[j]);
                         if d2 < p.cutoff2 {
-                            let e = (-d2 * p.inv_two_sigma2).exp();
+                            let e = libm::exp(-d2 * p.inv_two_sigma2);
                             if inside(j) {
                                 inner += e;
                             } else {

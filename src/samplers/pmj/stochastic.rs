@@ -17,10 +17,10 @@
 //! and `j` agree in their first `k` digits and differ in digit `k` exactly when
 //! `C (e_k + bits(i ^ j)) = e_k` in the first `k + 1` rows, i.e. `bits(i ^ j)` is column `k`
 //! of `C^-1` without its diagonal entry. For pmj02 the generator matrices are the unsigned
-//! Stirling numbers of the first kind mod 2 (x: rows and columns `0..`, y: shifted by one); we
-//! compute them from their recurrence `s(n, k) = s(n-1, k-1) + (n-1) s(n-1, k)`, invert them over
-//! GF(2), and read the XOR values off the inverse's columns. (The inverse is the matrix of
-//! Stirling numbers of the second kind mod 2, which the tests check independently.)
+//! Stirling numbers of the first kind mod 2; [`crate::digital`] computes them, inverts them over
+//! GF(2) and reads the XOR values off the inverse's columns (the inverse is the matrix of
+//! Stirling numbers of the second kind mod 2, which its tests check independently). The
+//! path-tracer adapter's `pmj02` is the same digital sequence, Owen-scrambled.
 
 use crate::float::unit_f32_from_u32;
 use crate::hash::{hash_u64, stream_seed};
@@ -32,112 +32,9 @@ use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 use super::{MAX_SEQUENCE_LEN, pmj_grids};
 use crate::samplers::Epochs;
 
-/// Number of digits (and XOR values) per dimension: 32-bit fixed point.
-const DIGITS: usize = 32;
-
-/// The unsigned Stirling numbers of the first kind mod 2, `s(n, k)` for `n, k < size`, as rows of
-/// bits (`row[n] >> k & 1`), from the recurrence `s(n, k) = s(n-1, k-1) + (n-1) s(n-1, k)`.
-const fn stirling_first_mod2<const N: usize>() -> [u64; N] {
-    let mut rows = [0u64; N];
-    rows[0] = 1; // s(0, 0) = 1
-    let mut n = 1;
-    while n < N {
-        let prev = rows[n - 1];
-        // (n - 1) s(n-1, k) contributes only when n - 1 is odd
-        let keep = if (n - 1) % 2 == 1 { prev } else { 0 };
-        rows[n] = (prev << 1) ^ keep;
-        n += 1;
-    }
-    rows
-}
-
-/// The generator matrix of pmj02 dimension `dim` (0 = x, 1 = y) as 32 columns of bits:
-/// `col[c] >> r & 1 = C[r][c]`, with `C[r][c] = s(c + dim, r + dim) mod 2`.
-const fn generator(dim: usize) -> [u64; DIGITS] {
-    let s = stirling_first_mod2::<{ DIGITS + 1 }>();
-    let mut cols = [0u64; DIGITS];
-    let mut c = 0;
-    while c < DIGITS {
-        let mut r = 0;
-        while r < DIGITS {
-            if (s[c + dim] >> (r + dim)) & 1 == 1 {
-                cols[c] |= 1 << r;
-            }
-            r += 1;
-        }
-        c += 1;
-    }
-    cols
-}
-
-/// The inverse over GF(2) of an upper unit-triangular matrix given by columns, by back
-/// substitution: column `c` of the inverse is the `v` with `C v = e_c`.
-const fn inverse_upper(cols: [u64; DIGITS]) -> [u64; DIGITS] {
-    let mut inv = [0u64; DIGITS];
-    let mut c = 0;
-    while c < DIGITS {
-        // Solve C v = e_c from the bottom row up: v_r = [r == c] + sum_{t > r} C[r][t] v_t.
-        let mut v = 0u64;
-        let mut r = c as isize;
-        while r >= 0 {
-            let ru = r as usize;
-            let mut bit = if ru == c { 1 } else { 0 };
-            let mut t = ru + 1;
-            while t <= c {
-                if (cols[t] >> ru) & 1 == 1 && (v >> t) & 1 == 1 {
-                    bit ^= 1;
-                }
-                t += 1;
-            }
-            v |= (bit as u64) << ru;
-            r -= 1;
-        }
-        inv[c] = v;
-        c += 1;
-    }
-    inv
-}
-
-/// `XOR_d[k]`: column `k` of the inverse generator matrix without its diagonal.
-const fn xor_values(dim: usize) -> [u32; DIGITS] {
-    let inv = inverse_upper(generator(dim));
-    let mut out = [0u32; DIGITS];
-    let mut k = 0;
-    while k < DIGITS {
-        out[k] = (inv[k] & !(1u64 << k)) as u32;
-        k += 1;
-    }
-    out
-}
-
-/// The XOR values of pmj02's two dimensions, computed at compile time.
-pub(crate) const XORS: [[u32; DIGITS]; 2] = [xor_values(0), xor_values(1)];
-
-/// pmj02 as a digital sequence: dimensions 0 and 1 of the base-2 digital (0,2)-sequence whose
-/// generator matrices are [`generator`]`(0)` and `(1)`, at a bit-reversed index, bit-reversed.
-/// Owen-scrambled, its points are distributed as the stochastic pmj02 sequence (Helmer et al.
-/// 2021, who derive the construction from these matrices); the Z-ordered adapter sequence
-/// `zpmj02` reads it at 32-bit indices, where no table of the stochastic sequence would fit.
-pub(crate) fn digital_point01_rev(index_rev: u32) -> [u32; 2] {
-    [
-        crate::samplers::sobol::lookup(&DIGITAL_TABLES[0], index_rev),
-        crate::samplers::sobol::lookup(&DIGITAL_TABLES[1], index_rev),
-    ]
-}
-
-/// The byte tables of [`digital_point01_rev`], built at compile time.
-static DIGITAL_TABLES: [[[u32; 256]; 4]; 2] = [digital_tables(0), digital_tables(1)];
-
-const fn digital_tables(dim: usize) -> [[u32; 256]; 4] {
-    let cols = generator(dim);
-    let mut m = [0u32; 32];
-    let mut k = 0;
-    while k < DIGITS {
-        m[k] = (cols[k] as u32).reverse_bits(); // row r (digit r from the top) -> bit 31 - r
-        k += 1;
-    }
-    crate::samplers::sobol::byte_tables(&m)
-}
+/// The partner offsets of the construction, from the generator matrices of pmj02 as a digital
+/// sequence ([`crate::digital`], where they are derived and tested).
+use crate::digital::PMJ02_XORS as XORS;
 
 /// The stochastic pmj02 sequence (progressive; O(1) per sample, 8 bytes per stored sample).
 ///
@@ -330,67 +227,6 @@ impl Sampler for Pmj02Stochastic {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Stirling numbers of the second kind mod 2 from their own recurrence
-    /// `S(n, k) = k S(n-1, k) + S(n-1, k-1)`.
-    fn stirling_second_mod2(n: usize, k: usize) -> u64 {
-        let mut t = vec![vec![0u64; n + 2]; n + 2];
-        t[0][0] = 1;
-        for i in 1..=n {
-            for j in 1..=i {
-                t[i][j] = ((j as u64 % 2) * t[i - 1][j] + t[i - 1][j - 1]) % 2;
-            }
-        }
-        t[n][k]
-    }
-
-    #[test]
-    fn xor_values_match_stirling_numbers_of_the_second_kind() {
-        for (k, (&x, &y)) in XORS[0].iter().zip(&XORS[1]).enumerate().take(20) {
-            let want_x: u32 = (0..k)
-                .map(|r| (stirling_second_mod2(k, r) as u32) << r)
-                .sum();
-            let want_y: u32 = (0..k)
-                .map(|r| (stirling_second_mod2(k + 1, r + 1) as u32) << r)
-                .sum();
-            assert_eq!(x, want_x, "x, k = {k}");
-            assert_eq!(y, want_y, "y, k = {k}");
-        }
-        // The first values, as published with the paper's supplemental code.
-        assert_eq!(
-            &XORS[0][..11],
-            &[0, 0, 2, 6, 6, 0xe, 0x36, 0x4e, 0x16, 0x2e, 0x276]
-        );
-        assert_eq!(
-            &XORS[1][..11],
-            &[0, 1, 3, 3, 7, 0x1b, 0x27, 0xb, 0x17, 0x13b, 0x367]
-        );
-    }
-
-    #[test]
-    fn the_digital_form_is_a_0_2_sequence() {
-        // every prefix and aligned block of 2^m points, m <= 12, fills every elementary interval
-        for m in 0..=12u32 {
-            let n = 1u32 << m;
-            for start in [0u32, n, 5 * n, 1 << 20] {
-                for a in 0..=m {
-                    let mut seen = vec![false; n as usize];
-                    for i in start..start + n {
-                        let p = digital_point01_rev(i.reverse_bits());
-                        let (x, y) = (p[0].reverse_bits(), p[1].reverse_bits());
-                        let top =
-                            |v: u32, b: u32| if b == 0 { 0 } else { (v >> (32 - b)) as usize };
-                        let cell = (top(y, m - a) << a) | top(x, a);
-                        assert!(
-                            !seen[cell],
-                            "m {m} start {start} shape {a}: cell {cell} twice"
-                        );
-                        seen[cell] = true;
-                    }
-                }
-            }
-        }
-    }
 
     #[test]
     fn random_access_equals_the_stored_sequence() {

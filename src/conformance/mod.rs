@@ -75,7 +75,11 @@
 //! # Ok::<(), strata::Error>(())
 //! ```
 
+mod pairs;
+
 use std::fmt;
+
+pub use pairs::{PairReport, PairStudy, Shuffle};
 
 use crate::analysis::Integrand;
 use crate::error::{Error, Result};

@@ -1,0 +1,84 @@
+//! The WGSL kernel against the CPU, bit for bit.
+//!
+//! `naga` validates the shader; then, on the Vulkan adapter present (Mesa's lavapipe CPU driver
+//! in CI), `2^22` draws of each of the six kernel sequences, half of them a renderer's grid of
+//! pixels, indices and dimensions, half hashed over the whole `u32` range of each, are compared
+//! with `PixelSampler::sample_2d_u32`. Without an adapter the test says which driver to install
+//! and is skipped, unless `STRATA_GPU_REQUIRED` is set (as `.ci/run` sets it), where it fails.
+
+use strata::{PixelSampler, Seed, Sequence};
+use strata_gpu_test::{DRIVER_HINT, Gpu, compute_shader, tuple};
+
+/// Draws per sequence.
+const COUNT: u32 = 1 << 22;
+
+#[test]
+fn naga_validates_the_shader_and_the_test_kernel() {
+    for (what, source) in [
+        ("strata.wgsl", strata::pixel::WGSL.to_string()),
+        ("the test kernel", compute_shader()),
+    ] {
+        let module = naga::front::wgsl::parse_str(&source)
+            .unwrap_or_else(|e| panic!("{what}: {}", e.emit_to_string(&source)));
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::empty(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{what}: {e:?}"));
+    }
+}
+
+#[test]
+fn the_gpu_computes_the_cpu_bits() {
+    let gpu = match Gpu::new() {
+        Ok(g) => g,
+        Err(why) if std::env::var_os("STRATA_GPU_REQUIRED").is_none() => {
+            eprintln!("skipped: {why}");
+            return;
+        }
+        Err(why) => panic!("{why}"),
+    };
+    eprintln!("adapter: {}", gpu.name);
+    let sequences = [
+        Sequence::random(),
+        Sequence::sobol(),
+        Sequence::pmj02(),
+        Sequence::lattice(),
+        Sequence::zsobol(64, 48).unwrap(),
+        Sequence::zpmj02(64, 64).unwrap(),
+    ];
+    let grid = COUNT / 2;
+    for (k, sequence) in sequences.into_iter().enumerate() {
+        let name = sequence.name();
+        // the Z-ordered ones with 16 samples per pixel: the grid's indices up to 255 cross each
+        // pixel's block; the others ignore the count
+        let s = PixelSampler::new(sequence, 16, Seed(0x5eed + k as u64)).unwrap();
+        let params = s.gpu_parameters().expect("a kernel sequence");
+        let got = gpu.draw(&params, COUNT, grid).unwrap();
+        assert_eq!(got.len(), 2 * COUNT as usize);
+        let mut mismatches = Vec::new();
+        for i in 0..COUNT {
+            let (pixel, index, dim) = tuple(i, grid);
+            let want = s.sample_2d_u32(pixel, index as u64, dim).unwrap();
+            let g = [got[2 * i as usize], got[2 * i as usize + 1]];
+            if g != want {
+                mismatches.push(format!(
+                    "pixel {pixel:?} index {index} dim {dim}: gpu {g:08x?} cpu {want:08x?}"
+                ));
+            }
+        }
+        assert!(
+            mismatches.is_empty(),
+            "{name}: {} of {COUNT} draws differ, e.g.\n{}",
+            mismatches.len(),
+            mismatches[..mismatches.len().min(8)].join("\n")
+        );
+        eprintln!("{name}: {COUNT} draws bit-identical");
+    }
+}
+
+#[test]
+fn the_hint_names_the_driver() {
+    assert!(DRIVER_HINT.contains("mesa-vulkan-drivers"));
+}

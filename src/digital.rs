@@ -1,0 +1,506 @@
+//! The generator matrices of the base-2 digital sequences, and their tables: one home.
+//!
+//! A base-2 digital sequence computes dimension `d` of point `i` as `C_d bits(i)` over GF(2):
+//! each set bit `k` of the index XORs in column `k` of the generator matrix. Here a matrix is
+//! 32 columns, column `k` for index bit `k`, each a 32-bit fixed-point value with
+//! the first digit in the most significant bit.
+//!
+//! * **Sobol'** (Sobol', "On the distribution of points in a cube and the approximate
+//!   evaluation of integrals", 1967): dimension 0 is van der Corput (the identity), dimension 1
+//!   the Pascal matrix mod 2 (polynomial `x + 1`); together a (0,2)-sequence. With the `joe-kuo`
+//!   feature, dimensions 2..1000 from Joe and Kuo's `new-joe-kuo-6` direction numbers (S. Joe
+//!   and F. Y. Kuo, "Constructing Sobol sequences with better two-dimensional projections",
+//!   SIAM J. Sci. Comput. 30, 2008; BSD-3-Clause, Copyright (c) 2008 Frances Y. Kuo and Stephen
+//!   Joe), read from the `sobol` crate's copy of the table.
+//! * **pmj02** as a digital sequence: the generator matrices behind Helmer, Christensen and
+//!   Kensler's stochastic pmj02 ("Stochastic Generation of (t, s) Sample Sequences", EGSR 2021),
+//!   the unsigned Stirling numbers of the first kind mod 2 (x: `C[r][c] = s(c, r)`, y:
+//!   `s(c + 1, r + 1)`), also a (0,2)-sequence. Owen-scrambled, its points are distributed as
+//!   the stochastic pmj02 sequence, whose partner offsets are read off the inverse matrices.
+//!
+//! Evaluation is by byte tables in the bit-reversed domain (four 256-entry tables per
+//! dimension, one per byte of the reversed index: the index shuffle of [`crate::scramble`]
+//! leaves its result reversed, and the Owen scramble wants the value reversed, so neither side
+//! reverses), and for dimensions 0-1 of both sequences also by a handful of shifts and XORs
+//! from the plain index ([`sobol01_rev`], [`pmj02_rev`]): the form the WGSL shader uses, where a
+//! table would be per-thread memory. A test checks that the two agree.
+
+/// A generator matrix: column `k` (for index bit `k`) as a 32-bit fixed-point value, first
+/// digit in the most significant bit.
+pub(crate) type Matrix = [u32; 32];
+
+/// The four byte tables of one matrix in the bit-reversed domain: table `q` maps byte `q` of the
+/// reversed index to the XOR of the reversed columns of its bits.
+pub(crate) type ByteTables = [[u32; 256]; 4];
+
+/// The generator matrices of Sobol' dimensions 0 (van der Corput) and 1 (Pascal mod 2).
+pub(crate) const fn sobol01_matrices() -> [Matrix; 2] {
+    let mut vdc = [0u32; 32];
+    let mut pascal = [0u32; 32];
+    let mut k = 0;
+    while k < 32 {
+        vdc[k] = 1 << (31 - k);
+        // Pascal mod 2: column k has digit r for r <= k with binom(k, r) odd (r a submask of k)
+        let mut r = 0;
+        while r <= k {
+            if (k & r) == r {
+                pascal[k] |= 1 << (31 - r);
+            }
+            r += 1;
+        }
+        k += 1;
+    }
+    [vdc, pascal]
+}
+
+/// Bits of the Stirling numbers of the first kind mod 2: `s(n, k)` is bit `k` of row `n`,
+/// from `s(n, k) = s(n-1, k-1) + (n-1) s(n-1, k)`.
+const fn stirling_first_mod2<const N: usize>() -> [u64; N] {
+    let mut rows = [0u64; N];
+    rows[0] = 1; // s(0, 0) = 1
+    let mut n = 1;
+    while n < N {
+        let prev = rows[n - 1];
+        // (n - 1) s(n-1, k) contributes only when n - 1 is odd
+        let keep = if (n - 1) % 2 == 1 { prev } else { 0 };
+        rows[n] = (prev << 1) ^ keep;
+        n += 1;
+    }
+    rows
+}
+
+/// The generator matrix of pmj02 dimension `dim` (0 = x, 1 = y): `C[r][c] = s(c + dim, r + dim)
+/// mod 2`, as columns of bits (`col[c] >> r & 1`, digit `r` counted from the top).
+const fn pmj02_columns(dim: usize) -> [u64; 32] {
+    let s = stirling_first_mod2::<33>();
+    let mut cols = [0u64; 32];
+    let mut c = 0;
+    while c < 32 {
+        let mut r = 0;
+        while r < 32 {
+            if (s[c + dim] >> (r + dim)) & 1 == 1 {
+                cols[c] |= 1 << r;
+            }
+            r += 1;
+        }
+        c += 1;
+    }
+    cols
+}
+
+/// The generator matrices of pmj02's two dimensions.
+pub(crate) const fn pmj02_matrices() -> [Matrix; 2] {
+    let mut out = [[0u32; 32]; 2];
+    let mut d = 0;
+    while d < 2 {
+        let cols = pmj02_columns(d);
+        let mut k = 0;
+        while k < 32 {
+            out[d][k] = (cols[k] as u32).reverse_bits(); // digit r (LSB-first) -> bit 31 - r
+            k += 1;
+        }
+        d += 1;
+    }
+    out
+}
+
+/// The inverse over GF(2) of an upper unit-triangular matrix given by columns of bits, by back
+/// substitution: column `c` of the inverse is the `v` with `C v = e_c`.
+const fn inverse_upper(cols: [u64; 32]) -> [u64; 32] {
+    let mut inv = [0u64; 32];
+    let mut c = 0;
+    while c < 32 {
+        // v_r = [r == c] + sum_{r < t <= c} C[r][t] v_t, from the bottom row up
+        let mut v = 0u64;
+        let mut r = c as isize;
+        while r >= 0 {
+            let ru = r as usize;
+            let mut bit = if ru == c { 1 } else { 0 };
+            let mut t = ru + 1;
+            while t <= c {
+                if (cols[t] >> ru) & 1 == 1 && (v >> t) & 1 == 1 {
+                    bit ^= 1;
+                }
+                t += 1;
+            }
+            v |= (bit as u64) << ru;
+            r -= 1;
+        }
+        inv[c] = v;
+        c += 1;
+    }
+    inv
+}
+
+/// `XOR_d[k]` of the stochastic pmj02 construction (Helmer et al. 2021): sample `2^k + i` takes
+/// the first `k` digits of sample `i ^ XOR_d[k]` and flips digit `k + 1`. Samples `2^k + i` and
+/// `j` agree in their first `k` digits and differ in digit `k` exactly when `bits(i ^ j)` is
+/// column `k` of `C^-1` without its diagonal, so the values are read off the inverse.
+pub(crate) const PMJ02_XORS: [[u32; 32]; 2] = {
+    let mut out = [[0u32; 32]; 2];
+    let mut d = 0;
+    while d < 2 {
+        let inv = inverse_upper(pmj02_columns(d));
+        let mut k = 0;
+        while k < 32 {
+            out[d][k] = (inv[k] & !(1u64 << k)) as u32;
+            k += 1;
+        }
+        d += 1;
+    }
+    out
+};
+
+/// The byte tables of one generator matrix (see [`ByteTables`]).
+pub(crate) const fn byte_tables(m: &Matrix) -> ByteTables {
+    let mut t = [[0u32; 256]; 4];
+    let mut q = 0;
+    while q < 4 {
+        let mut v = 0;
+        while v < 256 {
+            let mut x = 0u32;
+            let mut j = 0;
+            while j < 8 {
+                if (v >> j) & 1 == 1 {
+                    // reversed-index bit 8q + j is index bit 31 - (8q + j)
+                    x ^= m[31 - (8 * q + j)].reverse_bits();
+                }
+                j += 1;
+            }
+            t[q][v] = x;
+            v += 1;
+        }
+        q += 1;
+    }
+    t
+}
+
+/// The point of a digital sequence at a bit-reversed index, bit-reversed, from its byte tables.
+#[inline(always)]
+pub(crate) fn lookup(t: &ByteTables, index_rev: u32) -> u32 {
+    t[0][(index_rev & 0xff) as usize]
+        ^ t[1][((index_rev >> 8) & 0xff) as usize]
+        ^ t[2][((index_rev >> 16) & 0xff) as usize]
+        ^ t[3][(index_rev >> 24) as usize]
+}
+
+/// The byte tables of two dimensions interleaved, so that one lookup per byte gives both
+/// (the 2D draws of the path-tracer adapter read them).
+pub(crate) struct PairTables([[[u32; 2]; 256]; 4]);
+
+impl core::fmt::Debug for PairTables {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("PairTables { .. }")
+    }
+}
+
+impl PairTables {
+    /// The interleaved tables of two matrices.
+    const fn new(m: &[Matrix; 2]) -> Self {
+        let (a, b) = (byte_tables(&m[0]), byte_tables(&m[1]));
+        let mut t = [[[0u32; 2]; 256]; 4];
+        let mut q = 0;
+        while q < 4 {
+            let mut v = 0;
+            while v < 256 {
+                t[q][v] = [a[q][v], b[q][v]];
+                v += 1;
+            }
+            q += 1;
+        }
+        PairTables(t)
+    }
+
+    /// Both dimensions at a bit-reversed index, both bit-reversed.
+    #[inline(always)]
+    pub(crate) fn point_rev(&self, index_rev: u32) -> [u32; 2] {
+        let t = &self.0;
+        let (a, b, c, d) = (
+            t[0][(index_rev & 0xff) as usize],
+            t[1][((index_rev >> 8) & 0xff) as usize],
+            t[2][((index_rev >> 16) & 0xff) as usize],
+            t[3][(index_rev >> 24) as usize],
+        );
+        [a[0] ^ b[0] ^ c[0] ^ d[0], a[1] ^ b[1] ^ c[1] ^ d[1]]
+    }
+}
+
+/// Sobol' dimensions 0-1, interleaved byte tables (built at compile time: no lazy
+/// initialisation on the draw path).
+pub(crate) static SOBOL01: PairTables = PairTables::new(&sobol01_matrices());
+
+/// pmj02's dimensions, interleaved byte tables.
+pub(crate) static PMJ02: PairTables = PairTables::new(&pmj02_matrices());
+
+/// Sobol' dimensions 0 and 1 of point `index` (the plain index, not reversed), both
+/// bit-reversed, computed without tables: dimension 0 (van der Corput) reversed is the index
+/// itself; dimension 1 (Pascal mod 2: digit `r` is the XOR of the index bits `c` with `r` a
+/// submask of `c`) is the superset-sum transform, five shift-mask-XOR steps.
+///
+/// ```
+/// use strata::digital::sobol01_rev;
+/// // the first four points: (0, 0), (1/2, 1/2), (1/4, 3/4), (3/4, 1/4)
+/// let p: Vec<[u32; 2]> = (0..4).map(|i| sobol01_rev(i).map(u32::reverse_bits)).collect();
+/// assert_eq!(p, [[0, 0], [1 << 31, 1 << 31], [1 << 30, 3 << 30], [3 << 30, 1 << 30]]);
+/// ```
+#[inline]
+pub const fn sobol01_rev(index: u32) -> [u32; 2] {
+    let mut y = index;
+    y ^= (y >> 1) & 0x5555_5555;
+    y ^= (y >> 2) & 0x3333_3333;
+    y ^= (y >> 4) & 0x0f0f_0f0f;
+    y ^= (y >> 8) & 0x00ff_00ff;
+    y ^= (y >> 16) & 0x0000_ffff;
+    [index, y]
+}
+
+/// pmj02's two dimensions of point `index` (plain), both bit-reversed, without tables.
+///
+/// With `s(n, k) = binom(floor(n / 2), k - ceil(n / 2)) mod 2` (the Stirling numbers of the
+/// first kind mod 2), digit `r` of `x` is the coefficient of `t^r` in `U(t + t^2) + t V(t +
+/// t^2)`, where `U` and `V` are the polynomials whose coefficients are the even and the odd
+/// index bits; `y` is `U(t + t^2) + (1 + t) V(t + t^2)`. Substituting `t + t^2` is four
+/// shift-mask-XOR steps on the spread bits.
+///
+/// ```
+/// use strata::digital::{pmj02_rev, sobol01_rev};
+/// // both are (0,2)-sequences: the first two points are (0, 0) and (1/2, 1/2)
+/// assert_eq!(pmj02_rev(1).map(u32::reverse_bits), [1 << 31, 1 << 31]);
+/// assert_eq!(pmj02_rev(0), sobol01_rev(0));
+/// ```
+#[inline]
+pub const fn pmj02_rev(index: u32) -> [u32; 2] {
+    let u = substitute(index & 0x5555_5555);
+    let v = substitute((index >> 1) & 0x5555_5555);
+    let x = u ^ (v << 1);
+    [x, x ^ v]
+}
+
+/// `W(t + t^2)` over GF(2) for `W(t) = sum_a w_a t^a`, `w_a` at bit `2a` (`a < 16`), as
+/// coefficients by bit. Bottom-up doubling: blocks of `2^(k+1)` bits hold the results for
+/// `2^k` coefficients; merging two blocks adds `(t^(2^k) + t^(2^(k+1))) P_hi`, and `P_hi` already
+/// sits at `t^(2^(k+1))`, so only `P_hi >> 2^k` is added.
+const fn substitute(mut w: u32) -> u32 {
+    w ^= (w & 0xcccc_cccc) >> 1;
+    w ^= (w & 0xf0f0_f0f0) >> 2;
+    w ^= (w & 0xff00_ff00) >> 4;
+    w ^= (w & 0xffff_0000) >> 8;
+    w
+}
+
+/// The matrix of a Sobol' dimension with primitive polynomial of degree `s`, inner
+/// coefficients `a` (bit `s - 1 - l` is `a_l`) and initial direction integers `m` (odd, `m_k <
+/// 2^k`), by the recurrence `V_k = V_{k-s} ^ (V_{k-s} >> s) ^ sum_{l=1}^{s-1} a_l V_{k-l}`.
+#[cfg(any(test, feature = "joe-kuo"))]
+pub(crate) fn direction_matrix(s: usize, a: u32, m: &[u32]) -> Matrix {
+    let mut v = [0u32; 33]; // 1-based
+    for k in 1..=32 {
+        if k <= s {
+            v[k] = m[k - 1] << (32 - k);
+        } else {
+            let mut x = v[k - s] ^ (v[k - s] >> s);
+            for l in 1..s {
+                if (a >> (s - 1 - l)) & 1 == 1 {
+                    x ^= v[k - l];
+                }
+            }
+            v[k] = x;
+        }
+    }
+    let mut out = [0u32; 32];
+    out.copy_from_slice(&v[1..]);
+    out
+}
+
+/// Sobol' dimensions 0 and 1, byte tables (built at compile time).
+static SOBOL_FIRST: [ByteTables; 2] = {
+    let m = sobol01_matrices();
+    [byte_tables(&m[0]), byte_tables(&m[1])]
+};
+
+/// Every Sobol' dimension the build has: matrices and byte tables.
+#[cfg(feature = "std")]
+struct SobolTables {
+    matrices: Vec<Matrix>,
+    bytes: Vec<ByteTables>,
+}
+
+#[cfg(feature = "std")]
+fn sobol_tables() -> &'static SobolTables {
+    static TABLES: std::sync::OnceLock<SobolTables> = std::sync::OnceLock::new();
+    TABLES.get_or_init(|| {
+        #[cfg_attr(not(feature = "joe-kuo"), allow(unused_mut))]
+        let mut matrices: Vec<Matrix> = sobol01_matrices().to_vec();
+        #[cfg(feature = "joe-kuo")]
+        {
+            // Row d of the file (d >= 2) is our dimension d - 1; dimension 1 (x + 1) is there.
+            let params = sobol::params::JoeKuoD6::standard();
+            for dim in params.dim_params.iter().skip(1) {
+                matrices.push(direction_matrix(dim.m.len(), dim.a, &dim.m));
+            }
+        }
+        let bytes = matrices.iter().map(byte_tables).collect();
+        SobolTables { matrices, bytes }
+    })
+}
+
+/// The byte tables of Sobol' dimension `dim`: dimensions 0 and 1 from the compile-time tables,
+/// the others (with `std`) from the lazily built ones; `None` past [`sobol_dimensions`].
+#[inline]
+pub(crate) fn sobol_byte_tables(dim: u32) -> Option<&'static ByteTables> {
+    if dim < 2 {
+        return Some(&SOBOL_FIRST[dim as usize]);
+    }
+    #[cfg(feature = "std")]
+    return sobol_tables().bytes.get(dim as usize);
+    #[cfg(not(feature = "std"))]
+    None
+}
+
+/// The number of Sobol' dimensions available (1000 with the `joe-kuo` feature, else 2).
+pub(crate) fn sobol_dimensions() -> u32 {
+    #[cfg(feature = "std")]
+    return sobol_tables().matrices.len() as u32;
+    #[cfg(not(feature = "std"))]
+    2
+}
+
+/// The generator matrix of Sobol' dimension `dim`.
+#[cfg(test)]
+pub(crate) fn sobol_matrix(dim: u32) -> Option<Matrix> {
+    #[cfg(feature = "std")]
+    return sobol_tables().matrices.get(dim as usize).copied();
+    #[cfg(not(feature = "std"))]
+    sobol01_matrices().get(dim as usize).copied()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `C bits(i)` by the definition.
+    fn apply(m: &Matrix, i: u32) -> u32 {
+        (0..32)
+            .filter(|k| (i >> k) & 1 == 1)
+            .fold(0, |x, k| x ^ m[k as usize])
+    }
+
+    fn indices() -> impl Iterator<Item = u32> {
+        let mut h = 9u64;
+        (0..4096u32)
+            .chain([u32::MAX, u32::MAX - 1, 1 << 31, 0xdead_beef])
+            .chain((0..20_000).map(move |_| {
+                h = crate::hash::mix64(h);
+                h as u32
+            }))
+    }
+
+    #[test]
+    fn tables_and_computed_forms_agree_with_the_matrices() {
+        let (s, p) = (sobol01_matrices(), pmj02_matrices());
+        for i in indices() {
+            let r = i.reverse_bits();
+            let want_s = [
+                apply(&s[0], i).reverse_bits(),
+                apply(&s[1], i).reverse_bits(),
+            ];
+            let want_p = [
+                apply(&p[0], i).reverse_bits(),
+                apply(&p[1], i).reverse_bits(),
+            ];
+            assert_eq!(SOBOL01.point_rev(r), want_s, "sobol table, index {i}");
+            assert_eq!(sobol01_rev(i), want_s, "sobol computed, index {i}");
+            assert_eq!(PMJ02.point_rev(r), want_p, "pmj02 table, index {i}");
+            assert_eq!(pmj02_rev(i), want_p, "pmj02 computed, index {i}");
+            for d in 0..2 {
+                assert_eq!(lookup(&SOBOL_FIRST[d], r), want_s[d]);
+            }
+        }
+    }
+
+    #[test]
+    fn the_first_dimensions_are_van_der_corput_and_pascal() {
+        let v: Vec<u32> = (0..4).map(|i| sobol01_rev(i)[0].reverse_bits()).collect();
+        assert_eq!(v, [0, 1 << 31, 1 << 30, 3 << 30]);
+        // dimension 1 is the recurrence with s = 1, a = 0, m = [1]
+        assert_eq!(sobol01_matrices()[1], direction_matrix(1, 0, &[1]));
+    }
+
+    #[test]
+    fn both_pairs_are_0_2_sequences() {
+        // every prefix and aligned block of 2^m points, m <= 12, fills every elementary interval
+        for point in [sobol01_rev, pmj02_rev] {
+            for m in 0..=12u32 {
+                let n = 1u32 << m;
+                for start in [0u32, n, 5 * n, 1 << 20] {
+                    for a in 0..=m {
+                        let mut seen = vec![false; n as usize];
+                        for i in start..start + n {
+                            let [x, y] = point(i).map(u32::reverse_bits);
+                            let top =
+                                |v: u32, b: u32| if b == 0 { 0 } else { (v >> (32 - b)) as usize };
+                            let cell = (top(y, m - a) << a) | top(x, a);
+                            assert!(
+                                !seen[cell],
+                                "m {m} start {start} shape {a}: cell {cell} twice"
+                            );
+                            seen[cell] = true;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Stirling numbers of the second kind mod 2 from their own recurrence
+    /// `S(n, k) = k S(n-1, k) + S(n-1, k-1)`.
+    fn stirling_second_mod2(n: usize, k: usize) -> u64 {
+        let mut t = vec![vec![0u64; n + 2]; n + 2];
+        t[0][0] = 1;
+        for i in 1..=n {
+            for j in 1..=i {
+                t[i][j] = ((j as u64 % 2) * t[i - 1][j] + t[i - 1][j - 1]) % 2;
+            }
+        }
+        t[n][k]
+    }
+
+    #[test]
+    fn xor_values_match_stirling_numbers_of_the_second_kind() {
+        for (k, (&x, &y)) in PMJ02_XORS[0]
+            .iter()
+            .zip(&PMJ02_XORS[1])
+            .enumerate()
+            .take(20)
+        {
+            let want_x: u32 = (0..k)
+                .map(|r| (stirling_second_mod2(k, r) as u32) << r)
+                .sum();
+            let want_y: u32 = (0..k)
+                .map(|r| (stirling_second_mod2(k + 1, r + 1) as u32) << r)
+                .sum();
+            assert_eq!(x, want_x, "x, k = {k}");
+            assert_eq!(y, want_y, "y, k = {k}");
+        }
+        // the first values, as published with the paper's supplemental code
+        assert_eq!(
+            &PMJ02_XORS[0][..11],
+            &[0, 0, 2, 6, 6, 0xe, 0x36, 0x4e, 0x16, 0x2e, 0x276]
+        );
+        assert_eq!(
+            &PMJ02_XORS[1][..11],
+            &[0, 1, 3, 3, 7, 0x1b, 0x27, 0xb, 0x17, 0x13b, 0x367]
+        );
+    }
+
+    #[test]
+    fn byte_tables_match_the_bit_loop() {
+        for dim in 0..sobol_dimensions().min(40) {
+            let m = sobol_matrix(dim).unwrap();
+            for i in [0u32, 1, 2, 3, 255, 256, 0x1234_5678, u32::MAX] {
+                let t = sobol_byte_tables(dim).unwrap();
+                assert_eq!(lookup(t, i.reverse_bits()).reverse_bits(), apply(&m, i));
+            }
+        }
+    }
+}

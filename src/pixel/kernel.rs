@@ -1,0 +1,272 @@
+//! The draw kernel: one 2D draw of the adapter as 32-bit integer arithmetic.
+//!
+//! Everything a draw of `random`, `sobol`, `pmj02`, `lattice`, `zsobol` or `zpmj02` computes
+//! between the image's [`Key`] and the draw's two 32-bit fixed-point values is here, written
+//! with 32-bit wrapping integer operations only (no `u64`, no `u128`): the arithmetic every GPU
+//! runs. The WGSL shader ([`super::WGSL`]) is a line-by-line port of this file, and the GPU test
+//! crate (`gpu/` in the repository) checks, on the Vulkan adapter present, that it computes the
+//! same bits over `2^22` tuples per sequence. What stays on the CPU, outside the kernel: the
+//! seed's expansion into the [`Key`] (once per image) and the fresh key of each block of `2^32`
+//! samples ([`Key::epoch`]).
+//!
+//! # One draw
+//!
+//! 1. **Pixel keys**: four words from the key and the pixel, each its own chain of two
+//!    `lowbias32` hashes (`pixel_keys`), so that two pixels share all four only with
+//!    probability about `2^-128`. For the Z-ordered sequences, inside the pixel's block of the
+//!    global sequence, the keys of its *tile* (`2^32` consecutive global indices) instead.
+//! 2. **Draw keys** from the pixel keys and the dimension (`DrawKeys::new`): the shuffle key
+//!    `h` (one multiply-xorshift of `dim ^ p0`, a bijection of the dimension, so that two draws
+//!    of one pixel never share it), the shuffle's even multiplier `e` (from `dim ^ p1`), and the
+//!    value keys `h ^ p2`, `h ^ p3`.
+//! 3. **The sequence**: the index's nested shuffle ([`crate::scramble::shuffle_rev`]) and the
+//!    digital point at the shuffled index, both Owen-scrambled ([`crate::scramble`]) for
+//!    `sobol`, `pmj02`, `zsobol`, `zpmj02`; the lattice point at the shuffled index plus a
+//!    toroidal shift for `lattice`; two hashes of an affine map of the index for `random`.
+
+use super::SampleIndex;
+use crate::digital::PairTables;
+use crate::hash::{hash32, mix64, stream_seed};
+use crate::morton::morton;
+use crate::sampler::Seed;
+use crate::samplers::lattice;
+use crate::scramble::{
+    Lanes, Pair, X4, owen_scramble_base4_rev, owen_scramble_lanes, shuffle_lanes,
+};
+
+/// The four 32-bit words every draw of an image is keyed by, expanded from the [`Seed`] once
+/// (on the CPU: [`Key::new`]); a shader receives them as a uniform
+/// ([`PixelSampler::gpu_parameters`](super::PixelSampler::gpu_parameters)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Key([u32; 4]);
+
+/// The stream of the seed from which the [`Key`] is expanded.
+const KEY_STREAM: u64 = 0x6b65_7934;
+
+impl Key {
+    /// The key of `seed`.
+    pub fn new(seed: Seed) -> Key {
+        let (a, b) = (
+            stream_seed(seed.0, KEY_STREAM),
+            stream_seed(seed.0, KEY_STREAM + 1),
+        );
+        Key([a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32])
+    }
+
+    /// The key's four words.
+    pub fn words(&self) -> [u32; 4] {
+        self.0
+    }
+
+    /// The key of the samples `e 2^32 ..< (e + 1) 2^32` (`e >= 1`): a fresh, independent copy
+    /// of every sequence for each block of `2^32` samples. Epoch 0 is the key itself.
+    pub fn epoch(&self, e: u32) -> Key {
+        if e == 0 {
+            return *self;
+        }
+        let k = self.0;
+        let (a, b) = (
+            stream_seed(k[0] as u64 | (k[1] as u64) << 32, e as u64),
+            stream_seed(k[2] as u64 | (k[3] as u64) << 32, e as u64),
+        );
+        Key([a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32])
+    }
+}
+
+/// The four keys of a pixel (or of a tile of a Z-ordered global sequence).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct PixelKeys(pub(crate) [u32; 4]);
+
+/// The keys of `pixel`: word `j` is `lowbias(x ^ lowbias(y ^ k_j))`, the four chains in four
+/// lanes.
+#[inline]
+pub(crate) fn pixel_keys(key: &Key, pixel: [u32; 2]) -> PixelKeys {
+    let k = X4::new(key.0);
+    let a = lowbias_lanes(k.xor(X4::splat(pixel[1])));
+    PixelKeys(lowbias_lanes(a.xor(X4::splat(pixel[0]))).to_array())
+}
+
+/// Wellons' `lowbias32` in every lane (as [`crate::hash::hash32`] with a zero key).
+#[inline(always)]
+fn lowbias_lanes<L: Lanes>(x: L) -> L {
+    let x = x.xor(x.shr::<16>()).mul(L::splat(0x7feb_352d));
+    let x = x.xor(x.shr::<15>()).mul(L::splat(0x846c_a68b));
+    x.xor(x.shr::<16>())
+}
+
+/// Salt of the Z-ordered sequences' pixel scramble key.
+const Z_PIXELS: u32 = 0x7a01_7a01;
+/// Salt of the Z-ordered sequences' global-sequence keys.
+const Z_DRAWS: u32 = 0x7a02_7a02;
+
+/// The keys of tile `tile` (global indices `tile 2^32 ..< (tile + 1) 2^32`) of the global
+/// sequence of the Z-ordered sequences.
+#[inline]
+pub(crate) fn tile_keys(key: &Key, tile: u32) -> PixelKeys {
+    PixelKeys(key.0.map(|k| hash32(tile, hash32(Z_DRAWS, k))))
+}
+
+/// The Z-ordered sequences' place of `pixel` along their global sequence: its Morton code
+/// under a nested base-4 scramble keyed by the image (which turns the Z curve's fixed pattern
+/// into a random one while keeping every aligned `2^k x 2^k` tile of pixels on consecutive
+/// blocks); `None` outside the `resolution`.
+#[inline]
+pub(crate) fn z_place(key: &Key, resolution: [u32; 2], pixel: [u32; 2]) -> Option<u32> {
+    if pixel[0] >= resolution[0] || pixel[1] >= resolution[1] {
+        return None;
+    }
+    let m = morton(pixel[0], pixel[1]).reverse_bits();
+    let k = hash32(key.0[0] ^ key.0[1], Z_PIXELS);
+    Some(owen_scramble_base4_rev(m, k).reverse_bits())
+}
+
+/// Where sample `index` (below `2^32`) of the pixel at place `z` reads along the global
+/// sequence of a Z-ordered sequence whose pixels take blocks of `2^bits` samples: the tile and
+/// the index inside it, `(tile, z 2^bits + index mod 2^32)`; `None` past the pixel's block.
+#[inline]
+pub(crate) fn z_global(z: u32, bits: u32, index: u32) -> Option<(u32, u32)> {
+    if bits >= 32 || index >> bits != 0 {
+        return None;
+    }
+    let tile = if bits == 0 { 0 } else { z >> (32 - bits) };
+    Some((tile, (z << bits) | index))
+}
+
+/// The keys of one draw (see the [module docs](self)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct DrawKeys {
+    /// The index shuffle's key (also the base of the value keys).
+    pub(crate) h: u32,
+    /// The index shuffle's even multiplier.
+    pub(crate) e: u32,
+    /// The keys of the two values' scrambles (or shifts).
+    pub(crate) v: [u32; 2],
+}
+
+impl DrawKeys {
+    /// The keys of the draw at `dim` of a pixel (or tile) with keys `p`.
+    #[inline(always)]
+    pub(crate) fn new(p: &PixelKeys, dim: u32) -> Self {
+        let p = p.0;
+        let x = (dim ^ p[0]).wrapping_mul(0x7feb_352d);
+        let h = x ^ (x >> 15);
+        let e = (dim ^ p[1]).wrapping_mul(0x9e37_79b9) & !1;
+        DrawKeys {
+            h,
+            e,
+            v: [h ^ p[2], h ^ p[3]],
+        }
+    }
+
+    /// A well-mixed 64-bit stream of the draw, for the sequences that are not part of the
+    /// kernel (`jittered`, `halton`).
+    #[inline]
+    pub(crate) fn stream(&self) -> u64 {
+        mix64((self.v[0] as u64) << 32 | self.h as u64)
+    }
+}
+
+/// `random`: two `lowbias32` hashes of an affine map of the index, `index m + v` with an odd
+/// multiplier `m` and an offset `v` per draw and coordinate. (An index XOR-ed or added to a key
+/// would not do: two draws whose keys differ by less than the sample count would read the same
+/// hash inputs in another order, a permutation of each other's values, which the pair test
+/// catches.)
+#[inline(always)]
+pub(crate) fn random<P: Pair>(k: &DrawKeys, index: SampleIndex) -> P {
+    let m = P::new([k.e | 1, k.e.rotate_left(16) | 1]);
+    lowbias_lanes(P::splat(index.get()).mul(m).add(P::new(k.v)))
+}
+
+/// The shuffled index of a draw, bit-reversed: the first `2^m` samples of a draw go to an
+/// aligned block of `2^m` indices of the sequence, in an order of their own.
+#[inline(always)]
+pub(crate) fn shuffled(k: &DrawKeys, index: SampleIndex) -> u32 {
+    shuffle_lanes(index.reversed(), k.e, k.h)
+}
+
+/// `sobol`, `pmj02`, `zsobol`, `zpmj02`: the digital (0,2)-sequence of `table` at the shuffled
+/// index, each coordinate Owen-scrambled under its value key; values in natural bit order.
+#[inline(always)]
+pub(crate) fn digital<P: Pair>(table: &PairTables, k: &DrawKeys, index: SampleIndex) -> P {
+    let p = P::new(table.point_rev(shuffled(k, index)));
+    owen_scramble_lanes(p, P::new(k.v)).reverse_bits()
+}
+
+/// `lattice`: the rank-1 lattice point at the shuffled index (the shuffled index reversed is
+/// its radical inverse, the lattice's `phi_2`), shifted on the torus by the value keys.
+#[inline(always)]
+pub(crate) fn lattice<P: Pair>(k: &DrawKeys, index: SampleIndex) -> P {
+    let r = shuffled(k, index);
+    lattice::point_lanes(r, P::new(k.v))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::digital::{PMJ02, SOBOL01, pmj02_rev, sobol01_rev};
+    use crate::scramble::X2;
+
+    #[test]
+    fn the_simd_pair_computes_the_reference_bits() {
+        let key = Key::new(Seed(3));
+        for (px, py) in [(0u32, 0u32), (7, 1), (u32::MAX, 12)] {
+            let p = pixel_keys(&key, [px, py]);
+            for dim in [0u32, 2, 9, 1000, u32::MAX] {
+                let k = DrawKeys::new(&p, dim);
+                for i in [0u32, 1, 2, 3, 77, 65535, 65536, u32::MAX] {
+                    let s = SampleIndex::new(i);
+                    for table in [&SOBOL01, &PMJ02] {
+                        let want: [u32; 2] = digital(table, &k, s);
+                        assert_eq!(digital::<X2>(table, &k, s).to_array(), want);
+                        assert_eq!(
+                            digital::<X2>(table, &k, s).unit_f32().map(f32::to_bits),
+                            want.unit_f32().map(f32::to_bits)
+                        );
+                    }
+                    let want: [u32; 2] = random(&k, s);
+                    assert_eq!(random::<X2>(&k, s).to_array(), want);
+                    let want: [u32; 2] = lattice(&k, s);
+                    assert_eq!(lattice::<X2>(&k, s).to_array(), want);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_tables_equal_the_shader_s_table_free_forms() {
+        // the shader computes the digital points from the plain index; the CPU reads tables
+        let mut h = 1u64;
+        for _ in 0..100_000 {
+            h = mix64(h);
+            let r = h as u32;
+            assert_eq!(SOBOL01.point_rev(r), sobol01_rev(r.reverse_bits()));
+            assert_eq!(PMJ02.point_rev(r), pmj02_rev(r.reverse_bits()));
+        }
+    }
+
+    #[test]
+    fn z_places_are_a_bijection_and_global_indices_stay_in_their_tile() {
+        let key = Key::new(Seed(9));
+        let mut seen = std::collections::HashSet::new();
+        for y in 0..64 {
+            for x in 0..64 {
+                let z = z_place(&key, [64, 64], [x, y]).unwrap();
+                assert!(seen.insert(z));
+                // aligned 2^k x 2^k tiles of pixels keep consecutive places
+                for k in 1..6 {
+                    let corner = z_place(&key, [64, 64], [x >> k << k, y >> k << k]).unwrap();
+                    assert_eq!(z >> (2 * k), corner >> (2 * k), "tile {k} of {x},{y}");
+                }
+            }
+        }
+        assert_eq!(z_place(&key, [64, 64], [64, 0]), None);
+        assert_eq!(z_global(5, 4, 3), Some((0, 5 * 16 + 3)));
+        assert_eq!(z_global(5, 4, 16), None);
+        assert_eq!(
+            z_global(u32::MAX, 31, 7),
+            Some(((1 << 31) - 1, (u32::MAX << 31) | 7))
+        );
+        assert_eq!(z_global(9, 0, 0), Some((0, 9)));
+        assert_eq!(z_global(9, 0, 1), None);
+    }
+}
