@@ -30,7 +30,7 @@ Usage:
   cargo run --release --example conformance -- --sampler NAME [options]
 
 Options:
-  --sampler NAME|all  the sequence: random, jittered, pmj02, sobol, halton, or all of them
+  --sampler NAME|all  the sequence: {SEQUENCES}, or all of them
   --spp N             samples per pixel, 16 to 1048576 (default 4096)
   --dims D            dimensions per sample, 2 to 64 (default 8: four 2D draws)
   --pixels K          pixels tested, 1 to 256 (default 8: neighbours and distant ones)
@@ -61,7 +61,7 @@ fn parse() -> Result<Option<Args>, CliError> {
     use lexopt::prelude::*;
     let mut samplers = None;
     let mut suite = Suite::default();
-    let mut markdown = None;
+    let mut markdown: Option<std::path::PathBuf> = None;
     let mut pairs = false;
     let mut seeds_given = false;
     let default_pixels = suite.pixels.clone();
@@ -107,7 +107,10 @@ fn parse() -> Result<Option<Args>, CliError> {
             Long("markdown") => markdown = Some(parser.value()?.into()),
             Long("pairs") => pairs = true,
             Short('h') | Long("help") => {
-                println!("{HELP}");
+                outln!(
+                    "{}",
+                    HELP.replace("{SEQUENCES}", &Sequence::NAMES.join(", "))
+                )?;
                 return Ok(None);
             }
             other => return Err(common::unexpected(other, USAGE)),
@@ -122,6 +125,10 @@ fn parse() -> Result<Option<Args>, CliError> {
     };
     if pairs && !seeds_given {
         suite.seeds = vec![1];
+    }
+    if let Some(m) = &markdown {
+        let section = if pairs { "pair-test" } else { "conformance" };
+        common::check_markdown(m, section)?;
     }
     suite.check()?;
     Ok(Some(Args {
@@ -159,7 +166,7 @@ fn pair_tests(args: &Args, failed: &mut bool) -> Result<(), CliError> {
                 ..study.clone()
             }
             .run(source.as_ref())?;
-            println!("{name}, seed {seed}: {report}");
+            outln!("{name}, seed {seed}: {report}")?;
             maxima.push(report.max);
             for (t, k) in tails.iter_mut().zip([1, 2, 3]) {
                 *t += report.above[k].1;
@@ -193,7 +200,7 @@ fn pair_tests(args: &Args, failed: &mut bool) -> Result<(), CliError> {
             start.elapsed().as_secs_f64()
         );
     }
-    println!("\n{table}");
+    outln!("\n{table}")?;
     if let Some(path) = &args.markdown {
         common::write_markdown_section(
             path,
@@ -234,7 +241,7 @@ fn main() -> ExitCode {
             eprintln!("conformance: {name} ...");
             let start = Instant::now();
             let report = args.suite.run_sequence(sequence)?;
-            println!("## {name}\n\n{report}\n");
+            outln!("## {name}\n\n{report}\n")?;
             eprintln!(
                 "conformance: {name} took {:.1} s",
                 start.elapsed().as_secs_f64()

@@ -58,10 +58,18 @@ Columns (one row per set, then the mean of each file's sets):
   osc         oscillations: the PSA spectral measures (Heck et al. 2013), 2D sets of at most
               65536 points
 
-The pairwise sums are O(n^2 d): sets above 65536 points show '-' for them.";
+The pairwise sums are O(n^2 d): sets with n^2 d above 2^33 (65536 points in 2D, 2930 in 1000
+dimensions, a few seconds each) show '-' for them. Each file is labelled by its name without
+the extension; files whose names would give the same label keep their extension, then a
+number ('pts.csv', 'pts-2.csv').";
 
-/// The most points per set for the O(n^2) discrepancies.
-const MAX_PAIRWISE: usize = 1 << 16;
+/// The most work, `n^2 d`, of the O(n^2 d) discrepancies of one set.
+const MAX_PAIRWISE_WORK: u128 = 1 << 33;
+
+/// Whether the O(n^2 d) sums of a set of `n` points in `d` dimensions are within the bound.
+fn pairwise_allowed(n: usize, d: usize) -> bool {
+    (n as u128) * (n as u128) * (d as u128) <= MAX_PAIRWISE_WORK
+}
 
 struct Args {
     files: Vec<PathBuf>,
@@ -88,12 +96,15 @@ fn parse() -> Result<Option<Args>, CliError> {
                 spectrum::check_resolution(args.resolution)?;
             }
             Short('h') | Long("help") => {
-                println!("{HELP}");
+                outln!("{HELP}")?;
                 return Ok(None);
             }
             Value(v) => args.files.push(v.into()),
             other => return Err(common::unexpected(other, USAGE)),
         }
+    }
+    if let Some(dir) = &args.out {
+        common::check_output_dir(dir)?;
     }
     if args.files.is_empty() {
         return Err(cli_error(format!(
@@ -120,7 +131,7 @@ fn measure(set: &PointSet) -> Result<Row, strata::Error> {
     let (n, d) = (set.len(), set.dims);
     let mut v: [Option<f64>; COLUMNS.len()] = Default::default();
     let c = &set.coords;
-    if n <= MAX_PAIRWISE {
+    if pairwise_allowed(n, d) {
         v[0] = Some(discrepancy::l2_star(c, d)?);
         v[1] = Some(discrepancy::wrap_around_squared(c, d)?);
         v[2] = Some(discrepancy::centered_squared(c, d)?);
@@ -164,10 +175,43 @@ fn cell(v: Option<f64>) -> String {
     }
 }
 
-fn file_label(path: &Path) -> String {
-    path.file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| path.display().to_string())
+/// A label per file, unique: the name without its extension, or with it where two files would
+/// share a label, then a number.
+fn file_labels(paths: &[PathBuf]) -> Vec<String> {
+    let stem = |p: &Path| {
+        p.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| p.display().to_string())
+    };
+    let name = |p: &Path| {
+        p.file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| p.display().to_string())
+    };
+    let stems: Vec<String> = paths.iter().map(|p| stem(p)).collect();
+    let mut labels: Vec<String> = paths
+        .iter()
+        .zip(&stems)
+        .map(|(p, s)| {
+            if stems.iter().filter(|t| *t == s).count() > 1 {
+                name(p)
+            } else {
+                s.clone()
+            }
+        })
+        .collect();
+    let mut seen = std::collections::HashMap::<String, usize>::new();
+    for l in labels.iter_mut() {
+        let k = seen.entry(l.clone()).or_insert(0);
+        *k += 1;
+        if *k > 1 {
+            *l = match l.rsplit_once('.') {
+                Some((a, b)) if !a.is_empty() => format!("{a}-{k}.{b}"),
+                _ => format!("{l}-{k}"),
+            };
+        }
+    }
+    labels
 }
 
 fn main() -> ExitCode {
@@ -176,14 +220,23 @@ fn main() -> ExitCode {
         let mut table = format!("| file | set | n | d | {} |\n", COLUMNS.join(" | "));
         table.push_str(&format!("|{}\n", "---|".repeat(COLUMNS.len() + 4)));
         let mut csv = format!("file,set,n,d,{}\n", COLUMNS.join(","));
-        for path in &args.files {
+        let labels = file_labels(&args.files);
+        for (path, label) in args.files.iter().zip(labels) {
             let sets = pointsets::read_file(path)?;
             let rows: Vec<Row> = sets
                 .par_iter()
                 .map(measure)
                 .collect::<Result<_, strata::Error>>()?;
-            let label = file_label(path);
             let same_shape = rows.iter().all(|r| (r.n, r.d) == (rows[0].n, rows[0].d));
+            if let Some(r) = rows.iter().find(|r| !pairwise_allowed(r.n, r.d)) {
+                eprintln!(
+                    "measure: {label}: n^2 d = {} for n = {}, d = {} is above \
+                     {MAX_PAIRWISE_WORK}; the discrepancies are shown as '-'",
+                    r.n as u128 * r.n as u128 * r.d as u128,
+                    r.n,
+                    r.d
+                );
+            }
             let mut lines: Vec<(String, &Row)> = rows
                 .iter()
                 .enumerate()
@@ -229,7 +282,7 @@ fn main() -> ExitCode {
                 }
             }
         }
-        print!("{table}");
+        common::out(&table)?;
         if let Some(dir) = &args.out {
             io::write_text(dir.join("measures.csv"), &csv)?;
         }

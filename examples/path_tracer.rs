@@ -1,6 +1,9 @@
 //! The smallest complete use of the path-tracer adapter: the soft shadow of a sphere under a
-//! square area light, one `PixelSampler` per thread, written as `out/path_tracer.pgm`.
-//! `cargo run --release --example path_tracer`
+//! square area light, one `PixelSampler` per thread, written as `DIR/path_tracer.pgm`.
+//! `cargo run --release --example path_tracer [-- --out DIR]` (default `out`)
+use std::path::PathBuf;
+use std::process::ExitCode;
+
 use glam::Vec3;
 use strata::{PixelSampler, Seed, Sequence};
 
@@ -23,7 +26,49 @@ fn shade(s: &mut PixelSampler, x: u32, y: u32) -> f32 {
     }
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+const HELP: &str = "path_tracer: the smallest complete use of strata's path-tracer adapter; \
+writes DIR/path_tracer.pgm (256 x 256, 64 spp of pmj02)\n\nUsage: path_tracer [--out DIR]\n  \
+--out DIR   where to write (default: out)\n  -h, --help  this text";
+
+fn main() -> ExitCode {
+    let mut out = PathBuf::from("out");
+    let mut args = std::env::args_os().skip(1);
+    while let Some(a) = args.next() {
+        match a.to_str() {
+            Some("-h" | "--help") => return say(HELP),
+            Some("--out") => match args.next() {
+                Some(d) if !d.is_empty() => out = PathBuf::from(d),
+                _ => return fail("--out needs a directory"),
+            },
+            _ => {
+                return fail(&format!(
+                    "unknown argument {a:?}; usage: path_tracer [--out DIR]"
+                ));
+            }
+        }
+    }
+    match render(&out) {
+        Ok(msg) => say(&msg),
+        Err(e) => fail(&e.to_string()),
+    }
+}
+
+/// Prints a line: a closed pipe ends the program quietly (status 141), another failure says so.
+fn say(text: &str) -> ExitCode {
+    use std::io::Write;
+    match writeln!(std::io::stdout(), "{text}") {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::from(141),
+        Err(e) => fail(&format!("writing to standard output: {e}")),
+    }
+}
+
+fn fail(msg: &str) -> ExitCode {
+    eprintln!("path_tracer: error: {msg}");
+    ExitCode::from(2)
+}
+
+fn render(out: &std::path::Path) -> Result<String, strata::Error> {
     let sampler = PixelSampler::new(Sequence::pmj02(), SPP, Seed(1))?;
     let mut image = vec![0.0f32; (SIZE * SIZE) as usize];
     std::thread::scope(|scope| {
@@ -40,18 +85,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             });
         }
     });
-    std::fs::create_dir_all("out")?;
     let bytes: Vec<u8> = image
         .iter()
         .map(|v| (v.min(1.0).powf(1.0 / 2.2) * 255.0) as u8)
         .collect();
-    std::fs::write(
-        "out/path_tracer.pgm",
-        [format!("P5 {SIZE} {SIZE} 255\n").as_bytes(), &bytes].concat(),
+    let path = out.join("path_tracer.pgm");
+    // never half written; a failure names the file and the reason
+    strata::io::write_file(
+        &path,
+        &[format!("P5 {SIZE} {SIZE} 255\n").as_bytes(), &bytes].concat(),
     )?;
-    println!(
-        "wrote out/path_tracer.pgm ({SIZE}x{SIZE}, {SPP} spp); mean {:.4}",
+    Ok(format!(
+        "wrote {} ({SIZE}x{SIZE}, {SPP} spp); mean {:.4}",
+        path.display(),
         image.iter().sum::<f32>() / image.len() as f32
-    );
-    Ok(())
+    ))
 }

@@ -17,6 +17,15 @@ use strata::pixel::{PixelSampler, Sequence};
 use strata::pointsets::{self, Format};
 use strata::registry::{self, Params};
 
+/// The most values (`N x D`) one run prints.
+const MAX_VALUES: u64 = 1 << 27;
+
+/// The most dimensions `--png` draws (every 2D projection: `D^2` tiles).
+const MAX_PNG_DIMS: usize = 64;
+
+/// Runs of at least this many values print a line on stderr before and after making them.
+const LONG_RUN_VALUES: u64 = 1 << 22;
+
 const USAGE: &str = "points --sampler NAME -n N [--seed S] [--dims D] [--pixel X,Y] [--radius RHO] \
 [--iterations K] [--strength T] [--candidates K] [--capacity C] [--resolution WxH] [--png FILE] \
 [--format csv|utk|bin] [--no-header] [--list]";
@@ -125,18 +134,18 @@ fn parse() -> Result<Option<Args>, CliError> {
                     } else {
                         "fixed-count"
                     };
-                    println!(
+                    outln!(
                         "{:<16} {:<12} {:<16} {}",
                         e.name,
                         kind,
                         e.counts.to_string(),
                         e.description
-                    );
+                    )?;
                 }
                 return Ok(None);
             }
             Short('h') | Long("help") => {
-                println!("{HELP}");
+                outln!("{HELP}")?;
                 return Ok(None);
             }
             other => return Err(common::unexpected(other, USAGE)),
@@ -160,6 +169,13 @@ fn main() -> ExitCode {
         })?;
         // the adapter's sequences (with --pixel) include ones that are not registered samplers
         let entry = if args.pixel.is_some() {
+            if let Some((p, _)) = args.params.given().first() {
+                return Err(cli_error(format!(
+                    "--{} is a sampler parameter; with --pixel the path-tracer sequences take \
+                     none (allowed with --pixel: --seed, --dims, --resolution)",
+                    p.name()
+                )));
+            }
             None
         } else {
             Some(registry::find(&name)?)
@@ -167,6 +183,32 @@ fn main() -> ExitCode {
         let mut params = args.params.clone();
         params.count = n;
         let dims = args.dims as usize;
+        // bounded before anything is allocated: the values, and the picture's canvas
+        if n as u128 * dims as u128 > MAX_VALUES as u128 {
+            return Err(cli_error(format!(
+                "-n {n} x --dims {dims} = {} values is too many; allowed: at most {MAX_VALUES} \
+                 (2^27, 512 MB)",
+                n as u128 * dims as u128
+            )));
+        }
+        if args.png.is_some() && dims > MAX_PNG_DIMS {
+            return Err(cli_error(format!(
+                "--png draws every 2D projection of the {dims} dimensions ({} of them); \
+                 allowed: --dims at most {MAX_PNG_DIMS} with --png",
+                dims * dims
+            )));
+        }
+        if let Some(path) = &args.png
+            && path.as_os_str().is_empty()
+        {
+            return Err(cli_error("--png: an empty file name"));
+        }
+        // a long run says what it is doing (on stderr; stdout holds the values)
+        let started = std::time::Instant::now();
+        let long_run = n * dims as u64 >= LONG_RUN_VALUES;
+        if long_run {
+            eprintln!("points: {n} points of {name} in {dims} dimensions ...");
+        }
         // rows of `dims` values, point-major
         let mut values = vec![0f32; n as usize * dims];
         let mut grids = Vec::new();
@@ -209,12 +251,20 @@ fn main() -> ExitCode {
                 .expect("no --pixel")
                 .build_nd(&params, args.dims as u32)?;
             sampler.fill(&mut values);
-            // the grid of each 2D projection, row y, column x
-            projection_grids = (0..dims * dims)
-                .map(|k| sampler.projection_strata((k % dims) as u32, (k / dims) as u32))
-                .collect();
+            // the grid of each 2D projection, row y, column x (only for the picture)
+            if args.png.is_some() {
+                projection_grids = (0..dims * dims)
+                    .map(|k| sampler.projection_strata((k % dims) as u32, (k / dims) as u32))
+                    .collect();
+            }
         }
 
+        if long_run {
+            eprintln!(
+                "points: made in {:.1} s; writing",
+                started.elapsed().as_secs_f64()
+            );
+        }
         if let Some(path) = &args.png {
             let canvas = if dims > 2 {
                 // the matrix of all 2D projections
@@ -242,7 +292,7 @@ fn main() -> ExitCode {
                         .downcast_ref::<std::io::Error>()
                         .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe) =>
                 {
-                    Ok(())
+                    Err(CliError::BrokenPipe)
                 }
                 other => other.map_err(Into::into),
             };
@@ -270,10 +320,7 @@ fn main() -> ExitCode {
             }
             out.flush()
         })();
-        match result {
-            // A closed pipe (`points ... | head`) is not an error of ours.
-            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-            other => other.map_err(|e| cli_error(format!("writing to stdout: {e}"))),
-        }
+        // a closed pipe (`points ... | head`) ends quietly (status 141); a full disk says so
+        result.map_err(common::stdout_error)
     })
 }

@@ -48,14 +48,16 @@ Options:
   --samplers a,b,..|all  samplers with a path-tracer adapter: random, jittered, pmj02, sobol,
                          halton, lattice, zsobol, zpmj02 (default all; the Z-ordered ones
                          for the image size)
-  --spp N[,N,..]         samples per pixel, one or more counts (default 4,16,64,256; each 1 to
-                         65536; jittered needs squares)
-  --size WxH             image size (default 128x128; each side 8 to 4096)
+  --spp N[,N,..]         samples per pixel, one to eight counts (default 4,16,64,256; each 1
+                         to 65536; jittered needs squares)
+  --size WxH             image size (default 128x128; each side 8 to 1024: every sequence and
+                         count keeps its image until the pictures are drawn, about 1.2 GB at
+                         1024x1024 with four counts)
   --scene NAME           cornell (default: a Cornell box, up to 8 bounces, two lights, a
                          discrete light and lobe choice, Russian roulette, thin lens) or spheres
                          (direct lighting, seven dimensions)
   --reference-spp N      samples per pixel of the reference (default 16 x the largest count,
-                         at least 1024, at most 65536)
+                         at least 1024, at most 65536; never below the largest count)
   --seed S               seed of the samplers (u64, default 1; the reference has its own)
   --seeds K              renders per sampler and count, seeds S to S+K-1 (default 4, 1 to
                          64): rmse and rel_rmse are over all of them (the root of the mean
@@ -136,6 +138,12 @@ fn parse() -> Result<Option<Args>, CliError> {
                     .collect::<Result<_, _>>()?;
                 a.spp.sort_unstable();
                 a.spp.dedup();
+                if a.spp.len() > MAX_COUNTS {
+                    return Err(cli_error(format!(
+                        "--spp lists {} counts; allowed: at most {MAX_COUNTS}",
+                        a.spp.len()
+                    )));
+                }
             }
             Long("reference-spp") => {
                 let v = string_value("--reference-spp", p.value()?)?;
@@ -156,13 +164,13 @@ fn parse() -> Result<Option<Args>, CliError> {
                 let v = string_value("--size", p.value()?)?;
                 let bad = || {
                     cli_error(format!(
-                        "--size {v:?} is not WxH; allowed: two whole numbers 8 to 4096, e.g. 128x128"
+                        "--size {v:?} is not WxH; allowed: two whole numbers 8 to {MAX_SIDE}, e.g. 128x128"
                     ))
                 };
                 let (w, h) = v.split_once(['x', 'X']).ok_or_else(bad)?;
                 a.size = (
-                    parse_int("--size", w, 8, 4096)? as u32,
-                    parse_int("--size", h, 8, 4096)? as u32,
+                    parse_int("--size", w, 8, MAX_SIDE)? as u32,
+                    parse_int("--size", h, 8, MAX_SIDE)? as u32,
                 );
             }
             Long("seeds") => {
@@ -176,14 +184,45 @@ fn parse() -> Result<Option<Args>, CliError> {
             Long("out") => a.out = p.value()?.into(),
             Long("markdown") => a.markdown = Some(p.value()?.into()),
             Short('h') | Long("help") => {
-                println!("{HELP}");
+                outln!("{HELP}")?;
                 return Ok(None);
             }
             other => return Err(common::unexpected(other, USAGE)),
         }
     }
+    let largest = *a.spp.last().expect("at least one count");
+    if let Some(r) = a.reference_spp
+        && r < largest
+    {
+        return Err(cli_error(format!(
+            "--reference-spp {r} is below the largest --spp {largest}: the error would be \
+                 measured against a noisier image; allowed: {largest} to 65536"
+        )));
+    }
+    common::check_output_dir(&a.out)?;
+    if let Some(m) = &a.markdown {
+        common::check_markdown(m, &markdown_section(&a))?;
+    }
     Ok(Some(a))
 }
+
+/// The name of the `--markdown` section a run writes: `render-SCENE-COUNTS`.
+fn markdown_section(args: &Args) -> String {
+    let scene = match args.scene {
+        SceneKind::Cornell => "cornell",
+        SceneKind::Spheres => "spheres",
+    };
+    let counts: Vec<String> = args.spp.iter().map(|n| n.to_string()).collect();
+    format!("render-{scene}-{}", counts.join(","))
+}
+
+/// The largest image side: every sequence at eight counts keeps its images and error images
+/// until the pictures are drawn, about 37 bytes per pixel per (sequence, count): at 1024 x 1024
+/// about 1.2 GB with the default four counts, 2.4 GB at eight.
+const MAX_SIDE: u64 = 1024;
+
+/// The most sample counts in `--spp`.
+const MAX_COUNTS: usize = 8;
 
 // ---------------------------------------------------------------------------------------------
 // Geometry shared by the scenes
@@ -645,23 +684,36 @@ fn render(
     spp: u32,
     size: (u32, u32),
     seed: u64,
+    progress: Option<&str>,
 ) -> Result<Vec<Vec3>, strata::Error> {
     let sampler = PixelSampler::new(sequence, spp, strata::Seed(seed))?;
-    let image = (0..size.1)
+    let rows_done = std::sync::atomic::AtomicU32::new(0);
+    let rows: Vec<Vec<Vec3>> = (0..size.1)
         .into_par_iter()
-        .flat_map_iter(|y| {
+        .map(|y| {
             let mut s = sampler.clone();
-            (0..size.0).map(move |x| {
-                let mut sum = Vec3::ZERO;
-                for i in 0..spp {
-                    s.start_pixel_sample([x, y], i as u64, 0);
-                    sum += radiance(x, y, size, &mut s, scene);
+            let row = (0..size.0)
+                .map(|x| {
+                    let mut sum = Vec3::ZERO;
+                    for i in 0..spp {
+                        s.start_pixel_sample([x, y], i as u64, 0);
+                        sum += radiance(x, y, size, &mut s, scene);
+                    }
+                    sum / spp as f32
+                })
+                .collect();
+            if let Some(label) = progress {
+                // a line at every tenth of the rows, so a long reference shows how far it got
+                let done = rows_done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                let tenth = |k: u32| (k as u64 * 10 / size.1 as u64) as u32;
+                if tenth(done) > tenth(done - 1) {
+                    eprintln!("{label}: {}0% of the rows", tenth(done));
                 }
-                sum / spp as f32
-            })
+            }
+            row
         })
         .collect();
-    Ok(image)
+    Ok(rows.concat())
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -860,7 +912,14 @@ fn main() -> ExitCode {
             size.0, size.1
         );
         let start = Instant::now();
-        let reference = render(&scene, Sequence::sobol(), ref_spp, size, 0x5eed_0000_0001)?;
+        let reference = render(
+            &scene,
+            Sequence::sobol(),
+            ref_spp,
+            size,
+            0x5eed_0000_0001,
+            Some("reference"),
+        )?;
         eprintln!("reference: {:.1} s", start.elapsed().as_secs_f64());
         io::write_png(args.out.join("reference.png"), &to_canvas(&reference, size))?;
 
@@ -871,7 +930,14 @@ fn main() -> ExitCode {
                 let (mut blur1, mut blur2, mut lowband, mut errors) = (0.0, 0.0, 0.0, None);
                 for k in 0..args.seeds as u64 {
                     let start = Instant::now();
-                    let image = render(&scene, seq.clone(), spp, size, args.seed.wrapping_add(k))?;
+                    let image = render(
+                        &scene,
+                        seq.clone(),
+                        spp,
+                        size,
+                        args.seed.wrapping_add(k),
+                        None,
+                    )?;
                     ms += start.elapsed().as_secs_f64() * 1e3 / args.seeds as f64;
                     let n = image.len() as f64 * args.seeds as f64;
                     mse += image
@@ -953,7 +1019,7 @@ fn main() -> ExitCode {
                 r.name, r.spp, r.rmse, r.rel_rmse, r.ms, r.blur1, r.blur2, r.lowband
             ));
         }
-        print!("{full}");
+        common::out(&full)?;
         io::write_text(args.out.join("render.csv"), &csv)?;
         write_blue_noise(&args, &rows)?;
 
@@ -1000,24 +1066,13 @@ fn main() -> ExitCode {
             plot.series
                 .push(Series::new(label, pts, io::PALETTE[k % io::PALETTE.len()]));
         }
-        println!("\n{table}");
+        outln!("\n{table}")?;
         let trade = write_trade(&args, &sequences, &rows)?;
-        println!("{trade}");
+        outln!("{trade}")?;
         if let Some(path) = &args.markdown {
             common::write_markdown_section(
                 path,
-                &format!(
-                    "render-{}-{}",
-                    match args.scene {
-                        SceneKind::Cornell => "cornell",
-                        SceneKind::Spheres => "spheres",
-                    },
-                    args.spp
-                        .iter()
-                        .map(|n| n.to_string())
-                        .collect::<Vec<_>>()
-                        .join(",")
-                ),
+                &markdown_section(&args),
                 &format!(
                     "RMSE of linear radiance against the reference ({} scene, {}x{}, reference: \
                      Sobol' at {ref_spp} spp), root of the mean over pixels, channels and {} \

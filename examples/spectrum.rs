@@ -80,10 +80,11 @@ fn parse() -> Result<Option<Args>, CliError> {
         match arg {
             Long("sampler") => a.sampler = string_value("--sampler", p.value()?)?,
             Short('n') => {
+                // two points at least: the spacing measures need a neighbour
                 a.n = Some(parse_int(
                     "-n",
                     &string_value("-n", p.value()?)?,
-                    1,
+                    2,
                     MAX_CLI_COUNT,
                 )?)
             }
@@ -108,11 +109,15 @@ fn parse() -> Result<Option<Args>, CliError> {
             Long("no-overview") => a.overview = false,
             Long("markdown") => a.markdown = Some(p.value()?.into()),
             Short('h') | Long("help") => {
-                println!("{HELP}");
+                outln!("{HELP}")?;
                 return Ok(None);
             }
             other => return Err(common::unexpected(other, USAGE)),
         }
+    }
+    common::check_output_dir(&a.out)?;
+    if let Some(m) = &a.markdown {
+        common::check_markdown(m, "spectrum")?;
     }
     Ok(Some(a))
 }
@@ -274,6 +279,23 @@ fn main() -> ExitCode {
         } else {
             vec![registry::find(&args.sampler)?]
         };
+        // a parameter that no chosen sampler takes is refused, as `points` refuses it (with
+        // 'all', each sampler gets the parameters it takes)
+        for (p, _) in args.params.given() {
+            if !entries.iter().any(|e| e.takes(p)) {
+                let takers: Vec<&str> = registry::entries()
+                    .iter()
+                    .filter(|e| e.takes(p))
+                    .map(|e| e.name)
+                    .collect();
+                return Err(cli_error(format!(
+                    "--{} is not a parameter of {}; samplers that take it: {}",
+                    p.name(),
+                    args.sampler,
+                    takers.join(", ")
+                )));
+            }
+        }
         let n = args.n.unwrap_or(1024);
         let mut plan = Vec::new();
         for e in &entries {
@@ -337,7 +359,7 @@ fn main() -> ExitCode {
                 fmt_opt(m.oscillations)
             ));
         }
-        print!("{table}");
+        common::out(&table)?;
         if let Some(path) = &args.markdown {
             common::write_markdown_section(
                 path,
@@ -353,12 +375,12 @@ fn main() -> ExitCode {
                 ),
             )?;
         }
-        println!(
+        outln!(
             "\nwrote {} sampler(s) into {} in {:.1} s",
             outcomes.len(),
             args.out.display(),
             started.elapsed().as_secs_f64()
-        );
+        )?;
         Ok(())
     })
 }

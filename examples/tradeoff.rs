@@ -188,11 +188,16 @@ fn parse() -> Result<Option<Args>, CliError> {
             Long("out") => a.out = p.value()?.into(),
             Long("markdown") => a.markdown = Some(p.value()?.into()),
             Short('h') | Long("help") => {
-                println!("{HELP}");
+                outln!("{HELP}")?;
                 return Ok(None);
             }
             other => return Err(common::unexpected(other, USAGE)),
         }
+    }
+    common::check_output_dir(&a.out)?;
+    if let Some(m) = &a.markdown {
+        common::check_markdown(m, "tradeoff")?;
+        common::check_markdown(m, "time-to-error")?;
     }
     Ok(Some(a))
 }
@@ -526,12 +531,12 @@ fn main() -> ExitCode {
                 cells.join(" | ")
             ));
         }
-        print!("{table}");
+        common::out(&table)?;
         let mut times = String::new();
         for &f in &args.integrands {
             times.push_str(&format!("\n{}", time_table(&tte, f, &args.targets)));
         }
-        print!("{times}");
+        common::out(&times)?;
         if let Some(path) = &args.markdown {
             common::write_markdown_section(
                 path,
@@ -555,13 +560,13 @@ fn main() -> ExitCode {
             }
             common::write_markdown_section(path, "time-to-error", &body)?;
         }
-        println!(
+        outln!(
             "\nslope of log variance against log N [95% interval] (published rate); N = {}..{}; {:.1} s; files in {}",
             args.min_n,
             args.max_n,
             start.elapsed().as_secs_f64(),
             args.out.display()
-        );
+        )?;
         Ok(())
     })
 }

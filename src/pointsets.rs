@@ -174,10 +174,36 @@ impl Format {
     }
 }
 
+/// The largest point file [`read_file`] reads: 512 MiB.
+pub const MAX_FILE_BYTES: u64 = 512 << 20;
+
 /// Reads every point set of a file, in the format its content shows ([`Format::detect`]).
+///
+/// At most [`MAX_FILE_BYTES`] are read: a larger file, or a device or pipe that gives more (such
+/// as `/dev/zero`), is an error, never an unbounded read.
 pub fn read_file(path: impl AsRef<Path>) -> Result<Vec<PointSet>> {
+    use std::io::Read;
     let path = path.as_ref();
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let too_large = || {
+        Error::io(
+            path,
+            format!("more than {MAX_FILE_BYTES} bytes, the most a point file may hold"),
+        )
+    };
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    if file
+        .metadata()
+        .is_ok_and(|m| m.is_file() && m.len() > MAX_FILE_BYTES)
+    {
+        return Err(too_large());
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| Error::io(path, e))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(too_large());
+    }
     parse(&bytes).map_err(|e| match e {
         Error::InvalidInput { message, .. } => {
             Error::input(CONTEXT, format!("{}: {message}", path.display()))
@@ -188,6 +214,8 @@ pub fn read_file(path: impl AsRef<Path>) -> Result<Vec<PointSet>> {
 
 /// Parses point sets in the format the bytes show.
 pub fn parse(bytes: &[u8]) -> Result<Vec<PointSet>> {
+    // a UTF-8 byte-order mark before text
+    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
     match Format::detect(bytes) {
         Format::UtkBin => parse_utk_bin(bytes),
         format => {
@@ -268,20 +296,23 @@ fn collect_sets<'a>(
     Ok(sets)
 }
 
-/// Parses a CSV point set: an optional header (lines before the first point whose first field
-/// is not a number), then one point per line.
+/// Parses a CSV point set: at most one header line (the first non-empty line, when none of its
+/// fields is a number), then one point per line. A UTF-8 byte-order mark at the start is
+/// skipped. A later line that is not all numbers is an error that names its line and column.
 pub fn parse_csv(text: &str) -> Result<PointSet> {
-    let mut seen_point = false;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut first = true;
     let rows = text.lines().enumerate().filter_map(|(i, l)| {
         let l = l.trim();
         if l.is_empty() {
             return None;
         }
         let fields: Vec<&str> = l.split(',').map(str::trim).collect();
-        if !seen_point && fields[0].parse::<f64>().is_err() {
-            return None; // a header line
+        let header = first && fields.iter().all(|f| f.parse::<f64>().is_err());
+        first = false;
+        if header {
+            return None;
         }
-        seen_point = true;
         Some((i + 1, Some(fields)))
     });
     let mut sets = collect_sets(rows)?;

@@ -82,6 +82,14 @@ pub trait Sampler: Send {
         }
     }
 
+    /// Moves `n` samples on in constant time, as `n` calls of
+    /// [`next_sample`](Sampler::next_sample) would, where the sampler can (true: Sobol', the
+    /// lattice); otherwise does nothing and returns false.
+    fn skip(&mut self, n: u64) -> bool {
+        let _ = n;
+        false
+    }
+
     /// The strata grids, coarsest first, in which the first `n` samples lie one per cell (empty
     /// when the sampler promises none at that count). Used to draw grids and by tests.
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
@@ -173,6 +181,9 @@ impl Sampler for Box<dyn Sampler> {
     fn fill(&mut self, out: &mut [Point2]) {
         (**self).fill(out)
     }
+    fn skip(&mut self, n: u64) -> bool {
+        (**self).skip(n)
+    }
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
         (**self).strata(n)
     }
@@ -194,5 +205,8 @@ impl SamplerNd for Box<dyn Sampler> {
         for (o, v) in out.iter_mut().zip([p.x, p.y]) {
             *o = v;
         }
+    }
+    fn skip(&mut self, n: u64) -> bool {
+        (**self).skip(n)
     }
 }

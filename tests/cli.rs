@@ -3,30 +3,13 @@
 
 #![cfg(feature = "io")]
 
+mod common;
+
+use common::example_bin;
 use std::path::PathBuf;
 use std::process::Command;
 
 use strata::registry::{self, Params};
-
-/// An example binary that `cargo test` builds next to the test executables (built here when
-/// only this test target was asked for).
-fn example_bin(name: &str) -> Option<PathBuf> {
-    let exe = std::env::current_exe().ok()?;
-    let dir = exe.parent()?.parent()?; // target/<profile>/deps -> target/<profile>
-    let bin = dir
-        .join("examples")
-        .join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
-    if !bin.exists() {
-        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-        let mut cmd = Command::new(cargo);
-        cmd.args(["build", "--example", name]);
-        if dir.file_name()? == "release" {
-            cmd.arg("--release");
-        }
-        cmd.status().ok()?;
-    }
-    bin.exists().then_some(bin)
-}
 
 fn points_bin() -> Option<PathBuf> {
     example_bin("points")

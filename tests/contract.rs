@@ -188,3 +188,40 @@ fn samplers_report_their_progression() {
         assert_eq!(s.name(), entry.name);
     }
 }
+
+#[test]
+fn skip_lands_where_drawing_would_or_moves_nothing() {
+    let mut skipping = Vec::new();
+    for entry in registry::entries()
+        .iter()
+        .filter(|e| e.progressive && !e.expensive)
+    {
+        for k in [0u64, 1, 7, 1000, 4099] {
+            let params = Params::new(64).seed(5);
+            let mut s = entry.build(&params).unwrap();
+            let mut drawn = entry.build(&params).unwrap();
+            take(drawn.as_mut(), k as usize);
+            if s.skip(k) {
+                skipping.push(entry.name);
+                assert_eq!(
+                    take(s.as_mut(), 33),
+                    take(drawn.as_mut(), 33),
+                    "{}: skip({k})",
+                    entry.name
+                );
+            } else {
+                let mut fresh = entry.build(&params).unwrap();
+                assert_eq!(
+                    take(s.as_mut(), 9),
+                    take(fresh.as_mut(), 9),
+                    "{}",
+                    entry.name
+                );
+            }
+        }
+    }
+    // the constant-time skips the docs promise (Python's fast_forward relies on them)
+    for name in ["sobol", "lattice"] {
+        assert!(skipping.contains(&name), "{name} does not skip");
+    }
+}

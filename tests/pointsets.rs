@@ -63,3 +63,73 @@ proptest! {
         }
     }
 }
+
+/// A UTK binary header (magic, f32, then the three counts) followed by `values` f32 zeros.
+fn utk_bin(sets: u32, points: u32, dims: u32, values: usize) -> Vec<u8> {
+    let mut b = b"UTK!".to_vec();
+    b.extend_from_slice(&[4, 0, 0, 0]);
+    for c in [sets, points, dims] {
+        b.extend_from_slice(&c.to_le_bytes());
+    }
+    b.resize(b.len().max(20), 0);
+    b.extend(std::iter::repeat_n(0u8, values * 4));
+    b
+}
+
+#[test]
+fn hostile_files_are_refused_or_read_in_full() {
+    // a byte-order mark is not a header: the first row is kept (issue 24, row 3)
+    let bom = pointsets::parse(b"\xef\xbb\xbf0.1,0.2\n0.3,0.4\n0.5,0.6\n").unwrap();
+    assert_eq!(bom[0].len(), 3);
+    assert_eq!(
+        pointsets::parse_csv("\u{feff}x,y\n0.1,0.2\n")
+            .unwrap()
+            .len(),
+        1
+    );
+    // a typo in the first row is an error, not a header; two header lines are an error
+    for text in [
+        "0.1a,0.2\n0.3,0.4\n",
+        "x,y\nu,v\n0.3,0.4\n",
+        "\u{feff}a\nb\n0.1\n",
+    ] {
+        let e = pointsets::parse_csv(text).unwrap_err().to_string();
+        assert!(e.contains("is not a number"), "{text:?}: {e}");
+    }
+    // UTK binary files whose counts lie about the data: more, fewer, or overflowing
+    for (sets, points, dims, values) in [
+        (1, 4, 2, 7),
+        (1, 4, 2, 9),
+        (2, 4, 2, 8),
+        (u32::MAX, u32::MAX, u32::MAX, 4),
+        (1, 1 << 31, 1 << 31, 2),
+    ] {
+        let e = pointsets::parse_utk_bin(&utk_bin(sets, points, dims, values))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("UTK binary"), "{e}");
+    }
+    assert_eq!(
+        pointsets::parse_utk_bin(&utk_bin(2, 4, 2, 16))
+            .unwrap()
+            .len(),
+        2
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 500, ..ProptestConfig::default() })]
+
+    /// A byte-order mark changes nothing: a CSV reads the same with and without one.
+    #[test]
+    fn a_byte_order_mark_changes_nothing(sets in some_sets(), header in any::<bool>()) {
+        let mut text = valid(Format::Csv, &sets[..1]);
+        if !header {
+            let cut = text.iter().position(|&b| b == b'\n').unwrap() + 1;
+            text.drain(..cut);
+        }
+        let mut marked = b"\xef\xbb\xbf".to_vec();
+        marked.extend_from_slice(&text);
+        prop_assert_eq!(pointsets::parse(&marked).unwrap(), pointsets::parse(&text).unwrap());
+    }
+}

@@ -9,31 +9,73 @@ use std::process::ExitCode;
 /// The largest count the example programs accept (the library itself may go further).
 pub const MAX_CLI_COUNT: u64 = 1 << 26;
 
-/// A command-line failure: a one-line message for stderr.
+/// A command-line failure: a one-line message for stderr (exit status 2), or standard output
+/// closed under the program (a pipe whose reader left: exit quietly with status 141, as a
+/// process ended by `SIGPIPE` appears to the shell).
 #[derive(Debug)]
-pub struct CliError(pub String);
+pub enum CliError {
+    /// What went wrong, for stderr.
+    Message(String),
+    /// Standard output is a closed pipe.
+    BrokenPipe,
+}
 
 impl<E: std::error::Error> From<E> for CliError {
     fn from(e: E) -> Self {
-        CliError(e.to_string())
+        CliError::Message(e.to_string())
     }
 }
 
 /// Shorthand for a `CliError` from anything printable.
 pub fn cli_error(msg: impl Display) -> CliError {
-    CliError(msg.to_string())
+    CliError::Message(msg.to_string())
 }
 
-/// Runs `body`, printing its error as one line on stderr (exit status 2), or `--help` text.
+/// Runs `body`, printing its error as one line on stderr (exit status 2); standard output is
+/// flushed and checked at the end, and a closed pipe ends the program quietly (status 141).
 pub fn run(program: &str, body: impl FnOnce() -> Result<(), CliError>) -> ExitCode {
-    match body() {
+    let result = body().and_then(|()| {
+        use std::io::Write;
+        std::io::stdout().flush().map_err(stdout_error)
+    });
+    match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(CliError(msg)) => {
+        Err(CliError::BrokenPipe) => ExitCode::from(141),
+        Err(CliError::Message(msg)) => {
             let one_line = msg.replace('\n', " ");
             eprintln!("{program}: error: {one_line}");
             ExitCode::from(2)
         }
     }
+}
+
+/// A failed write to standard output: a closed pipe, or another error (a full device...).
+pub fn stdout_error(e: std::io::Error) -> CliError {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        CliError::BrokenPipe
+    } else {
+        cli_error(format!("writing to standard output: {e}"))
+    }
+}
+
+/// Writes `text` to standard output, flushed, every failure said (see [`stdout_error`]).
+pub fn out(text: impl Display) -> Result<(), CliError> {
+    use std::io::Write;
+    let mut o = std::io::stdout().lock();
+    write!(o, "{text}")
+        .and_then(|()| o.flush())
+        .map_err(stdout_error)
+}
+
+/// `println!` that fails instead of panicking: [`out`] with a newline; use with `?`.
+#[macro_export]
+macro_rules! outln {
+    () => {
+        $crate::common::out("\n")
+    };
+    ($($arg:tt)*) => {
+        $crate::common::out(format_args!("{}\n", format_args!($($arg)*)))
+    };
 }
 
 /// The value of a flag as a UTF-8 string.
@@ -145,14 +187,103 @@ pub fn write_markdown_section(
         args.join(" "),
         body.trim_end()
     );
-    let old = std::fs::read_to_string(path).unwrap_or_default();
-    let new = match (old.find(&begin), old.find(&end)) {
-        (Some(a), Some(b)) if b > a => format!("{}{section}{}", &old[..a], &old[b + end.len()..]),
-        _ if old.is_empty() => format!("{section}\n"),
-        _ => format!("{}\n\n{section}\n", old.trim_end()),
-    };
+    let old = read_markdown(path)?;
+    let new = splice_section(path, &old, name, &section)?;
     strata::io::write_text(path, &new)?;
     Ok(())
+}
+
+/// `old` with section `name` replaced by `section` (appended when the file has no such
+/// section); an error, naming `path`, when the section's markers appear more than once, out of
+/// order, or one without the other.
+fn splice_section(
+    path: &std::path::Path,
+    old: &str,
+    name: &str,
+    section: &str,
+) -> Result<String, CliError> {
+    let (begin, end) = (
+        format!("<!-- begin {name} -->"),
+        format!("<!-- end {name} -->"),
+    );
+    let where_ = |text: &str| -> Result<Option<usize>, CliError> {
+        let mut found = old.match_indices(text).map(|(i, _)| i);
+        let first = found.next();
+        if found.next().is_some() {
+            return Err(cli_error(format!(
+                "{}: the marker {text} appears more than once; the file was left untouched",
+                path.display()
+            )));
+        }
+        Ok(first)
+    };
+    match (where_(&begin)?, where_(&end)?) {
+        (Some(a), Some(b)) if b > a => {
+            Ok(format!("{}{section}{}", &old[..a], &old[b + end.len()..]))
+        }
+        (None, None) if old.is_empty() => Ok(format!("{section}\n")),
+        (None, None) => Ok(format!("{}\n\n{section}\n", old.trim_end())),
+        _ => Err(cli_error(format!(
+            "{}: the markers of section '{name}' are out of order or one is missing \
+             ({begin} must come before {end}); the file was left untouched",
+            path.display()
+        ))),
+    }
+}
+
+/// Checks, before any work, that `--markdown FILE` can be rewritten: an error now rather than
+/// after the work when it is not a regular UTF-8 file or its directory cannot be written.
+pub fn check_markdown(path: &std::path::Path, name: &str) -> Result<(), CliError> {
+    splice_section(path, &read_markdown(path)?, name, "")?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => std::path::Path::new("."),
+    };
+    check_output_dir(dir).map_err(|e| match e {
+        CliError::Message(m) => cli_error(format!("--markdown {}: {m}", path.display())),
+        other => other,
+    })
+}
+
+/// The largest Markdown file `--markdown` rewrites.
+const MAX_MARKDOWN_BYTES: u64 = 16 << 20;
+
+/// The current text of a Markdown file that `--markdown` rewrites: empty when it does not exist
+/// yet; an error (and nothing written) when it is not a regular file, cannot be read, is larger
+/// than 16 MiB, or is not UTF-8.
+fn read_markdown(path: &std::path::Path) -> Result<String, CliError> {
+    use std::io::Read;
+    let untouched = |why: String| {
+        cli_error(format!(
+            "{}: {why}; --markdown rewrites a regular UTF-8 Markdown file, which was left \
+             untouched",
+            path.display()
+        ))
+    };
+    let meta = match std::fs::metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(String::new()),
+        Err(e) => return Err(untouched(format!("cannot be read ({e})"))),
+    };
+    if !meta.is_file() {
+        return Err(untouched("not a regular file".to_string()));
+    }
+    if meta.len() > MAX_MARKDOWN_BYTES {
+        return Err(untouched(format!(
+            "{} bytes, more than {MAX_MARKDOWN_BYTES}",
+            meta.len()
+        )));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_MARKDOWN_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(|e| untouched(format!("cannot be read ({e})")))?;
+    String::from_utf8(bytes).map_err(|e| {
+        untouched(format!(
+            "not UTF-8 text (an invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        ))
+    })
 }
 
 /// A progress line on stderr when it is not a terminal (where the progress bar is hidden):
@@ -162,4 +293,27 @@ pub fn progress_line(text: impl Display) {
     if !std::io::stderr().is_terminal() {
         eprintln!("{text}");
     }
+}
+
+/// Checks, before any work, that the output directory `dir` can be written: created when
+/// missing, and a probe file written and removed in it. An empty path, a path that is a file,
+/// or a directory that cannot be written is an error that names it.
+pub fn check_output_dir(dir: &std::path::Path) -> Result<(), CliError> {
+    if dir.as_os_str().is_empty() {
+        return Err(cli_error(
+            "--out: an empty directory name; give a directory, e.g. --out out",
+        ));
+    }
+    if dir.exists() && !dir.is_dir() {
+        return Err(cli_error(format!(
+            "--out {}: exists and is not a directory",
+            dir.display()
+        )));
+    }
+    std::fs::create_dir_all(dir)
+        .map_err(|e| cli_error(format!("--out {}: cannot be created ({e})", dir.display())))?;
+    let probe = dir.join(format!(".strata-probe-{}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .and_then(|()| std::fs::remove_file(&probe))
+        .map_err(|e| cli_error(format!("--out {}: cannot be written ({e})", dir.display())))
 }

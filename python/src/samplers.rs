@@ -125,7 +125,7 @@ impl PySampler {
         let (inner, drawn) = &mut *guard;
         let skipped = match inner {
             Inner::Nd(s) => s.skip(n),
-            Inner::Two(_) => false,
+            Inner::Two(s) => strata::Sampler::skip(s.as_mut(), n),
         };
         if skipped {
             *drawn += n;
@@ -293,11 +293,11 @@ const MAX_LISTED_RANGE: u64 = 1 << 24;
 #[pyfunction]
 fn allowed_counts(name: &str, lo: u64, hi: u64) -> PyResult<Vec<u64>> {
     let e = registry::find(name).map_err(to_py_err)?;
-    if matches!(e.counts, CountRule::Any) && hi.saturating_sub(lo) > MAX_LISTED_RANGE {
+    if matches!(e.counts, CountRule::Any) && hi.saturating_sub(lo) >= MAX_LISTED_RANGE {
         return Err(value_error(format!(
             "{} takes any count; listing {lo} to {hi} would make {} numbers (at most {MAX_LISTED_RANGE})",
             e.name,
-            hi - lo + 1
+            hi as u128 - lo as u128 + 1
         )));
     }
     Ok(e.counts.counts_between(lo, hi))

@@ -255,6 +255,32 @@ pub fn check(config: &Config) -> Result<()> {
             ),
         ));
     }
+    // every sampler must serve at least one integrand: a 2D one, or one in as many
+    // dimensions as it has (else it would give no rows, silently)
+    for e in &config.samplers {
+        if !config
+            .integrands
+            .iter()
+            .any(|f| f.dimensions() == 2 || e.has_dimensions())
+        {
+            let names: Vec<&str> = config.integrands.iter().map(|f| f.name()).collect();
+            let can: Vec<&str> = crate::registry::entries()
+                .iter()
+                .filter(|x| x.has_dimensions())
+                .map(|x| x.name)
+                .collect();
+            return Err(Error::input(
+                "study::check",
+                format!(
+                    "{} has 2 dimensions and cannot serve {} (more dimensions); samplers that \
+                     can: {}; or add a 2D integrand",
+                    e.name,
+                    names.join(", "),
+                    can.join(", ")
+                ),
+            ));
+        }
+    }
     for e in &config.samplers {
         if counts_for(e.counts, config.min_n, config.max_n).is_empty() {
             return Err(Error::input(

@@ -23,26 +23,103 @@ use crate::sampler::{Point2, StrataGrid};
 #[cfg(feature = "spectrum")]
 use crate::spectrum::{RadialBin, Spectrum};
 
-/// Writes `canvas` as an 8-bit RGB PNG (through `image`), creating the parent directory when
-/// missing.
+/// Writes `canvas` as an 8-bit RGB PNG (through `image`), as [`write_file`] writes: never half
+/// written, every byte checked.
 pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
     use image::ImageEncoder;
-    let path = path.as_ref();
-    create_parent(path)?;
-    let file = std::fs::File::create(path).map_err(|e| crate::Error::io(path, e))?;
     use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-    PngEncoder::new_with_quality(
-        std::io::BufWriter::new(file),
-        CompressionType::Default,
-        FilterType::Adaptive,
-    )
-    .write_image(
-        canvas.data(),
-        canvas.width(),
-        canvas.height(),
-        image::ExtendedColorType::Rgb8,
-    )
-    .map_err(|e| crate::Error::io(path, e))
+    let path = path.as_ref();
+    let mut bytes = Vec::new();
+    PngEncoder::new_with_quality(&mut bytes, CompressionType::Default, FilterType::Adaptive)
+        .write_image(
+            canvas.data(),
+            canvas.width(),
+            canvas.height(),
+            image::ExtendedColorType::Rgb8,
+        )
+        .map_err(|e| crate::Error::io(path, e))?;
+    write_file(path, &bytes)
+}
+
+/// Writes `bytes` to `path` so that a failure never leaves a truncated file, and says every
+/// failure: the file named and the operating system's reason.
+///
+/// A regular file, or a path where nothing exists yet, is written to a temporary file in the
+/// same directory, flushed to the disk and renamed over the target, so that a full disk or a
+/// crash in mid-write leaves the old file whole (a symbolic link is followed: its target is
+/// replaced, the link kept; the old file's permissions are kept). Anything else (a device such
+/// as `/dev/stdout` or `/dev/full`, a pipe) is written in place and flushed, and a failed write
+/// is an error. A missing parent directory is created.
+///
+/// ```
+/// let dir = std::env::temp_dir().join(format!("strata-doc-{}", std::process::id()));
+/// let path = dir.join("a.txt");
+/// strata::io::write_file(&path, b"hello")?;
+/// assert_eq!(std::fs::read(&path).unwrap(), b"hello");
+/// # std::fs::remove_dir_all(&dir).unwrap();
+/// // a full device: an error, not a silent truncated file
+/// # #[cfg(target_os = "linux")]
+/// assert!(strata::io::write_file("/dev/full", b"hello").is_err());
+/// # Ok::<(), strata::Error>(())
+/// ```
+pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
+    let path = path.as_ref();
+    if path.as_os_str().is_empty() {
+        return Err(Error::io(path, "an empty file name"));
+    }
+    let meta = std::fs::metadata(path);
+    match &meta {
+        Ok(m) if !m.is_file() && !m.is_dir() => return write_in_place(path, bytes),
+        Ok(m) if m.is_dir() => return Err(Error::io(path, "a directory, not a file")),
+        _ => {}
+    }
+    // follow a symbolic link to the file it names
+    let target = if meta.is_ok() {
+        std::fs::canonicalize(path).map_err(|e| Error::io(path, e))?
+    } else {
+        path.to_path_buf()
+    };
+    create_parent(&target)?;
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    };
+    let name = target
+        .file_name()
+        .ok_or_else(|| Error::io(path, "not a file name"))?
+        .to_string_lossy()
+        .into_owned();
+    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let tmp = dir.join(format!(".{name}.{}.{n}.tmp", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)?;
+        f.write_all(bytes)?;
+        f.flush()?;
+        f.sync_all()?;
+        if let Ok(m) = &meta {
+            std::fs::set_permissions(&tmp, m.permissions())?;
+        }
+        std::fs::rename(&tmp, &target)
+    })();
+    result.map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::io(path, e)
+    })
+}
+
+/// Writes into something that is not a regular file (a device, a pipe), checking every write.
+fn write_in_place(path: &Path, bytes: &[u8]) -> Result<()> {
+    let mut f = std::fs::OpenOptions::new()
+        .write(true)
+        .open(path)
+        .map_err(|e| Error::io(path, e))?;
+    f.write_all(bytes)
+        .and_then(|()| f.flush())
+        .map_err(|e| Error::io(path, e))
 }
 
 /// Creates the directory `path` will be written into, if it has one and it is missing.
@@ -181,7 +258,6 @@ pub fn draw_spectrum(spectrum: &Spectrum, scale: u32) -> Canvas {
 pub fn write_spectrum_exr(path: impl AsRef<Path>, spectrum: &Spectrum) -> Result<()> {
     use exr::prelude::*;
     let path = path.as_ref();
-    create_parent(path)?;
     let side = spectrum.side();
     let mut values = Vec::with_capacity(side * side);
     for row in (0..side).rev() {
@@ -198,10 +274,12 @@ pub fn write_spectrum_exr(path: impl AsRef<Path>, spectrum: &Spectrum) -> Result
         Encoding::FAST_LOSSLESS,
         AnyChannels::sort(vec![channel].into()),
     );
+    let mut bytes = std::io::Cursor::new(Vec::new());
     Image::from_layer(layer)
         .write()
-        .to_file(path)
-        .map_err(|e| crate::Error::io(path, e))
+        .to_buffered(&mut bytes)
+        .map_err(|e| crate::Error::io(path, e))?;
+    write_file(path, &bytes.into_inner())
 }
 
 /// Reads a single-channel `Y` f32 EXR written by [`write_spectrum_exr`]: `(width, height,
@@ -239,13 +317,9 @@ pub fn write_radial_csv(path: impl AsRef<Path>, bins: &[RadialBin]) -> Result<()
     write_text(path, &text)
 }
 
-/// Writes `text` to `path`, creating the parent directory when missing.
+/// Writes `text` to `path` as [`write_file`] writes: never half written, every byte checked.
 pub fn write_text(path: impl AsRef<Path>, text: &str) -> Result<()> {
-    let path = path.as_ref();
-    create_parent(path)?;
-    let mut f = std::fs::File::create(path).map_err(|e| crate::Error::io(path, e))?;
-    f.write_all(text.as_bytes())
-        .map_err(|e| crate::Error::io(path, e))
+    write_file(path, text.as_bytes())
 }
 
 /// Writes the files of one pattern's expected spectrum into `dir`, as the `spectrum` and

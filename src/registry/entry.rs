@@ -144,15 +144,22 @@ impl CountRule {
         Ok(count as u32)
     }
 
-    /// The allowed count nearest to `n` (the smaller one on a tie), at least 1.
+    /// The allowed count nearest to `n` (the smaller one on a tie): a count [`check`] accepts,
+    /// so at least 1 and at most [`MAX_FIXED_COUNT`], for every `n`.
+    ///
+    /// [`check`]: CountRule::check
     pub fn nearest(&self, n: u64) -> u64 {
-        let n = n.max(1);
+        let n = n.clamp(1, MAX_FIXED_COUNT);
         match self {
             CountRule::Any => n,
             CountRule::Square => {
                 let r = n.isqrt();
                 let (lo, hi) = (r * r, (r + 1) * (r + 1));
-                if lo >= 1 && n - lo <= hi - n { lo } else { hi }
+                if hi > MAX_FIXED_COUNT || (lo >= 1 && n - lo <= hi - n) {
+                    lo
+                } else {
+                    hi
+                }
             }
             CountRule::OaPower(_) => {
                 let all = self.counts_between(1, n.saturating_mul(4).max(1 << 12));
@@ -163,14 +170,23 @@ impl CountRule {
                 .unwrap_or(1),
             CountRule::PowerOfTwo => {
                 let lo = 1u64 << (63 - n.leading_zeros());
-                if n - lo <= lo { lo } else { lo << 1 }
+                if n - lo <= lo || lo << 1 > MAX_FIXED_COUNT {
+                    lo
+                } else {
+                    lo << 1
+                }
             }
         }
     }
 
-    /// The allowed counts in `[min, max]`, in increasing order.
+    /// The allowed counts in `[min, max]`, in increasing order (none above
+    /// [`MAX_FIXED_COUNT`], which [`check`](CountRule::check) refuses).
     pub fn counts_between(&self, min: u64, max: u64) -> Vec<u64> {
         let min = min.max(1);
+        let max = max.min(MAX_FIXED_COUNT);
+        if min > max {
+            return Vec::new();
+        }
         match self {
             CountRule::Any => (min..=max).collect(),
             CountRule::Square => {

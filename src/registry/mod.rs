@@ -117,6 +117,45 @@ mod tests {
     }
 
     #[test]
+    fn nearest_and_listed_counts_are_accepted_over_the_whole_range() {
+        // issue 24, row 5: nearest(2^64 - 1) was 0 for squares and counts past the largest
+        // allowed for the orthogonal arrays and n-rooks
+        for e in entries().iter().filter(|e| !e.progressive) {
+            for n in [
+                0,
+                1,
+                2,
+                1 << 31,
+                (1 << 31) + 1,
+                1 << 32,
+                1 << 40,
+                u64::MAX - 1,
+                u64::MAX,
+            ] {
+                let c = e.counts.nearest(n);
+                assert!(
+                    e.counts.check(e.name, c).is_ok(),
+                    "{}: nearest({n}) = {c} is refused",
+                    e.name
+                );
+            }
+            let listed = e.counts.counts_between(u64::MAX - 1000, u64::MAX);
+            assert!(listed.is_empty(), "{}: {listed:?}", e.name);
+            if !matches!(e.counts, CountRule::Any) {
+                for c in e
+                    .counts
+                    .counts_between(0, u64::MAX)
+                    .into_iter()
+                    .rev()
+                    .take(3)
+                {
+                    assert!(e.counts.check(e.name, c).is_ok(), "{}: lists {c}", e.name);
+                }
+            }
+        }
+    }
+
+    #[test]
     fn names_are_unique() {
         let mut n = names();
         n.sort();

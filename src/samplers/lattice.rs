@@ -149,6 +149,14 @@ impl Sampler for Lattice {
         self.sample(i as u32)
     }
 
+    /// Constant time: the epoch and the index, re-keyed when the epoch changes.
+    fn skip(&mut self, n: u64) -> bool {
+        if let Some(e) = self.epochs.skip(n) {
+            self.key = self.epochs.key(e);
+        }
+        true
+    }
+
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
         if n.is_power_of_two() && n <= 1 << 31 {
             vec![

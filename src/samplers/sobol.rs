@@ -224,6 +224,7 @@ pub(crate) const ENTRY: Entry = Entry {
 #[derive(Clone, Debug)]
 pub struct Sobol {
     epochs: Epochs,
+    seed: u64,
     scramble: Scramble,
 }
 
@@ -232,6 +233,7 @@ impl Sobol {
     pub fn new(seed: Seed) -> Self {
         Sobol {
             epochs: Epochs::new(seed, MAX_SEQUENCE_LEN),
+            seed: seed.0,
             scramble: Scramble::new(seed.0),
         }
     }
@@ -269,6 +271,18 @@ impl Sampler for Sobol {
     fn next_sample(&mut self) -> Point2 {
         let i = advance(&mut self.epochs, &mut self.scramble);
         self.sample(i)
+    }
+
+    /// Constant time: the epoch and the index, re-keyed when the epoch changes.
+    fn skip(&mut self, n: u64) -> bool {
+        if let Some(e) = self.epochs.skip(n) {
+            self.scramble = if e == 0 {
+                Scramble::new(self.seed)
+            } else {
+                Scramble::new(self.epochs.key(e))
+            };
+        }
+        true
     }
 
     fn strata(&self, n: u64) -> Vec<StrataGrid> {

@@ -92,3 +92,31 @@ pub fn torus_distance_squared(a: [f64; 2], b: [f64; 2]) -> f64 {
     };
     d(a[0], b[0]).powi(2) + d(a[1], b[1]).powi(2)
 }
+
+/// An example binary, built with the profile of the running tests (`cargo test` has built it
+/// already, and the build is then a no-op; a filtered run such as `cargo test --test cli`
+/// builds it here, so that a stale binary from an earlier build is never the one tested).
+pub fn example_bin(name: &str) -> Option<std::path::PathBuf> {
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    static BUILT: OnceLock<Mutex<HashMap<String, bool>>> = OnceLock::new();
+    let exe = std::env::current_exe().ok()?;
+    let dir = exe.parent()?.parent()?; // target/<profile>/deps -> target/<profile>
+    let bin = dir
+        .join("examples")
+        .join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+    let mut built = BUILT.get_or_init(Default::default).lock().ok()?;
+    if !built.contains_key(name) {
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let mut cmd = std::process::Command::new(cargo);
+        cmd.args(["build", "--quiet", "--example", name]);
+        if dir.file_name()? == "release" {
+            cmd.arg("--release");
+        } else {
+            cmd.args(["--profile", "test"]);
+        }
+        let ok = cmd.status().map(|s| s.success()).unwrap_or(false);
+        built.insert(name.to_string(), ok);
+    }
+    (built[name] && bin.exists()).then_some(bin)
+}

@@ -346,7 +346,7 @@ def min_distance(points: Any, *, relative: bool = False) -> float:
 def relative_radius_max(n: int) -> float:
     """``r_max(n) = sqrt(2 / (sqrt(3) n))``: the neighbour distance of ``n`` points in a
     hexagonal packing of the unit torus."""
-    return float(_strata.relative_radius_max(_v.whole(n, "n", 0, 2**63 - 1)))
+    return float(_strata.relative_radius_max(_v.whole(n, "n", 1, 2**63 - 1)))
 
 
 def discrepancy(points: Any, method: str = "CD") -> float:
@@ -464,5 +464,10 @@ def _convergence_callable(
 def fit_slope(x: Iterable[float], y: Iterable[float]) -> Optional[float]:
     """The least-squares slope of ``log y`` against ``log x`` over the pairs with ``x, y > 0``
     (``None`` with fewer than two): the convergence rate of a variance against ``N``."""
+    x, y = list(x), list(y)
+    if len(x) != len(y):
+        raise ValueError(
+            f"fit_slope: x has {len(x)} values and y {len(y)}; they must pair up one to one"
+        )
     pairs = [(float(a), float(b)) for a, b in zip(x, y)]
     return _strata.fit_slope(pairs)

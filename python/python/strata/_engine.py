@@ -11,6 +11,9 @@ from scipy.stats import qmc
 from . import _strata
 from . import _validate as _v
 
+#: The most points ``fast_forward`` draws and drops for a sampler that cannot skip.
+_MAX_DROPPED = 1 << 31
+
 #: Points drawn at once when fast-forwarding (bounds the memory of a long skip).
 _SKIP_CHUNK = 1 << 16
 
@@ -80,9 +83,10 @@ class Engine(qmc.QMCEngine):
         return _strata.Sampler(self.name, count, self.seed, self.d, **self._params)
 
     def allowed_counts(self, lo: int, hi: int) -> list:
-        """The counts in ``[lo, hi]`` that ``random`` accepts."""
-        if self.progressive:
-            return list(range(max(lo, 1), hi + 1))
+        """The counts in ``[lo, hi]`` that ``random`` accepts (the crate's list, which refuses
+        to list a range of more than 2^24 counts of a sampler that takes any count)."""
+        lo = _v.whole(lo, "lo", 0, _v.U64_MAX)
+        hi = _v.whole(hi, "hi", 0, _v.U64_MAX)
         return list(_strata.allowed_counts(self.name, lo, hi))
 
     def _random(self, n: int = 1, *, workers: int = 1) -> np.ndarray:
@@ -121,9 +125,14 @@ class Engine(qmc.QMCEngine):
         if not self.progressive:
             return super().fast_forward(n)
         assert self._sequence is not None
-        if self._sequence.skip(n):  # constant time where the crate can (Sobol')
+        if self._sequence.skip(n):  # constant time where the crate can (Sobol', the lattice)
             self.num_generated += n
             return self
+        if n > _MAX_DROPPED:
+            raise ValueError(
+                f"fast_forward: {self.name} cannot skip ahead in constant time, so the points "
+                f"would be drawn and dropped; allowed: at most {_MAX_DROPPED} ({n} asked)"
+            )
         scratch = np.empty((min(n, _SKIP_CHUNK), self.d), dtype=np.float32)
         left = n
         while left > 0:

@@ -72,29 +72,28 @@ def sampler_params(params: Dict[str, Any], function: str) -> Dict[str, Any]:
 
 
 def float_array(points: Any, what: str) -> np.ndarray:
-    """``points`` as a float32 or float64 ndarray (lists and tuples are converted to float64;
-    ndarrays must already be float32 or float64, C-contiguous)."""
+    """``points`` as a C-contiguous, native-order float32 or float64 ndarray, following numpy's
+    conventions: any array-like (lists, tuples, views, Fortran-ordered or byte-swapped arrays,
+    integer arrays) is accepted; float32 and float64 keep their type, other real numbers become
+    float64; a copy is made only when the input is not already in that form."""
     if isinstance(points, (str, bytes)):
         raise TypeError(f"{what}: points must be an array of shape (n, d), not a string")
-    if not isinstance(points, np.ndarray):
-        try:
-            points = np.asarray(points, dtype=np.float64)
-        except (TypeError, ValueError) as e:
-            raise TypeError(
-                f"{what}: points must be an array of shape (n, d), float32 or float64 ({e})"
-            ) from None
-        return points
-    if points.dtype not in (np.float32, np.float64):
+    try:
+        a = np.asarray(points)
+    except (TypeError, ValueError) as e:
         raise TypeError(
-            f"{what}: points have dtype {points.dtype}; float32 or float64 is needed "
-            f"(convert with points.astype(np.float64))"
+            f"{what}: points must be an array of shape (n, d) of real numbers ({e})"
+        ) from None
+    if a.dtype.kind == "f" and a.dtype.itemsize in (4, 8):
+        native = a.dtype.newbyteorder("=")
+    elif a.dtype.kind in "iuf" and a.dtype != object:
+        native = np.dtype(np.float64)
+    else:
+        raise TypeError(
+            f"{what}: points have dtype {a.dtype}; real numbers are needed (float32 or "
+            f"float64 are used as they are, integers and other floats become float64)"
         )
-    if not points.flags.c_contiguous:
-        raise ValueError(
-            f"{what}: points are a non-contiguous view (strides {points.strides}); pass "
-            f"np.ascontiguousarray(points), which copies"
-        )
-    return points
+    return np.ascontiguousarray(a, dtype=native)
 
 
 def points_any(points: Any, what: str) -> np.ndarray:
