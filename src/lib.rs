@@ -113,6 +113,7 @@
 //! * `lloyd` (default): Lloyd relaxation on the periodic Voronoi diagram (`spade`).
 //! * `joe-kuo` (default): Joe and Kuo's Sobol' direction numbers for 1000 dimensions.
 
+#![cfg_attr(docsrs, feature(doc_cfg))]
 #![cfg_attr(all(not(feature = "std"), not(test)), no_std)]
 #![warn(missing_docs, missing_debug_implementations)]
 #![warn(clippy::undocumented_unsafe_blocks)]

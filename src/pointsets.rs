@@ -118,6 +118,7 @@ fn in_unit(v: f64) -> bool {
 
 /// A point-set file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Format {
     /// Comma-separated values, optional header.
     Csv,

@@ -14,6 +14,7 @@ pub struct Seed(pub u64);
 
 /// How a sampler's stream is organised.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Progression {
     /// An endless sequence whose prefixes are well distributed (which prefixes, and how well,
     /// is documented per sampler: for PMJ every power of two, for random every prefix).

@@ -31,7 +31,7 @@ import numpy as np
 import scipy
 from scipy.stats import qmc
 
-import strata
+import strata_sampling as ss
 
 
 def numpy_dft(points: np.ndarray, k: int) -> np.ndarray:
@@ -91,27 +91,27 @@ def main() -> None:
     rows = []
     rows.append(row(
         "Sobol' 2^20 x 8 (scrambled)",
-        lambda s: strata.points("sobol", 1 << 20, seed=s, dims=8),
+        lambda s: ss.points("sobol", 1 << 20, seed=s, dims=8),
         lambda s: qmc.Sobol(8, seed=s).random_base2(20),
         R, shape,
     ))
     rows.append(row(
         "Halton 2^16 x 8 (scrambled)",
-        lambda s: strata.points("halton", 1 << 16, seed=s, dims=8),
+        lambda s: ss.points("halton", 1 << 16, seed=s, dims=8),
         lambda s: qmc.Halton(8, seed=s).random(1 << 16),
         R, shape,
     ))
     rows.append(row(
         "Latin hypercube 2^16 x 8",
-        lambda s: strata.points("latin", 1 << 16, seed=s, dims=8),
+        lambda s: ss.points("latin", 1 << 16, seed=s, dims=8),
         lambda s: qmc.LatinHypercube(8, seed=s).random(1 << 16),
         R, shape,
     ))
     for n in (1024, 4096):
-        radius = 0.7 * strata.relative_radius_max(n)  # the same absolute radius on both sides
+        radius = 0.7 * ss.relative_radius_max(n)  # the same absolute radius on both sides
         rows.append(row(
             f"Poisson disk {n} (radius 0.7 r_max)",
-            lambda s, n=n: strata.points("poisson", n, seed=s, radius=0.7),
+            lambda s, n=n: ss.points("poisson", n, seed=s, radius=0.7),
             lambda s, n=n, r=radius: qmc.PoissonDisk(2, radius=r, seed=s).random(n),
             P,
             lambda a, b: f"{len(a)} vs {len(b)} points",
@@ -119,7 +119,7 @@ def main() -> None:
     x = np.random.default_rng(7).random((4096, 2))
     rows.append(row(
         "centered discrepancy 4096 x 2",
-        lambda s: strata.discrepancy(x, "CD"),
+        lambda s: ss.discrepancy(x, "CD"),
         lambda s: qmc.discrepancy(x, method="CD"),
         R,
         lambda a, b: f"relative difference {abs(a - b) / b:.1e}",
@@ -127,7 +127,7 @@ def main() -> None:
     x32 = x.astype(np.float32)
     rows.append(row(
         "spectrum 4096 points, K = 256",
-        lambda s: strata.spectrum(x32, 256),
+        lambda s: ss.spectrum(x32, 256),
         lambda s: numpy_dft(x32, 256),
         R,
         lambda a, b: f"max difference {np.max(np.abs(a - b)):.1e} (DC = 4096)",
@@ -135,7 +135,7 @@ def main() -> None:
 
     blas = os.environ.get("OPENBLAS_NUM_THREADS") or os.environ.get("OMP_NUM_THREADS")
     print(
-        f"strata {strata.__version__}, scipy {scipy.__version__}, numpy {np.__version__}, "
+        f"strata {ss.__version__}, scipy {scipy.__version__}, numpy {np.__version__}, "
         f"Python {platform.python_version()}, {os.cpu_count()} CPUs ({platform.machine()}), "
         f"BLAS threads {blas}; medians of {R} repeats ({P} for the Poisson disk)"
     )

@@ -31,13 +31,13 @@ matplotlib.use("Agg")  # no display needed
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-import strata  # noqa: E402
+import strata_sampling as ss  # noqa: E402
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--samplers", default="random,jittered,pmj02bn,ccvt",
-                    help="comma-separated sampler names (see strata.samplers())")
+                    help="comma-separated sampler names (see ss.samplers())")
     ap.add_argument("-n", type=int, default=1024, help="points per set (default 1024)")
     ap.add_argument("--realizations", type=int, default=16,
                     help="sets per expected spectrum (default 16)")
@@ -50,22 +50,22 @@ def main() -> None:
     names = [s.strip() for s in args.samplers.split(",") if s.strip()]
     k = args.resolution
 
-    info = {s["name"]: s for s in strata.samplers()}
+    info = {s["name"]: s for s in ss.samplers()}
     fig, axes = plt.subplots(3, len(names), figsize=(3.4 * len(names), 10.2),
                              gridspec_kw={"height_ratios": [1, 1, 0.8], "wspace": 0.12},
                              squeeze=False)
     print(f"{'sampler':<16} {'N':>6} {'min dist':>9} {'avg dist':>9} {'nu_eff':>7} {'time':>8}")
     for col, name in enumerate(names):
-        n = strata.nearest_count(name, args.n)  # fixed-count samplers take some counts only
+        n = ss.nearest_count(name, args.n)  # fixed-count samplers take some counts only
         t = time.perf_counter()
         # 1. the points of one set: an (n, 2) float32 array
-        pts = strata.points(name, n, seed=args.seed)
+        pts = ss.points(name, n, seed=args.seed)
         # 2. the expected spectrum over R sets (set r seeded by seed + r, made in parallel)
-        spec = strata.sampler_spectrum(name, n, k, realizations=args.realizations,
+        spec = ss.sampler_spectrum(name, n, k, realizations=args.realizations,
                                        seed=args.seed)
         # 3. its radial mean and anisotropy, and the PSA point-set measures
-        rad = strata.radial(spec)
-        psa = strata.psa(pts)
+        rad = ss.radial(spec)
+        psa = ss.psa(pts)
         elapsed = time.perf_counter() - t
         print(f"{name:<16} {n:>6} {psa['global_min_distance']:>9.3f} "
               f"{psa['average_min_distance']:>9.3f} {psa['effective_nyquist'] or 0:>7.3f} "

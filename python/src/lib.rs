@@ -1,9 +1,9 @@
-//! `strata._strata`: the compiled half of the Python package `strata`.
+//! `strata_sampling._strata`: the compiled half of the Python package `strata`.
 //!
 //! Every function here is a thin layer over the `strata` crate: it checks the shapes and types
 //! of the numpy arrays it is given, views them as slices without copying, releases the GIL
 //! around the crate's work and turns the crate's [`strata::Error`] into a Python `ValueError`
-//! carrying the same message. The pure-Python package (`python/strata/`) adds the friendly
+//! carrying the same message. The pure-Python package (`python/strata_sampling/`) adds the friendly
 //! signatures, argument checks and the `scipy.stats.qmc.QMCEngine` subclass.
 
 #![warn(missing_docs, missing_debug_implementations)]

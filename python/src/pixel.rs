@@ -12,7 +12,7 @@ use crate::{borrow_output, input_slice, output_slice, to_py_err, value_error};
 const ROWS_PER_TASK: usize = 512;
 
 /// The path-tracer adapter over one sequence: values by (pixel, sample index, dimension).
-#[pyclass(module = "strata._strata", name = "PixelSampler", frozen)]
+#[pyclass(module = "strata_sampling._strata", name = "PixelSampler", frozen)]
 #[derive(Debug)]
 pub struct PyPixelSampler {
     inner: PixelSampler,

@@ -43,7 +43,7 @@ impl Inner {
 ///
 /// The stream continues from call to call: a progressive sampler's next points, a fixed-count
 /// sampler's next block (each complete block of `count` points is one independent set).
-#[pyclass(module = "strata._strata", name = "Sampler", frozen)]
+#[pyclass(module = "strata_sampling._strata", name = "Sampler", frozen)]
 #[derive(Debug)]
 pub struct PySampler {
     /// The sampler and the number of points it has given so far.

@@ -1,4 +1,4 @@
-"""``strata.Engine`` as a ``scipy.stats.qmc.QMCEngine``: progressive sequences continue across
+"""``ss.Engine`` as a ``scipy.stats.qmc.QMCEngine``: progressive sequences continue across
 calls, reset and fast-forward, fixed-count samplers give sets of the counts they accept, and
 scipy's own tools (discrepancy, scale, integers, qmc_quad) run on them."""
 
@@ -9,15 +9,15 @@ import pytest
 from scipy.integrate import qmc_quad
 from scipy.stats import qmc
 
-import strata
+import strata_sampling as ss
 
 
 @pytest.mark.parametrize("name,d", [("sobol", 5), ("halton", 3), ("pmj02", 2), ("random", 4),
                                     ("lattice", 3), ("best-candidate", 2)])
 def test_progressive_engines_continue_the_sequence(name, d):
-    e = strata.Engine(name, d, seed=11)
+    e = ss.Engine(name, d, seed=11)
     assert isinstance(e, qmc.QMCEngine) and e.progressive and e.d == d
-    ref = strata.points(name, 40, seed=11, dims=d).astype(np.float64)
+    ref = ss.points(name, 40, seed=11, dims=d).astype(np.float64)
     a = e.random(5)
     b = e.random(11)
     assert a.dtype == np.float64 and a.shape == (5, d)
@@ -36,10 +36,10 @@ def test_progressive_engines_continue_the_sequence(name, d):
 
 
 def test_fixed_count_engines_give_sets_of_allowed_counts():
-    e = strata.Engine("jittered", 2, seed=3)
+    e = ss.Engine("jittered", 2, seed=3)
     assert not e.progressive and e.counts == "perfect squares"
     first = e.random(64)
-    np.testing.assert_array_equal(first, strata.points("jittered", 64, seed=3))
+    np.testing.assert_array_equal(first, ss.points("jittered", 64, seed=3))
     second = e.random(64)
     assert not np.array_equal(first, second)
     for s in (first, second):  # each call is a whole jittered set
@@ -50,21 +50,21 @@ def test_fixed_count_engines_give_sets_of_allowed_counts():
     np.testing.assert_array_equal(e.reset().random(64), first)
     assert e.allowed_counts(10, 40) == [16, 25, 36]
     # D-dimensional fixed-count sets
-    oa = strata.Engine("oa-bose", 4, seed=2)
-    np.testing.assert_array_equal(oa.random(49), strata.points("oa-bose", 49, seed=2, dims=4))
+    oa = ss.Engine("oa-bose", 4, seed=2)
+    np.testing.assert_array_equal(oa.random(49), ss.points("oa-bose", 49, seed=2, dims=4))
 
 
 def test_scipy_discrepancy_scale_and_integers_work_on_our_points():
-    e = strata.Engine("sobol", 3, seed=5)
+    e = ss.Engine("sobol", 3, seed=5)
     x = e.random(256)
-    assert qmc.discrepancy(x) == pytest.approx(strata.discrepancy(x), rel=1e-10)
+    assert qmc.discrepancy(x) == pytest.approx(ss.discrepancy(x), rel=1e-10)
     # scrambled Sobol' beats i.i.d. uniform points by a wide margin at 256 points
     r = np.random.default_rng(1).random((256, 3))
     assert qmc.discrepancy(x) < 0.2 * qmc.discrepancy(r)
     scaled = qmc.scale(x, [-1, 0, 10], [1, 2, 20])
     assert scaled.min(axis=0).tolist() >= [-1, 0, 10]
     assert scaled.max(axis=0).tolist() < [1, 2, 20]
-    k = strata.Engine("halton", 2, seed=1).integers([0, 10], u_bounds=[4, 13], n=12)
+    k = ss.Engine("halton", 2, seed=1).integers([0, 10], u_bounds=[4, 13], n=12)
     assert k.shape == (12, 2) and k[:, 0].max() < 4 and k[:, 1].min() >= 10
 
 
@@ -72,57 +72,57 @@ def test_qmc_quad_makes_independent_copies():
     # int_[0,1]^3 x y z = 1/8; qmc_quad builds one engine per estimate from ours
     f = lambda x: x[0] * x[1] * x[2]  # noqa: E731
     res = qmc_quad(f, [0, 0, 0], [1, 1, 1], n_estimates=8, n_points=1024,
-                   qrng=strata.Engine("sobol", 3, seed=7))
+                   qrng=ss.Engine("sobol", 3, seed=7))
     assert res.standard_error > 0  # the copies differ
     assert abs(res.integral - 0.125) < 6 * res.standard_error + 1e-9
     assert res.standard_error < 1e-4  # far below random sampling's ~ 2e-3
     again = qmc_quad(f, [0, 0, 0], [1, 1, 1], n_estimates=8, n_points=1024,
-                     qrng=strata.Engine("sobol", 3, seed=7))
+                     qrng=ss.Engine("sobol", 3, seed=7))
     assert again.integral == res.integral  # deterministic for a given seed
     # a fixed-count sampler whose count is qmc_quad's n_points
     jit = qmc_quad(lambda x: x[0] * x[1], [0, 0], [1, 1], n_points=1024,
-                   qrng=strata.Engine("jittered", 2, seed=1))
+                   qrng=ss.Engine("jittered", 2, seed=1))
     assert abs(jit.integral - 0.25) < 6 * jit.standard_error + 1e-9
 
 
 def test_seeds():
     g1, g2 = np.random.default_rng(42), np.random.default_rng(42)
-    a, b = strata.Engine("sobol", 2, seed=g1), strata.Engine("sobol", 2, seed=g2)
+    a, b = ss.Engine("sobol", 2, seed=g1), ss.Engine("sobol", 2, seed=g2)
     assert a.seed == b.seed
     np.testing.assert_array_equal(a.random(8), b.random(8))
-    c, d = strata.Engine("sobol", 2), strata.Engine("sobol", 2)  # fresh entropy
+    c, d = ss.Engine("sobol", 2), ss.Engine("sobol", 2)  # fresh entropy
     assert isinstance(c.seed, int) and c.seed != d.seed
     np.testing.assert_array_equal(
-        c.random(8), strata.points("sobol", 8, seed=c.seed).astype(np.float64)
+        c.random(8), ss.points("sobol", 8, seed=c.seed).astype(np.float64)
     )
-    assert repr(strata.Engine("poisson", 2, seed=3, radius=0.5)) == (
+    assert repr(ss.Engine("poisson", 2, seed=3, radius=0.5)) == (
         "Engine('poisson', d=2, seed=3, radius=0.5)"
     )
 
 
 def test_engine_errors():
     with pytest.raises(ValueError, match="unknown sampler 'sobel'; known samplers: random"):
-        strata.Engine("sobel", 2)
+        ss.Engine("sobel", 2)
     with pytest.raises(ValueError, match="2-dimensional points only"):
-        strata.Engine("jittered", 3)
+        ss.Engine("jittered", 3)
     with pytest.raises(ValueError, match="dims"):
-        strata.Engine("sobol", 2000)
+        ss.Engine("sobol", 2000)
     with pytest.raises(TypeError, match="did you mean 'radius'"):
-        strata.Engine("poisson", 2, raduis=0.5)
+        ss.Engine("poisson", 2, raduis=0.5)
     with pytest.raises(ValueError, match="takes no radius"):
-        strata.Engine("sobol", 2, radius=0.5)
+        ss.Engine("sobol", 2, radius=0.5)
     with pytest.raises(ValueError, match="d = 0 is out of range"):
-        strata.Engine("sobol", 0)
+        ss.Engine("sobol", 0)
 
 
 @pytest.mark.parametrize("name", ["sobol", "halton"])
 def test_fast_forward_continues_the_sequence(name):
     # sobol (3 dims) skips in constant time in the crate, halton draws and drops: both must
     # land on the same points as drawing them
-    e = strata.Engine(name, 3, seed=4)
+    e = ss.Engine(name, 3, seed=4)
     e.fast_forward(1000)
     got = e.random(10)
-    want = strata.points(name, 1010, seed=4, dims=3)[1000:]
+    want = ss.points(name, 1010, seed=4, dims=3)[1000:]
     assert np.array_equal(got.astype(np.float32), want)
     assert e.num_generated == 1010
     with pytest.raises(ValueError):
@@ -133,7 +133,7 @@ def test_fast_forward_continues_the_sequence(name):
 
 def test_fast_forward_is_constant_time_for_sobol():
     # 2^40 points would take hours to draw; the skip is O(1), then the stream goes on
-    e = strata.Engine("sobol", 4, seed=2)
+    e = ss.Engine("sobol", 4, seed=2)
     e.fast_forward(1 << 40)
     assert e.num_generated == 1 << 40
     x = e.random(8)

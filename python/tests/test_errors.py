@@ -7,8 +7,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import strata
-from strata import _strata
+import strata_sampling as ss
+from strata_sampling import _strata
 
 GOOD = np.random.default_rng(0).random((64, 2))
 
@@ -16,24 +16,24 @@ GOOD = np.random.default_rng(0).random((64, 2))
 @pytest.mark.parametrize(
     "call,exc,match",
     [
-        (lambda: strata.points("sobel", 4), ValueError, "unknown sampler 'sobel'; known samplers: random, regular"),
-        (lambda: strata.points("sobol", -5), ValueError, r"n = -5 is out of range; allowed: 0 to"),
-        (lambda: strata.points("sobol", 0), ValueError, "sobol cannot make 0 samples"),
-        (lambda: strata.points("sobol", 4.0), TypeError, "n must be a whole number"),
-        (lambda: strata.points("sobol", True), TypeError, "not a bool"),
-        (lambda: strata.points("jittered", 10), ValueError, r"perfect square \(nearest allowed: 9 or 16\)"),
-        (lambda: strata.points("poisson", 16, raduis=0.5), TypeError, "did you mean 'radius'"),
-        (lambda: strata.points("jittered", 16, radius=0.5), ValueError, "jittered takes no radius; samplers that do: poisson, bridson"),
-        (lambda: strata.points("poisson", 16, radius=1.5), ValueError, "radius = 1.5 is not allowed"),
-        (lambda: strata.points("poisson", 16, radius=float("nan")), ValueError, "finite"),
-        (lambda: strata.points("poisson", 16, radius="big"), TypeError, "radius must be a number"),
-        (lambda: strata.points("ccvt", 16, iterations=-1), ValueError, "iterations = -1 is out of range"),
-        (lambda: strata.points("sobol", 4, dims=0), ValueError, "dims = 0 is out of range"),
-        (lambda: strata.points("jittered", 16, dims=3), ValueError, "2-dimensional points only; samplers with D dimensions: random, sobol"),
-        (lambda: strata.points("sobol", 4, dims=1001), ValueError, "sobol: dims = 1001 is not allowed: 1 to 1000"),
-        (lambda: strata.points("sobol", 4, seed=-1), ValueError, "seed = -1 is out of range"),
-        (lambda: strata.points("sobol", 4, seed=2**64), ValueError, "seed = 18446744073709551616 is out of range"),
-        (lambda: strata.points("oa-bose", 49, dims=9), ValueError, "oa-bose"),
+        (lambda: ss.points("sobel", 4), ValueError, "unknown sampler 'sobel'; known samplers: random, regular"),
+        (lambda: ss.points("sobol", -5), ValueError, r"n = -5 is out of range; allowed: 0 to"),
+        (lambda: ss.points("sobol", 0), ValueError, "sobol cannot make 0 samples"),
+        (lambda: ss.points("sobol", 4.0), TypeError, "n must be a whole number"),
+        (lambda: ss.points("sobol", True), TypeError, "not a bool"),
+        (lambda: ss.points("jittered", 10), ValueError, r"perfect square \(nearest allowed: 9 or 16\)"),
+        (lambda: ss.points("poisson", 16, raduis=0.5), TypeError, "did you mean 'radius'"),
+        (lambda: ss.points("jittered", 16, radius=0.5), ValueError, "jittered takes no radius; samplers that do: poisson, bridson"),
+        (lambda: ss.points("poisson", 16, radius=1.5), ValueError, "radius = 1.5 is not allowed"),
+        (lambda: ss.points("poisson", 16, radius=float("nan")), ValueError, "finite"),
+        (lambda: ss.points("poisson", 16, radius="big"), TypeError, "radius must be a number"),
+        (lambda: ss.points("ccvt", 16, iterations=-1), ValueError, "iterations = -1 is out of range"),
+        (lambda: ss.points("sobol", 4, dims=0), ValueError, "dims = 0 is out of range"),
+        (lambda: ss.points("jittered", 16, dims=3), ValueError, "2-dimensional points only; samplers with D dimensions: random, sobol"),
+        (lambda: ss.points("sobol", 4, dims=1001), ValueError, "sobol: dims = 1001 is not allowed: 1 to 1000"),
+        (lambda: ss.points("sobol", 4, seed=-1), ValueError, "seed = -1 is out of range"),
+        (lambda: ss.points("sobol", 4, seed=2**64), ValueError, "seed = 18446744073709551616 is out of range"),
+        (lambda: ss.points("oa-bose", 49, dims=9), ValueError, "oa-bose"),
     ],
 )
 def test_points_arguments(call, exc, match):
@@ -48,11 +48,11 @@ def _with(value, at=(5, 1)):
 
 
 @pytest.mark.parametrize("fn", [
-    lambda p: strata.spectrum(p, 16),
-    lambda p: strata.expected_spectrum([p], 16),
-    lambda p: strata.psa(p),
-    lambda p: strata.min_distance(p),
-    lambda p: strata.nearest_distances(p),
+    lambda p: ss.spectrum(p, 16),
+    lambda p: ss.expected_spectrum([p], 16),
+    lambda p: ss.psa(p),
+    lambda p: ss.min_distance(p),
+    lambda p: ss.nearest_distances(p),
 ])
 @pytest.mark.parametrize(
     "points,exc,match",
@@ -78,11 +78,11 @@ def test_point_set_inputs(fn, points, exc, match):
 
 
 @pytest.mark.parametrize("fn", [
-    lambda p: strata.spectrum(p, 16),
-    lambda p: strata.psa(p),
-    lambda p: strata.nearest_distances(p),
-    lambda p: strata.discrepancy(p, "CD"),
-    lambda p: strata.net_t_value(p),
+    lambda p: ss.spectrum(p, 16),
+    lambda p: ss.psa(p),
+    lambda p: ss.nearest_distances(p),
+    lambda p: ss.discrepancy(p, "CD"),
+    lambda p: ss.net_t_value(p),
 ])
 def test_numpy_layouts_are_copied_not_refused(fn):
     """numpy conventions: a strided view, a Fortran-ordered array, byte-swapped float32 and
@@ -121,38 +121,38 @@ def _same(a, b):
 
 def test_lists_and_float64_just_below_one_are_accepted():
     pts = [[0.1, 0.2], [0.3, 0.4], [1 - 1e-12, 0.5]]  # rounds to 1.0 in float32: kept below
-    assert strata.spectrum(pts, 8).shape == (9, 9)
-    assert strata.min_distance(pts) > 0
+    assert ss.spectrum(pts, 8).shape == (9, 9)
+    assert ss.min_distance(pts) > 0
 
 
 @pytest.mark.parametrize(
     "call,exc,match",
     [
-        (lambda: strata.spectrum(GOOD, 15), ValueError, "resolution = 15 is not allowed: an even number from 2 to 2048"),
-        (lambda: strata.spectrum(GOOD, 4096), ValueError, "an even number from 2 to 2048"),
-        (lambda: strata.spectrum(GOOD, -2), ValueError, "resolution = -2 is out of range"),
-        (lambda: strata.spectrum(GOOD, 16, method="fft"), ValueError, "unknown method 'fft'; allowed: nufft, direct"),
-        (lambda: strata.expected_spectrum([GOOD, GOOD[:10]], 16), ValueError, "realization 1 has 10 points, realization 0 has 64"),
-        (lambda: strata.expected_spectrum([], 16), ValueError, "no point set given"),
-        (lambda: strata.expected_spectrum(np.zeros((2, 2, 2, 2)), 16), ValueError, r"\(n, 2\) or \(r, n, 2\)"),
-        (lambda: strata.psa([GOOD, GOOD[:10]]), ValueError, "all must have the same count"),
-        (lambda: strata.min_distance(GOOD[:1]), ValueError, "at least 2 are needed"),
-        (lambda: strata.radial(np.zeros((16, 16))), ValueError, r"\(K\+1, K\+1\) array with K even"),
-        (lambda: strata.radial(np.zeros((17, 9))), ValueError, r"shape \[17, 9\]"),
-        (lambda: strata.radial(np.full((17, 17), np.nan)), ValueError, "values must be finite"),
-        (lambda: strata.radial(np.zeros(17)), ValueError, "a \\(K\\+1, K\\+1\\) array is needed"),
-        (lambda: strata.radial(np.array([["a"]])), TypeError, "real numbers"),
-        (lambda: strata.discrepancy(GOOD, "L2"), ValueError, "unknown method 'L2'; allowed: CD, WD, MD, L2-star, star"),
-        (lambda: strata.discrepancy(GOOD + 1, "CD"), ValueError, r"outside \[0, 1\]"),
-        (lambda: strata.discrepancy(_with(np.nan), "WD"), ValueError, r"coordinate NaN is outside \[0, 1\]"),
-        (lambda: strata.discrepancy(GOOD.astype(np.complex64), "CD"), TypeError, "complex64"),
-        (lambda: strata.discrepancy(np.zeros((3, 3)), "star"), ValueError, "2D sets; these points have 3 dimensions"),
-        (lambda: strata.net_t_value(np.zeros((4, 3))), ValueError, r"\(n, 2\) is needed"),
-        (lambda: strata.convergence("jittered", "disc", [16], 4), ValueError, "unknown integrand 'disc'; known integrands: disk"),
-        (lambda: strata.convergence("jittered", "disk", [10], 4), ValueError, r"no allowed count between 10 and 10 \(it takes perfect squares"),
-        (lambda: strata.convergence("jittered", "disk", [16], 1), ValueError, "seeds = 1 is out of range; allowed: 2 to"),
-        (lambda: strata.convergence("jittered", 3, [16], 4), TypeError, "a name, a list of names or a callable"),
-        (lambda: strata.convergence("sobol", lambda x: x[:, 0][:5], [16], 4), ValueError, r"returned shape \(5,\) for 16 points"),
+        (lambda: ss.spectrum(GOOD, 15), ValueError, "resolution = 15 is not allowed: an even number from 2 to 2048"),
+        (lambda: ss.spectrum(GOOD, 4096), ValueError, "an even number from 2 to 2048"),
+        (lambda: ss.spectrum(GOOD, -2), ValueError, "resolution = -2 is out of range"),
+        (lambda: ss.spectrum(GOOD, 16, method="fft"), ValueError, "unknown method 'fft'; allowed: nufft, direct"),
+        (lambda: ss.expected_spectrum([GOOD, GOOD[:10]], 16), ValueError, "realization 1 has 10 points, realization 0 has 64"),
+        (lambda: ss.expected_spectrum([], 16), ValueError, "no point set given"),
+        (lambda: ss.expected_spectrum(np.zeros((2, 2, 2, 2)), 16), ValueError, r"\(n, 2\) or \(r, n, 2\)"),
+        (lambda: ss.psa([GOOD, GOOD[:10]]), ValueError, "all must have the same count"),
+        (lambda: ss.min_distance(GOOD[:1]), ValueError, "at least 2 are needed"),
+        (lambda: ss.radial(np.zeros((16, 16))), ValueError, r"\(K\+1, K\+1\) array with K even"),
+        (lambda: ss.radial(np.zeros((17, 9))), ValueError, r"shape \[17, 9\]"),
+        (lambda: ss.radial(np.full((17, 17), np.nan)), ValueError, "values must be finite"),
+        (lambda: ss.radial(np.zeros(17)), ValueError, "a \\(K\\+1, K\\+1\\) array is needed"),
+        (lambda: ss.radial(np.array([["a"]])), TypeError, "real numbers"),
+        (lambda: ss.discrepancy(GOOD, "L2"), ValueError, "unknown method 'L2'; allowed: CD, WD, MD, L2-star, star"),
+        (lambda: ss.discrepancy(GOOD + 1, "CD"), ValueError, r"outside \[0, 1\]"),
+        (lambda: ss.discrepancy(_with(np.nan), "WD"), ValueError, r"coordinate NaN is outside \[0, 1\]"),
+        (lambda: ss.discrepancy(GOOD.astype(np.complex64), "CD"), TypeError, "complex64"),
+        (lambda: ss.discrepancy(np.zeros((3, 3)), "star"), ValueError, "2D sets; these points have 3 dimensions"),
+        (lambda: ss.net_t_value(np.zeros((4, 3))), ValueError, r"\(n, 2\) is needed"),
+        (lambda: ss.convergence("jittered", "disc", [16], 4), ValueError, "unknown integrand 'disc'; known integrands: disk"),
+        (lambda: ss.convergence("jittered", "disk", [10], 4), ValueError, r"no allowed count between 10 and 10 \(it takes perfect squares"),
+        (lambda: ss.convergence("jittered", "disk", [16], 1), ValueError, "seeds = 1 is out of range; allowed: 2 to"),
+        (lambda: ss.convergence("jittered", 3, [16], 4), TypeError, "a name, a list of names or a callable"),
+        (lambda: ss.convergence("sobol", lambda x: x[:, 0][:5], [16], 4), ValueError, r"returned shape \(5,\) for 16 points"),
     ],
 )
 def test_analysis_arguments(call, exc, match):
@@ -163,20 +163,20 @@ def test_analysis_arguments(call, exc, match):
 @pytest.mark.parametrize(
     "call,exc,match",
     [
-        (lambda: strata.PixelSampler("pmj", 16), ValueError, "no path-tracer adapter for 'pmj'; samplers with one: random, jittered"),
-        (lambda: strata.PixelSampler("jittered", 10), ValueError, r"square number of samples per pixel \(nearest allowed: 9 or 16\)"),
-        (lambda: strata.PixelSampler("sobol", 0), ValueError, "at least 1 sample per pixel"),
-        (lambda: strata.PixelSampler("sobol", 16, -3), ValueError, "seed = -3"),
-        (lambda: strata.PixelSampler("zsobol", 16, resolution=(0, 4)), ValueError, "zsobol"),
-        (lambda: strata.PixelSampler("zsobol", 16, resolution=5), TypeError, "pair"),
-        (lambda: strata.PixelSampler("sobol", 16).sample([1.5, 2], [0]), TypeError, "pixels must be integers, not float64"),
-        (lambda: strata.PixelSampler("sobol", 16).sample([-1, 2], [0]), ValueError, "pixels holds -1; allowed: 0 to 4294967295"),
-        (lambda: strata.PixelSampler("sobol", 16).sample([2**32, 2], [0]), ValueError, "pixels holds 4294967296"),
-        (lambda: strata.PixelSampler("sobol", 16).sample([[1, 2, 3]], [0]), ValueError, r"pixels have shape \(1, 3\); \(\.\.\., 2\)"),
-        (lambda: strata.PixelSampler("sobol", 16).sample([1, 2], [-4]), ValueError, "indices holds -4"),
-        (lambda: strata.PixelSampler("sobol", 16).sample([1, 2], [0.5]), TypeError, "indices must be integers"),
-        (lambda: strata.PixelSampler("sobol", 16).sample([[1, 2]] * 3, [0, 1]), ValueError, "do not broadcast"),
-        (lambda: strata.PixelSampler("sobol", 16).sample([1, 2], [0], dims=0), ValueError, "dims = 0"),
+        (lambda: ss.PixelSampler("pmj", 16), ValueError, "no path-tracer adapter for 'pmj'; samplers with one: random, jittered"),
+        (lambda: ss.PixelSampler("jittered", 10), ValueError, r"square number of samples per pixel \(nearest allowed: 9 or 16\)"),
+        (lambda: ss.PixelSampler("sobol", 0), ValueError, "at least 1 sample per pixel"),
+        (lambda: ss.PixelSampler("sobol", 16, -3), ValueError, "seed = -3"),
+        (lambda: ss.PixelSampler("zsobol", 16, resolution=(0, 4)), ValueError, "zsobol"),
+        (lambda: ss.PixelSampler("zsobol", 16, resolution=5), TypeError, "pair"),
+        (lambda: ss.PixelSampler("sobol", 16).sample([1.5, 2], [0]), TypeError, "pixels must be integers, not float64"),
+        (lambda: ss.PixelSampler("sobol", 16).sample([-1, 2], [0]), ValueError, "pixels holds -1; allowed: 0 to 4294967295"),
+        (lambda: ss.PixelSampler("sobol", 16).sample([2**32, 2], [0]), ValueError, "pixels holds 4294967296"),
+        (lambda: ss.PixelSampler("sobol", 16).sample([[1, 2, 3]], [0]), ValueError, r"pixels have shape \(1, 3\); \(\.\.\., 2\)"),
+        (lambda: ss.PixelSampler("sobol", 16).sample([1, 2], [-4]), ValueError, "indices holds -4"),
+        (lambda: ss.PixelSampler("sobol", 16).sample([1, 2], [0.5]), TypeError, "indices must be integers"),
+        (lambda: ss.PixelSampler("sobol", 16).sample([[1, 2]] * 3, [0, 1]), ValueError, "do not broadcast"),
+        (lambda: ss.PixelSampler("sobol", 16).sample([1, 2], [0], dims=0), ValueError, "dims = 0"),
     ],
 )
 def test_pixel_sampler_arguments(call, exc, match):
@@ -217,6 +217,6 @@ def test_the_compiled_functions_refuse_bad_arrays_without_crashing():
 
 def test_a_huge_count_fails_cleanly():
     with pytest.raises((MemoryError, ValueError)):
-        strata.points("sobol", 2**62, dims=4)
+        ss.points("sobol", 2**62, dims=4)
     with pytest.raises(ValueError, match="cannot make"):
-        strata.points("jittered", 2**62)  # refused before anything is allocated
+        ss.points("jittered", 2**62)  # refused before anything is allocated

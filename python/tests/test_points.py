@@ -1,4 +1,4 @@
-"""``strata.points`` and ``strata.PixelSampler`` against the crate's ``points`` program: the
+"""``ss.points`` and ``ss.PixelSampler`` against the crate's ``points`` program: the
 same arguments give the same float32 values, bit for bit, for every sampler and sequence."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import threading
 import numpy as np
 import pytest
 
-import strata
+import strata_sampling as ss
 
 # (sampler, n, seed, dims, parameters): the command line's parameters, D dimensions where a
 # sampler has them, extreme seeds
@@ -43,8 +43,8 @@ CASES = [
 ]
 # every other registered sampler (added to the crate later) at its count nearest to 64
 CASES += [
-    (s["name"], strata.nearest_count(s["name"], 64), 3, 2, {})
-    for s in strata.samplers()
+    (s["name"], ss.nearest_count(s["name"], 64), 3, 2, {})
+    for s in ss.samplers()
     if s["name"] not in {c[0] for c in CASES}
 ]
 
@@ -58,7 +58,7 @@ def cli_args(name, n, seed, dims, params):
 
 @pytest.mark.parametrize("name,n,seed,dims,params", CASES, ids=lambda v: str(v))
 def test_points_equal_the_command_line(points_cli, name, n, seed, dims, params):
-    ours = strata.points(name, n, seed=seed, dims=dims, **params)
+    ours = ss.points(name, n, seed=seed, dims=dims, **params)
     theirs = points_cli(*cli_args(name, n, seed, dims, params))
     assert ours.dtype == np.float32 and ours.shape == (n, dims)
     assert ours.flags.c_contiguous
@@ -73,42 +73,42 @@ def test_points_equal_the_command_line(points_cli, name, n, seed, dims, params):
 def test_errors_carry_the_crates_message(points_cli_error, args):
     name, n = args
     with pytest.raises(ValueError) as e:
-        strata.points(name, n)
+        ss.points(name, n)
     cli = points_cli_error("--sampler", name, "-n", n)
     assert str(e.value) in cli  # the program prints "points: error: MESSAGE"
     assert "allowed" in str(e.value) or "known samplers" in str(e.value)
 
 
 def test_points_are_in_the_unit_square_and_depend_on_the_seed():
-    for s in strata.samplers():
-        n = strata.nearest_count(s["name"], 64)
+    for s in ss.samplers():
+        n = ss.nearest_count(s["name"], 64)
         kw = {"iterations": 5} if s["name"] in ("lloyd", "ccvt") else {}
-        a = strata.points(s["name"], n, seed=1, **kw)
-        b = strata.points(s["name"], n, seed=2, **kw)
+        a = ss.points(s["name"], n, seed=1, **kw)
+        b = ss.points(s["name"], n, seed=2, **kw)
         assert ((a >= 0) & (a < 1)).all(), s["name"]
         if s["name"] != "regular":  # cell centres: no randomness
             assert not np.array_equal(a, b), s["name"]
-        np.testing.assert_array_equal(a, strata.points(s["name"], n, seed=1, **kw))
+        np.testing.assert_array_equal(a, ss.points(s["name"], n, seed=1, **kw))
 
 
 def test_progressive_prefixes_and_fixed_count_sets():
     # a progressive sequence's first n points are a prefix of its first 2n
-    a = strata.points("pmj02", 64, seed=3)
-    np.testing.assert_array_equal(a, strata.points("pmj02", 128, seed=3)[:64])
+    a = ss.points("pmj02", 64, seed=3)
+    np.testing.assert_array_equal(a, ss.points("pmj02", 128, seed=3)[:64])
     # a jittered set has one point in each cell of the s x s grid
-    j = strata.points("jittered", 256, seed=4)
+    j = ss.points("jittered", 256, seed=4)
     cells = (j * 16).astype(int)
     assert len({(x, y) for x, y in cells}) == 256
 
 
 def test_sobol_prefixes_are_nets():
-    x = strata.points("sobol", 1024, seed=5)
-    assert strata.net_t_value(x) == 0
-    assert strata.net_t_value(x[:512]) == 0
+    x = ss.points("sobol", 1024, seed=5)
+    assert ss.net_t_value(x) == 0
+    assert ss.net_t_value(x[:512]) == 0
 
 
 def test_sampler_table():
-    table = {s["name"]: s for s in strata.samplers()}
+    table = {s["name"]: s for s in ss.samplers()}
     assert table["jittered"]["counts"] == "perfect squares"
     assert not table["jittered"]["progressive"]
     assert table["sobol"]["progressive"] and table["sobol"]["dimensions"] == "D"
@@ -116,9 +116,9 @@ def test_sampler_table():
     assert [p["name"] for p in table["poisson"]["parameters"]] == ["radius"]
     assert table["poisson"]["parameters"][0]["default"] == 0.7
     assert table["pmj02"]["rates"]["discontinuous"] == -1.5
-    assert strata.allowed_counts("jittered", 10, 50) == [16, 25, 36, 49]
-    assert strata.allowed_counts("oa-bose", 1, 30) == [4, 9, 16, 25]
-    assert strata.nearest_count("jittered", 1000) == 1024
+    assert ss.allowed_counts("jittered", 10, 50) == [16, 25, 36, 49]
+    assert ss.allowed_counts("oa-bose", 1, 30) == [4, 9, 16, 25]
+    assert ss.nearest_count("jittered", 1000) == 1024
 
 
 # --- the path-tracer adapter ----------------------------------------------------------------
@@ -137,7 +137,7 @@ PIXEL_CASES = [
 
 @pytest.mark.parametrize("seq,n,seed,pixel,dims", PIXEL_CASES, ids=lambda v: str(v))
 def test_pixel_sampler_equals_the_command_line(points_cli, seq, n, seed, pixel, dims):
-    ps = strata.PixelSampler(seq, n, seed)
+    ps = ss.PixelSampler(seq, n, seed)
     ours = ps.sample(pixel, np.arange(n), dims)
     theirs = points_cli(
         "--sampler", seq, "-n", n, "--seed", seed, "--pixel", f"{pixel[0]},{pixel[1]}",
@@ -148,7 +148,7 @@ def test_pixel_sampler_equals_the_command_line(points_cli, seq, n, seed, pixel, 
 
 @pytest.mark.parametrize("pixel", [(7, 9), (100, 9)])
 def test_z_ordered_sequences_take_the_resolution(points_cli, pixel):
-    ps = strata.PixelSampler("zsobol", 16, 3, resolution=(64, 32))
+    ps = ss.PixelSampler("zsobol", 16, 3, resolution=(64, 32))
     ours = ps.sample(pixel, np.arange(16), 4)
     theirs = points_cli(
         "--sampler", "zsobol", "-n", 16, "--seed", 3, "--pixel", f"{pixel[0]},{pixel[1]}",
@@ -157,12 +157,12 @@ def test_z_ordered_sequences_take_the_resolution(points_cli, pixel):
     np.testing.assert_array_equal(ours, theirs)
     # inside both images a pixel has the same place on the curve; (100, 9) lies outside the
     # 64 x 32 image and falls back to its own copies
-    default = strata.PixelSampler("zsobol", 16, 3).sample(pixel, np.arange(16), 4)
+    default = ss.PixelSampler("zsobol", 16, 3).sample(pixel, np.arange(16), 4)
     assert np.array_equal(ours, default) == (pixel == (7, 9))
 
 
 def test_pixel_sampler_broadcasts_like_numpy():
-    ps = strata.PixelSampler("pmj02", 16, 9)
+    ps = ss.PixelSampler("pmj02", 16, 9)
     pixels = np.array([[0, 0], [1, 0], [5, 7]])
     idx = np.arange(16)
     grid = ps.sample(pixels[:, None, :], idx[None, :], 3)  # every pixel x every index
@@ -180,7 +180,7 @@ def test_pixel_sampler_broadcasts_like_numpy():
 
 
 def test_pixel_sampler_dimensions_and_first_dim():
-    ps = strata.PixelSampler("sobol", 64, 4)
+    ps = ss.PixelSampler("sobol", 64, 4)
     idx = np.arange(64)
     full = ps.sample((2, 3), idx, 8)
     # dimensions 4..7 on their own are the same values
@@ -189,7 +189,7 @@ def test_pixel_sampler_dimensions_and_first_dim():
     np.testing.assert_array_equal(ps.sample((2, 3), idx, 1, first_dim=6)[:, 0], full[:, 6])
     # each 2D draw of a pixel is a (0, m, 2)-net at 64 samples
     for d in (0, 2, 4, 6):
-        assert strata.net_t_value(np.ascontiguousarray(full[:, d : d + 2])) == 0
+        assert ss.net_t_value(np.ascontiguousarray(full[:, d : d + 2])) == 0
     # and different pixels get different values
     assert not np.array_equal(full, ps.sample((3, 2), idx, 8))
     assert ps.round_count(50) == 64 and ps.spp == 64 and ps.sequence == "sobol"
@@ -197,7 +197,7 @@ def test_pixel_sampler_dimensions_and_first_dim():
 
 
 def test_results_do_not_depend_on_threads_and_the_gil_is_released():
-    ps = strata.PixelSampler("sobol", 64, 4)
+    ps = ss.PixelSampler("sobol", 64, 4)
     pixels = np.stack(np.meshgrid(np.arange(64), np.arange(64)), axis=-1).reshape(-1, 2)
     ref = ps.sample(pixels, np.arange(pixels.shape[0]) % 64, 6)
     counter = [0]
@@ -211,7 +211,7 @@ def test_results_do_not_depend_on_threads_and_the_gil_is_released():
     t.start()
     try:
         c0 = counter[0]
-        big = strata.points("sobol", 1 << 20, dims=8)
+        big = ss.points("sobol", 1 << 20, dims=8)
         c1 = counter[0]
     finally:
         stop.set()
@@ -238,12 +238,12 @@ def test_long_sobol_fills_split_over_threads_equal_one_thread():
     # each thread skipping to its share, must equal small serial fills, and the stream must
     # continue after it as one sampler's would (the next call starts where this one ended)
     n, d = 1 << 17, 8
-    par = strata._strata.Sampler("sobol", n, 5, d)
+    par = ss._strata.Sampler("sobol", n, 5, d)
     a = np.empty((n, d), np.float32)
     par.fill(a)
     a_next = np.empty((1000, d), np.float32)
     par.fill(a_next)
-    ser = strata._strata.Sampler("sobol", n, 5, d)
+    ser = ss._strata.Sampler("sobol", n, 5, d)
     b = np.empty((n + 1000, d), np.float32)
     for k in range(0, n + 1000, 1 << 12):
         ser.fill(b[k : min(k + (1 << 12), n + 1000)])

@@ -10,6 +10,7 @@ use std::f64::consts::PI;
 
 /// A function on `[0,1)^D` with its exact integral.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Integrand {
     /// `1` inside the quarter disk `x^2 + y^2 < 2/pi` (area 1/2), else 0. Discontinuous.
     Disk,

@@ -39,6 +39,7 @@ pub const BOOTSTRAP: usize = 400;
 
 /// How many seeds (independent estimates) per count.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Seeds {
     /// The same number for every sampler.
     Fixed(u32),
@@ -107,6 +108,7 @@ pub struct Config {
 
 /// One (sampler, integrand, count) of the study.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Row {
     /// Sampler name.
     pub sampler: &'static str,
@@ -140,6 +142,7 @@ pub struct Row {
 
 /// The fitted convergence of one (sampler, integrand).
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Slope {
     /// Sampler name.
     pub sampler: &'static str,
@@ -157,6 +160,7 @@ pub struct Slope {
 
 /// The cost of reaching an error: one row of `time_to_error.csv`.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct TimeToError {
     /// Integrand.
     pub integrand: Integrand,

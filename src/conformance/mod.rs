@@ -220,6 +220,7 @@ impl Default for Suite {
 
 /// One row of a [`Report`]: one test over all its cases.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Row {
     /// The test (`integrands`, `products`, `chi-square`, ...).
     pub test: &'static str,
@@ -253,6 +254,7 @@ impl Row {
 
 /// The result of a run: one [`Row`] per test and scope.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Report {
     /// The rows, in a fixed order.
     pub rows: Vec<Row>,

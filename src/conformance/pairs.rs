@@ -55,6 +55,7 @@ impl Default for PairStudy {
 
 /// The result of a pair study.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct PairReport {
     /// Cases (pixel, pair of draws).
     pub pairs: usize,
@@ -182,6 +183,7 @@ impl PairStudy {
 /// bijection of the shuffled index, so the pairing of two draws is all the test sees), keyed
 /// as the adapter keys its draws ([`crate::pixel::kernel`]); the value is Owen-scrambled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Shuffle {
     /// An exact random nested shuffle: bit `j` of the index flipped by a hash of the draw's keys,
     /// `j` and the bits above it (32 hashes per value). The reference.

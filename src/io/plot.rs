@@ -27,6 +27,7 @@ fn rgb(c: Rgb) -> RGBColor {
 
 /// The marker drawn at each point of a [`Series`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Marker {
     /// A filled circle.
     Circle,

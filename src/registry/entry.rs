@@ -76,6 +76,7 @@ impl Family {
 
 /// A parameter a sampler takes, with its default and what is allowed.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ParameterSpec {
     /// Which parameter.
     pub parameter: Parameter,
@@ -234,6 +235,7 @@ fn oa_root(n: u64, t: u32) -> Option<u64> {
 /// Published convergence rates: the exponent `r` in `variance ~ N^r` of the estimate of a 2D
 /// integral, where a published rate exists.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct Rates {
     /// Integrands with discontinuities.
     pub discontinuous: Option<f64>,
@@ -287,6 +289,7 @@ pub(crate) type BuildNd = fn(&Params, u32) -> Result<Box<dyn SamplerNd>>;
 /// A registered sampler: what it is, what it promises, and how to build it. Each sampler's
 /// file declares its own.
 #[derive(Clone, Copy)]
+#[non_exhaustive]
 pub struct Entry {
     /// The name (`--sampler NAME`).
     pub name: &'static str,

@@ -104,6 +104,7 @@ pub struct Ccvt {
 
 /// What [`Ccvt::optimize`] did.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct CcvtResult {
     /// The sites.
     pub sites: Vec<[f64; 2]>,

@@ -235,6 +235,7 @@ fn cell_of_polygon(p: [f64; 2], polygon: &[[f64; 2]]) -> Cell {
 
 /// What one Lloyd iteration measured before moving the points.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct LloydStep {
     /// The quantization energy of the configuration before the move.
     pub energy: f64,

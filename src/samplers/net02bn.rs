@@ -32,7 +32,7 @@ use crate::samplers::blocks::{SetGenerator, Sets};
 use crate::samplers::sobol;
 
 /// The kernel width relative to `r_max(N)`.
-pub const SIGMA: f64 = 0.5;
+pub(crate) const SIGMA: f64 = 0.5;
 
 /// Optimisation stops once a sweep keeps fewer swaps than this fraction of the points.
 pub const STOP_FRACTION: f64 = 0.002;
@@ -85,6 +85,7 @@ pub struct Net02Bn {
 
 /// What [`Net02Bn::optimize`] did.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct Optimized {
     /// The points.
     pub points: Vec<[f64; 2]>,

@@ -27,6 +27,7 @@ pub const LOW_BAND: f64 = 1.0 / 8.0;
 
 /// The measures of an error image (see [`error_image`]).
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ErrorImage {
     /// Width in pixels.
     pub width: u32,

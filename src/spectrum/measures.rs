@@ -33,6 +33,7 @@ pub(crate) const MAX_SPECTRAL_MEASURE_POINTS: usize = 1 << 16;
 
 /// The PSA measures of a point set (averaged over realizations).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct PointSetMeasures {
     /// Number of points per set.
     pub count: usize,

@@ -163,6 +163,7 @@ impl Spectrum {
 
 /// One radial bin of a spectrum.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct RadialBin {
     /// The bin's radius `b`: frequencies with `round(|w|) = b`.
     pub frequency: u32,

@@ -40,10 +40,10 @@ use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 use crate::samplers::{Epochs, sobol};
 
 /// The kernel width relative to `r_max` of each prefix.
-pub const SIGMA: f64 = 0.5;
+pub(crate) const SIGMA: f64 = 0.5;
 
 /// The smallest prefix `2^k` in the objective.
-pub const FIRST_PREFIX_LOG2: u32 = 4;
+pub(crate) const FIRST_PREFIX_LOG2: u32 = 4;
 
 /// The default cap on the sweeps over all flags (they usually stop earlier).
 pub const DEFAULT_SWEEPS: u32 = 4;

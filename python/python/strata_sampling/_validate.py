@@ -10,7 +10,7 @@ from typing import Any, Dict
 
 import numpy as np
 
-#: The optional sampler parameters and their Python types (see ``strata.samplers()``).
+#: The optional sampler parameters and their Python types (see ``strata_sampling.samplers()``).
 SAMPLER_PARAMETERS = ("radius", "iterations", "strength", "candidates", "capacity")
 
 U32_MAX = 2**32 - 1

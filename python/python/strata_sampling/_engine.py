@@ -1,4 +1,4 @@
-"""``strata.Engine``: every sampler as a ``scipy.stats.qmc.QMCEngine``."""
+"""``strata_sampling.Engine``: every sampler as a ``scipy.stats.qmc.QMCEngine``."""
 
 from __future__ import annotations
 
@@ -25,12 +25,12 @@ class Engine(qmc.QMCEngine):
 
     * A **progressive** sampler (``sobol``, ``halton``, ``pmj02``, ``random``, ...) is one
       endless sequence: ``random(n)`` returns its next ``n`` points, so ``random(5)`` then
-      ``random(11)`` give the same 16 points as ``strata.points(name, 16, seed=seed,
+      ``random(11)`` give the same 16 points as ``strata_sampling.points(name, 16, seed=seed,
       dims=d)``; ``reset`` starts again; ``fast_forward(n)`` skips ``n`` points.
     * A **fixed-count** sampler (``jittered``, ``poisson``, ``oa-bose``, ``ccvt``, ...) makes
       sets of a count it accepts (``Engine.counts`` says which; a refused count raises
       ``ValueError`` naming the nearest allowed ones): each ``random(n)`` returns the next
-      independent set of ``n`` points, the first one equal to ``strata.points(name, n,
+      independent set of ``n`` points, the first one equal to ``strata_sampling.points(name, n,
       seed=seed, dims=d)``; ``fast_forward(n)`` skips one set of ``n``.
 
     ``seed``: an int (0 to 2^64 - 1), a ``numpy.random.Generator`` (a seed is drawn from it,

@@ -6,11 +6,11 @@ analysis tools (power spectra with radial means and anisotropy, PSA measures, di
 convergence studies), without a second implementation: the values are the crate's, bit for bit.
 
 >>> import strata
->>> x = strata.points("pmj02", 256, seed=7)            # (256, 2) float32
->>> s = strata.spectrum(x, 64)                          # (65, 65) periodogram, DC in the centre
->>> r = strata.radial(s)                                # radial mean and anisotropy
->>> d = strata.discrepancy(x, "CD")                     # as scipy.stats.qmc.discrepancy
->>> e = strata.Engine("sobol", 5, seed=3)               # a scipy.stats.qmc.QMCEngine
+>>> x = strata_sampling.points("pmj02", 256, seed=7)            # (256, 2) float32
+>>> s = strata_sampling.spectrum(x, 64)                          # (65, 65) periodogram, DC in the centre
+>>> r = strata_sampling.radial(s)                                # radial mean and anisotropy
+>>> d = strata_sampling.discrepancy(x, "CD")                     # as scipy.stats.qmc.discrepancy
+>>> e = strata_sampling.Engine("sobol", 5, seed=3)               # a scipy.stats.qmc.QMCEngine
 
 Errors are ``ValueError`` (or ``TypeError`` for the wrong kind of argument) with the crate's
 message: what was wrong and what is allowed. The GIL is released while Rust works.
@@ -63,7 +63,7 @@ MAX_RESOLUTION: int = _strata.MAX_RESOLUTION
 
 
 def __getattr__(name: str) -> Any:
-    # `strata.Engine` imports scipy on first use, so that `import strata` does not need it
+    # `strata_sampling.Engine` imports scipy on first use, so that `import strata` does not need it
     if name == "Engine":
         from ._engine import Engine
 
@@ -120,7 +120,7 @@ def points(name: str, n: int, *, seed: int = 1, dims: int = 2, **params: Any) ->
     ``iterations`` (Lloyd, CCVT, ``net02bn``, ``pmj02bn``), ``strength`` (``oa-bush``),
     ``candidates`` (best candidate, ``pmjbn``), ``capacity`` (CCVT).
 
-    >>> strata.points("jittered", 16, seed=3).shape
+    >>> strata_sampling.points("jittered", 16, seed=3).shape
     (16, 2)
     """
     n = _v.whole(n, "n", 0, _v.U64_MAX)
@@ -140,12 +140,12 @@ class PixelSampler:
     """The path-tracer adapter: stratified, independent values by (pixel, sample index,
     dimension), as ``strata::PixelSampler`` gives them to a renderer.
 
-    ``sequence`` is one of ``strata.sequences()`` (``random``, ``jittered``, ``pmj02``,
+    ``sequence`` is one of ``strata_sampling.sequences()`` (``random``, ``jittered``, ``pmj02``,
     ``sobol``, ``halton``, ``lattice``, ``zsobol``, ``zpmj02``); ``spp`` the samples per pixel
     (used by ``jittered``, which needs a square, ``halton`` and the Z-ordered sequences);
     ``resolution`` the ``(width, height)`` image of the Z-ordered sequences.
 
-    >>> ps = strata.PixelSampler("sobol", 16, seed=7)
+    >>> ps = strata_sampling.PixelSampler("sobol", 16, seed=7)
     >>> v = ps.sample([3, 4], np.arange(16), dims=5)    # (16, 5) float32
     """
 

@@ -1,4 +1,4 @@
-"""Type stub of the compiled module ``strata._strata`` (see ``python/src/*.rs``). The public
+"""Type stub of the compiled module ``strata_sampling._strata`` (see ``python/src/*.rs``). The public
 API is ``strata``; these are its building blocks, with no argument checks beyond the types."""
 
 from typing import Any, Dict, List, Optional, Tuple
