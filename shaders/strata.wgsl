@@ -176,6 +176,29 @@ fn strata_lattice(k: StrataDrawKeys, index: u32) -> vec2<u32> {
     return vec2<u32>(r, r * 182667u) + k.v;
 }
 
+// A random affine map of every base-4 digit (an aligned bit pair over GF(2)^2), one per digit
+// position: three transvections, then a translation (every permutation of a digit's values).
+fn strata_digit_affine_rev(n_in: u32, key: u32) -> u32 {
+    let lo = 0x55555555u;
+    let k = strata_hash32(key, 0x7a037a03u);
+    var n = n_in;
+    n ^= (n >> 1u) & k & lo;
+    n ^= (n & (k >> 1u) & lo) << 1u;
+    n ^= (n >> 1u) & ((k << 16u) | (k >> 16u)) & lo;
+    return n ^ (k * 0x2c1b3c6du);
+}
+
+// The mask of the base-4 digits of the Morton codes of an image (its ceil(log2(max side))
+// lowest digits).
+fn strata_z_mask(resolution: vec2<u32>) -> u32 {
+    let side = max(max(resolution.x, resolution.y), 1u);
+    let levels = 32u - countLeadingZeros(side - 1u);
+    if (levels >= 16u) {
+        return 0xffffffffu;
+    }
+    return (1u << (2u * levels)) - 1u;
+}
+
 // The 2D draw at `dim` of sample `index` of `pixel`, as 32-bit fixed point (value / 2^32).
 fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32) -> vec2<u32> {
     var keys = strata_pixel_keys(params.key, pixel);
@@ -186,8 +209,11 @@ fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32)
         let inside = pixel.x < params.resolution.x && pixel.y < params.resolution.y;
         let bits = params.z_bits;
         if (inside && bits < 32u && (index >> bits) == 0u) {
-            let zk = strata_hash32(params.key.x ^ params.key.y, 0x7a017a01u);
-            let z = reverseBits(strata_owen_base4_rev(reverseBits(strata_morton(pixel)), zk));
+            // the pixel's place for this draw: its Morton code under a nested base-4 scramble
+            // of the image's digits, keyed by the image and the draw
+            let zk = strata_hash32(dim, strata_hash32(params.key.x ^ params.key.y, 0x7a017a01u));
+            let r = strata_owen_base4_rev(reverseBits(strata_morton(pixel)), zk);
+            let z = reverseBits(strata_digit_affine_rev(r, zk)) & strata_z_mask(params.resolution);
             var tile = 0u;
             if (bits > 0u) {
                 tile = z >> (32u - bits);

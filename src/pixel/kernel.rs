@@ -106,18 +106,72 @@ pub(crate) fn tile_keys(key: &Key, tile: u32) -> PixelKeys {
     PixelKeys(key.0.map(|k| hash32(tile, hash32(Z_DRAWS, k))))
 }
 
-/// The Z-ordered sequences' place of `pixel` along their global sequence: its Morton code
-/// under a nested base-4 scramble keyed by the image (which turns the Z curve's fixed pattern
-/// into a random one while keeping every aligned `2^k x 2^k` tile of pixels on consecutive
-/// blocks); `None` outside the `resolution`.
+/// What the Z-ordered sequences need of a pixel to place it along their global sequence, draw
+/// by draw: its Morton code (bit-reversed), the mask of the image's base-4 digits and the
+/// image's pixel-order key.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct ZPixel {
+    morton_rev: u32,
+    mask: u32,
+    key: u32,
+}
+
+/// The mask of the base-4 digits of the Morton codes of an image of `resolution` (the
+/// `ceil(log2(max side))` lowest digits): the pixel order permutes these and keeps the rest 0.
 #[inline]
-pub(crate) fn z_place(key: &Key, resolution: [u32; 2], pixel: [u32; 2]) -> Option<u32> {
+pub(crate) fn z_mask(resolution: [u32; 2]) -> u32 {
+    let side = resolution[0].max(resolution[1]).max(1);
+    let levels = 32 - (side - 1).leading_zeros(); // ceil(log2 side)
+    if levels >= 16 {
+        u32::MAX
+    } else {
+        (1u32 << (2 * levels)) - 1
+    }
+}
+
+/// The Z-ordered sequences' view of `pixel`; `None` outside the `resolution`.
+#[inline]
+pub(crate) fn z_pixel(key: &Key, resolution: [u32; 2], pixel: [u32; 2]) -> Option<ZPixel> {
     if pixel[0] >= resolution[0] || pixel[1] >= resolution[1] {
         return None;
     }
-    let m = morton(pixel[0], pixel[1]).reverse_bits();
-    let k = hash32(key.0[0] ^ key.0[1], Z_PIXELS);
-    Some(owen_scramble_base4_rev(m, k).reverse_bits())
+    Some(ZPixel {
+        morton_rev: morton(pixel[0], pixel[1]).reverse_bits(),
+        mask: z_mask(resolution),
+        key: hash32(key.0[0] ^ key.0[1], Z_PIXELS),
+    })
+}
+
+/// The place of a pixel along the global sequence for the draw at `dim`: its Morton code under
+/// a nested base-4 scramble of the image's digits keyed by the image and the draw (Vegdahl's
+/// hash, then a random affine map per digit position: every one of the 24 permutations of a
+/// digit is reached), so that each draw orders
+/// the pixels anew, as pbrt-v4's `ZSobolSampler` does per dimension, while every aligned
+/// `2^k x 2^k` tile of pixels still takes consecutive blocks. A bijection of the image's
+/// Morton codes `[0, 4^L)` for every draw.
+#[inline]
+pub(crate) fn z_place(z: &ZPixel, dim: u32) -> u32 {
+    let k = hash32(dim, z.key);
+    digit_affine_rev(owen_scramble_base4_rev(z.morton_rev, k), k).reverse_bits() & z.mask
+}
+
+/// Salt of the key of [`digit_affine_rev`].
+const Z_AFFINE: u32 = 0x7a03_7a03;
+
+/// A random affine map of every base-4 digit (an aligned bit pair, read as a vector over
+/// GF(2)^2), one map per digit position keyed by `key`: three transvections chosen per digit
+/// (`lo ^= hi`, `hi ^= lo`, `lo ^= hi`), then a translation. The affine group of GF(2)^2 is
+/// the whole symmetric group of the four digit values, so composed after Vegdahl's nested hash,
+/// which reaches only 16 of the 24 permutations of a digit, every permutation is reached; the
+/// map depends on the digit's position only, so the composition stays a nested scramble.
+#[inline(always)]
+fn digit_affine_rev(mut n: u32, key: u32) -> u32 {
+    const LO: u32 = 0x5555_5555;
+    let k = hash32(key, Z_AFFINE);
+    n ^= (n >> 1) & k & LO;
+    n ^= (n & (k >> 1) & LO) << 1;
+    n ^= (n >> 1) & k.rotate_left(16) & LO;
+    n ^ k.wrapping_mul(0x2c1b_3c6d)
 }
 
 /// Where sample `index` (below `2^32`) of the pixel at place `z` reads along the global
@@ -247,19 +301,26 @@ mod tests {
     #[test]
     fn z_places_are_a_bijection_and_global_indices_stay_in_their_tile() {
         let key = Key::new(Seed(9));
-        let mut seen = std::collections::HashSet::new();
-        for y in 0..64 {
-            for x in 0..64 {
-                let z = z_place(&key, [64, 64], [x, y]).unwrap();
-                assert!(seen.insert(z));
-                // aligned 2^k x 2^k tiles of pixels keep consecutive places
-                for k in 1..6 {
-                    let corner = z_place(&key, [64, 64], [x >> k << k, y >> k << k]).unwrap();
-                    assert_eq!(z >> (2 * k), corner >> (2 * k), "tile {k} of {x},{y}");
+        for (res, dim) in [([64, 64], 0), ([64, 64], 7), ([48, 40], 2), ([1, 1], 0)] {
+            let codes = z_mask(res) as u64 + 1;
+            let mut seen = std::collections::HashSet::new();
+            let place = |x, y| z_place(&z_pixel(&key, res, [x, y]).unwrap(), dim);
+            for y in 0..res[1] {
+                for x in 0..res[0] {
+                    let z = place(x, y);
+                    assert!(seen.insert(z) && (z as u64) < codes, "{res:?} {x},{y}: {z}");
+                    // aligned 2^k x 2^k tiles of pixels keep consecutive places
+                    for k in 1..6 {
+                        let corner = place(x >> k << k, y >> k << k);
+                        assert_eq!(z >> (2 * k), corner >> (2 * k), "tile {k} of {x},{y}");
+                    }
                 }
             }
         }
-        assert_eq!(z_place(&key, [64, 64], [64, 0]), None);
+        assert_eq!(z_mask([64, 64]), (1 << 12) - 1);
+        assert_eq!(z_mask([65, 2]), (1 << 14) - 1);
+        assert_eq!(z_mask([65536, 1]), u32::MAX);
+        assert_eq!(z_pixel(&key, [64, 64], [64, 0]), None);
         assert_eq!(z_global(5, 4, 3), Some((0, 5 * 16 + 3)));
         assert_eq!(z_global(5, 4, 16), None);
         assert_eq!(
@@ -268,5 +329,34 @@ mod tests {
         );
         assert_eq!(z_global(9, 0, 0), Some((0, 9)));
         assert_eq!(z_global(9, 0, 1), None);
+    }
+
+    #[test]
+    fn each_draw_orders_the_pixels_anew_with_every_digit_permutation() {
+        // issue 25: the pixel order was the same for every draw; now each draw permutes the
+        // base-4 digit of every 2x2 block, and over draws every one of the 24 permutations
+        // appears, for the finest digit and for a coarser one
+        let key = Key::new(Seed(3));
+        let res = [64, 64];
+        for (level, origin) in [(0u32, [10u32, 6u32]), (2, [16, 32])] {
+            let mut perms = std::collections::HashSet::new();
+            for dim in 0..2000 {
+                let digit = |x: u32, y: u32| {
+                    let s = 1 << level;
+                    let z = z_place(
+                        &z_pixel(&key, res, [origin[0] + x * s, origin[1] + y * s]).unwrap(),
+                        dim,
+                    );
+                    (z >> (2 * level)) & 3
+                };
+                perms.insert([digit(0, 0), digit(1, 0), digit(0, 1), digit(1, 1)]);
+            }
+            assert_eq!(
+                perms.len(),
+                24,
+                "level {level}: {} permutations",
+                perms.len()
+            );
+        }
     }
 }

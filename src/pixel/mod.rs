@@ -138,7 +138,7 @@ pub use sequence::{DEFAULT_Z_RESOLUTION, MAX_Z_RESOLUTION, Sequence};
 use crate::error::Result;
 use crate::prelude::*;
 use crate::sampler::Seed;
-use kernel::PixelKeys;
+use kernel::{PixelKeys, ZPixel};
 
 /// The WGSL port of the [`kernel`] (`shaders/strata.wgsl`): a shader module to include, with
 /// `strata_get_2d`, `strata_draw` and the parameter struct `StrataParameters` (see the
@@ -243,11 +243,39 @@ impl GpuParameters {
 }
 
 /// The keys and the index the draws of one pixel sample read: the pixel's own copy, or, for
-/// the Z-ordered sequences inside the pixel's block, the tile and place of the global sequence.
+/// the Z-ordered sequences inside the pixel's block, the keys of the global sequence's first
+/// tile, the sample's index inside the pixel's block and the pixel's place, which each draw
+/// turns into its own global index ([`SampleState::at`]).
 #[derive(Clone, Copy, Debug)]
 struct SampleState {
     keys: PixelKeys,
     index: SampleIndex,
+    z: Option<ZPixel>,
+}
+
+impl SampleState {
+    /// The keys and the index of the draw at `dim`: for the Z-ordered sequences, sample `i`
+    /// of the pixel at place `z` (this draw's place) is sample `z B + i` of the global sequence
+    /// (`B` = samples per pixel rounded up to a power of two), in tiles of `2^32` samples with
+    /// keys of their own.
+    #[inline(always)]
+    fn at(&self, key: &Key, z_bits: u32, dim: u32) -> (PixelKeys, SampleIndex) {
+        match &self.z {
+            None => (self.keys, self.index),
+            Some(zp) => self.at_place(key, z_bits, kernel::z_place(zp, dim)),
+        }
+    }
+
+    /// [`at`](Self::at) for a Z-ordered sample whose pixel has place `z` in this draw.
+    #[inline(always)]
+    fn at_place(&self, key: &Key, z_bits: u32, z: u32) -> (PixelKeys, SampleIndex) {
+        match kernel::z_global(z, z_bits, self.index.get()) {
+            Some((0, g)) => (self.keys, SampleIndex::new(g)),
+            Some((tile, g)) => (kernel::tile_keys(key, tile), SampleIndex::new(g)),
+            // (not reached: a state with a place is made only inside the pixel's block)
+            None => (self.keys, self.index),
+        }
+    }
 }
 
 /// What a pixel sample needs of its pixel, kept while the pixel stays the same.
@@ -257,10 +285,8 @@ struct PixelState {
     epoch: u32,
     /// The pixel's own keys (of the key of its epoch, `2^32` samples).
     own: PixelKeys,
-    /// The Z-ordered sequences' place of the pixel (epoch 0, inside the image).
-    z: Option<u32>,
-    /// The last tile of the global sequence read, with its keys.
-    tile: Option<(u32, PixelKeys)>,
+    /// The Z-ordered sequences' view of the pixel (epoch 0, inside the image).
+    z: Option<ZPixel>,
 }
 
 /// The per-thread sampler state of a path tracer.
@@ -272,6 +298,12 @@ pub struct PixelSampler {
     layout: DimensionLayout,
     pixel: PixelState,
     current: SampleState,
+    /// The keys of the first tile of the Z-ordered sequences' global sequence.
+    z_tile0: PixelKeys,
+    /// The current pixel's place per draw for dimensions below 64 (a pixel's samples share
+    /// them), valid where `z_valid` has the dimension's bit.
+    z_places: [u32; 64],
+    z_valid: u64,
     dim: u32,
     /// The end of the current bounce's dimensions (checked in debug builds).
     limit: u32,
@@ -297,12 +329,15 @@ impl PixelSampler {
                 epoch: 0,
                 own: kernel::pixel_keys(&key, [0, 0]),
                 z: None,
-                tile: None,
             },
             current: SampleState {
                 keys: kernel::pixel_keys(&key, [0, 0]),
                 index: SampleIndex::new(0),
+                z: None,
             },
+            z_tile0: kernel::tile_keys(&key, 0),
+            z_places: [0; 64],
+            z_valid: 0,
             dim: 0,
             limit: u32::MAX,
         };
@@ -363,12 +398,14 @@ impl PixelSampler {
         if pixel != self.pixel.pixel || epoch != self.pixel.epoch {
             self.pixel = self.pixel_state(pixel, epoch);
             self.current.keys = self.pixel.own;
+            self.z_valid = 0;
         }
         if self.pixel.z.is_none() {
             // the pixel's own copy: its keys are already in place
             self.current.index = SampleIndex::new(index as u32);
+            self.current.z = None;
         } else {
-            self.current = Self::sample_state(&self.key, &self.spp, &mut self.pixel, index as u32);
+            self.current = self.sample_state(&self.pixel, index as u32);
         }
         self.dim = dim;
         self.limit = u32::MAX;
@@ -411,10 +448,8 @@ impl PixelSampler {
     #[inline]
     pub fn get_1d(&mut self) -> f32 {
         self.check_budget(1);
-        let c = &self.current;
-        let v = self
-            .sequence
-            .sample_1d(&c.keys, c.index, self.dim, &self.spp);
+        let (keys, index) = self.draw_at(self.dim);
+        let v = self.sequence.sample_1d(&keys, index, self.dim, &self.spp);
         self.dim = self.dim.wrapping_add(1);
         v
     }
@@ -423,10 +458,8 @@ impl PixelSampler {
     #[inline]
     pub fn get_2d(&mut self) -> Vec2 {
         self.check_budget(2);
-        let c = &self.current;
-        let [x, y] = self
-            .sequence
-            .sample_2d(&c.keys, c.index, self.dim, &self.spp);
+        let (keys, index) = self.draw_at(self.dim);
+        let [x, y] = self.sequence.sample_2d(&keys, index, self.dim, &self.spp);
         self.dim = self.dim.wrapping_add(2);
         Vec2::new(x, y)
     }
@@ -438,10 +471,15 @@ impl PixelSampler {
     #[inline]
     pub fn get_4d(&mut self) -> Vec4 {
         self.check_budget(4);
-        let c = &self.current;
-        let v = self
-            .sequence
-            .sample_4d(&c.keys, c.index, self.dim, &self.spp);
+        let dim = self.dim;
+        let v = if self.current.z.is_none() {
+            let c = &self.current;
+            self.sequence.sample_4d(&c.keys, c.index, dim, &self.spp)
+        } else {
+            let (ka, ia) = self.draw_at(dim);
+            let (kb, ib) = self.draw_at(dim.wrapping_add(2));
+            self.two_2d(ka, ia, kb, ib, dim)
+        };
         self.dim = self.dim.wrapping_add(4);
         Vec4::from_array(v)
     }
@@ -462,20 +500,22 @@ impl PixelSampler {
     /// Stateless: the 1D value [`get_1d`](Self::get_1d) gives at `dim` for `(pixel, index)`.
     pub fn sample(&self, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
         let c = self.stateless(pixel, index);
-        self.sequence.sample_1d(&c.keys, c.index, dim, &self.spp)
+        let (keys, index) = c.at(&self.key, self.spp.z_bits(), dim);
+        self.sequence.sample_1d(&keys, index, dim, &self.spp)
     }
 
     /// Stateless: the 2D value [`get_2d`](Self::get_2d) gives at `dim` for `(pixel, index)`.
     pub fn sample_2d(&self, pixel: [u32; 2], index: u64, dim: u32) -> Vec2 {
         let c = self.stateless(pixel, index);
-        let [x, y] = self.sequence.sample_2d(&c.keys, c.index, dim, &self.spp);
+        let (keys, index) = c.at(&self.key, self.spp.z_bits(), dim);
+        let [x, y] = self.sequence.sample_2d(&keys, index, dim, &self.spp);
         Vec2::new(x, y)
     }
 
     /// Stateless: the 4D value [`get_4d`](Self::get_4d) gives at `dim` for `(pixel, index)`.
     pub fn sample_4d(&self, pixel: [u32; 2], index: u64, dim: u32) -> Vec4 {
         let c = self.stateless(pixel, index);
-        Vec4::from_array(self.sequence.sample_4d(&c.keys, c.index, dim, &self.spp))
+        Vec4::from_array(self.four(&c, dim))
     }
 
     /// Stateless: the 2D draw at `dim` for `(pixel, index)` as the [`kernel`]'s 32-bit
@@ -483,14 +523,15 @@ impl PixelSampler {
     /// values the [`WGSL`] shader computes; `None` for `jittered` and `halton`.
     pub fn sample_2d_u32(&self, pixel: [u32; 2], index: u64, dim: u32) -> Option<[u32; 2]> {
         let c = self.stateless(pixel, index);
-        self.sequence.sample_2d_u32(&c.keys, c.index, dim)
+        let (keys, index) = c.at(&self.key, self.spp.z_bits(), dim);
+        self.sequence.sample_2d_u32(&keys, index, dim)
     }
 
     /// The state of `pixel` in `epoch`.
     fn pixel_state(&self, pixel: [u32; 2], epoch: u32) -> PixelState {
         let key = self.key.epoch(epoch);
         let z = match self.sequence.resolution() {
-            Some(res) if epoch == 0 => kernel::z_place(&self.key, res, pixel),
+            Some(res) if epoch == 0 => kernel::z_pixel(&self.key, res, pixel),
             _ => None,
         };
         PixelState {
@@ -498,61 +539,95 @@ impl PixelSampler {
             epoch,
             own: kernel::pixel_keys(&key, pixel),
             z,
-            tile: None,
         }
     }
 
-    /// The state of sample `index` (below `2^32`) of `pixel`: for the Z-ordered sequences,
-    /// sample `i < B` (`B` = samples per pixel rounded up to a power of two) of the pixel at
-    /// place `z` is sample `z B + i` of one global sequence (its own keys per tile of `2^32`
-    /// global samples, kept in `pixel` while the tile stays the same); past the pixel's block,
-    /// outside the image and past the first `2^32` samples a draw reads the pixel's own
+    /// The state of sample `index` (below `2^32`) of `pixel`: for the Z-ordered sequences
+    /// inside the pixel's block of `B` samples (`B` = samples per pixel rounded up to a power of
+    /// two), a place along the global sequence per draw ([`SampleState::at`]); past the pixel's
+    /// block, outside the image and past the first `2^32` samples a draw reads the pixel's own
     /// independent copy.
     #[inline]
-    fn sample_state(
-        key: &Key,
-        spp: &SamplesPerPixel,
-        pixel: &mut PixelState,
-        index: u32,
-    ) -> SampleState {
-        if let Some((tile, g)) = pixel
-            .z
-            .and_then(|z| kernel::z_global(z, spp.z_bits(), index))
-        {
-            let keys = match pixel.tile {
-                Some((t, keys)) if t == tile => keys,
-                _ => {
-                    let keys = kernel::tile_keys(key, tile);
-                    pixel.tile = Some((tile, keys));
-                    keys
-                }
-            };
-            return SampleState {
-                keys,
-                index: SampleIndex::new(g),
-            };
+    fn sample_state(&self, pixel: &PixelState, index: u32) -> SampleState {
+        let bits = self.spp.z_bits();
+        match pixel.z {
+            Some(z) if bits < 32 && index >> bits == 0 => SampleState {
+                keys: self.z_tile0,
+                index: SampleIndex::new(index),
+                z: Some(z),
+            },
+            _ => SampleState {
+                keys: pixel.own,
+                index: SampleIndex::new(index),
+                z: None,
+            },
         }
-        SampleState {
-            keys: pixel.own,
-            index: SampleIndex::new(index),
+    }
+
+    /// The four values of [`get_4d`](Self::get_4d) at `dim`: the Z-ordered sequences place the
+    /// pixel per draw, so their two draws are two [`SampleState::at`]; the others share one
+    /// index and compute the pair together.
+    #[inline(always)]
+    fn four(&self, c: &SampleState, dim: u32) -> [f32; 4] {
+        if c.z.is_none() {
+            return self.sequence.sample_4d(&c.keys, c.index, dim, &self.spp);
         }
+        let bits = self.spp.z_bits();
+        let (ka, ia) = c.at(&self.key, bits, dim);
+        let (kb, ib) = c.at(&self.key, bits, dim.wrapping_add(2));
+        self.two_2d(ka, ia, kb, ib, dim)
+    }
+
+    /// Two 2D draws at `dim` and `dim + 2`, each with its own keys and index.
+    #[inline(always)]
+    fn two_2d(
+        &self,
+        ka: PixelKeys,
+        ia: SampleIndex,
+        kb: PixelKeys,
+        ib: SampleIndex,
+        dim: u32,
+    ) -> [f32; 4] {
+        self.sequence
+            .sample_2x2d([(&ka, ia), (&kb, ib)], dim, &self.spp)
+    }
+
+    /// The keys and the index of the current sample's draw at `dim`; for the Z-ordered
+    /// sequences the pixel's place in this draw comes from the per-pixel cache.
+    #[inline(always)]
+    fn draw_at(&mut self, dim: u32) -> (PixelKeys, SampleIndex) {
+        let Some(zp) = self.current.z else {
+            return (self.current.keys, self.current.index);
+        };
+        let z = if dim < 64 {
+            let bit = 1u64 << dim;
+            if self.z_valid & bit == 0 {
+                self.z_places[dim as usize] = kernel::z_place(&zp, dim);
+                self.z_valid |= bit;
+            }
+            self.z_places[dim as usize]
+        } else {
+            kernel::z_place(&zp, dim)
+        };
+        self.current.at_place(&self.key, self.spp.z_bits(), z)
     }
 
     /// The state of sample `index` of `pixel`, without changing `self`.
     fn stateless(&self, pixel: [u32; 2], index: u64) -> SampleState {
         let epoch = (index >> 32) as u32;
-        let mut p = if pixel == self.pixel.pixel && epoch == self.pixel.epoch {
+        let p = if pixel == self.pixel.pixel && epoch == self.pixel.epoch {
             self.pixel
         } else {
             self.pixel_state(pixel, epoch)
         };
-        Self::sample_state(&self.key, &self.spp, &mut p, index as u32)
+        self.sample_state(&p, index as u32)
     }
 
     /// 40 random bits for the low end of [`PixelRng`]'s words, beyond the sequence's 24.
     #[inline]
     fn low_bits(&self) -> u64 {
-        let k = kernel::DrawKeys::new(&self.current.keys, self.dim);
-        crate::hash::hash_u64(!k.stream(), self.current.index.get() as u64)
+        let (keys, index) = self.current.at(&self.key, self.spp.z_bits(), self.dim);
+        let k = kernel::DrawKeys::new(&keys, self.dim);
+        crate::hash::hash_u64(!k.stream(), index.get() as u64)
     }
 }

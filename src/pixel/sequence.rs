@@ -20,7 +20,14 @@
 //!   pmj02; both are computed on demand from 8 KiB of tables ([`crate::digital`]).
 //! * `lattice`: the shuffled index's point of the rank-1 lattice, shifted on the torus.
 //! * `zsobol`, `zpmj02`: as `sobol` and `pmj02`, but pixels take consecutive blocks of one
-//!   global sequence along a scrambled Morton curve (screen-space blue-noise error).
+//!   global sequence along a scrambled Morton curve (screen-space blue-noise error; Ahmed and
+//!   Wonka, "Screen-Space Blue-Noise Diffusion of Monte Carlo Sampling Error via Hierarchical
+//!   Ordering of Pixels", SIGGRAPH Asia 2020, as pbrt-v4's `ZSobolSampler`). Each draw orders
+//!   the pixels anew: the Morton code's base-4 digits go through a nested scramble keyed by the
+//!   image and the draw's dimension (Vegdahl's base-4 hash, then a random affine map of each
+//!   digit position over GF(2)^2, so that every one of the 24 permutations of a digit occurs),
+//!   which keeps every aligned `2^k x 2^k` tile of pixels on consecutive blocks and each
+//!   pixel's block a (0,m,2)-net per draw.
 //! * `halton`: scrambled Halton in bases 2 and 3 for every draw, padded as Kollig and Keller
 //!   ("Efficient Multidimensional Sampling", Eurographics 2002) pad 2D sets: the index is
 //!   permuted at random inside aligned blocks of `M = 2^a 3^b` samples (the smallest such
@@ -389,17 +396,30 @@ impl Sequence {
         dim: u32,
         spp: &SamplesPerPixel,
     ) -> [f32; 4] {
+        self.sample_2x2d([(keys, index), (keys, index)], dim, spp)
+    }
+
+    /// Two 2D draws at `dim` and `dim + 2`, each with its own keys and index (the Z-ordered
+    /// sequences place a pixel per draw), computed together where the kernel can.
+    #[inline]
+    pub(crate) fn sample_2x2d(
+        &self,
+        draws: [(&PixelKeys, SampleIndex); 2],
+        dim: u32,
+        spp: &SamplesPerPixel,
+    ) -> [f32; 4] {
+        let [(ka, ia), (kb, ib)] = draws;
         let (a, b) = (
-            DrawKeys::new(keys, dim),
-            DrawKeys::new(keys, dim.wrapping_add(2)),
+            DrawKeys::new(ka, dim),
+            DrawKeys::new(kb, dim.wrapping_add(2)),
         );
         match self.kind {
-            Kind::Random => join(kernel::random(&a, index), kernel::random(&b, index)).unit_f32(),
+            Kind::Random => join(kernel::random(&a, ia), kernel::random(&b, ib)).unit_f32(),
             Kind::Sobol | Kind::Pmj02 | Kind::ZSobol | Kind::ZPmj02 => {
                 let t = self.table();
                 let (p, q) = (
-                    X2::new(t.point_rev(kernel::shuffled(&a, index))),
-                    X2::new(t.point_rev(kernel::shuffled(&b, index))),
+                    X2::new(t.point_rev(kernel::shuffled(&a, ia))),
+                    X2::new(t.point_rev(kernel::shuffled(&b, ib))),
                 );
                 let (p, q) = (
                     owen_scramble_lanes(p, X2::new(a.v)),
@@ -407,12 +427,10 @@ impl Sequence {
                 );
                 join(p, q).reverse_bits().unit_f32()
             }
-            Kind::Lattice => {
-                join(kernel::lattice(&a, index), kernel::lattice(&b, index)).unit_f32()
-            }
+            Kind::Lattice => join(kernel::lattice(&a, ia), kernel::lattice(&b, ib)).unit_f32(),
             Kind::Jittered | Kind::Halton => {
-                let [x, y] = self.sample_2d(keys, index, dim, spp);
-                let [z, w] = self.sample_2d(keys, index, dim.wrapping_add(2), spp);
+                let [x, y] = self.sample_2d(ka, ia, dim, spp);
+                let [z, w] = self.sample_2d(kb, ib, dim.wrapping_add(2), spp);
                 [x, y, z, w]
             }
         }
