@@ -31,7 +31,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use strata::analysis::study;
 use strata::io::{self, Canvas, LinePlot, Marker, Rgb, Series};
-use strata::pixel::{PixelSampler, Sequence, warp};
+use strata::pixel::{Padding, PixelSampler, Sequence, warp};
 use strata::spectrum::{self, ErrorImage};
 
 const USAGE: &str = "render [--samplers a,b,..|all] [--spp N[,N,..]] [--size WxH] \
@@ -56,6 +56,9 @@ Options:
   --scene NAME           cornell (default: a Cornell box, up to 8 bounces, two lights, a
                          discrete light and lobe choice, Russian roulette, thin lens) or spheres
                          (direct lighting, seven dimensions)
+  --padding nested|uniform  how two draws' samples meet (strata::Padding; default nested:
+                         every power-of-two prefix a net; uniform: each block of spp samples
+                         reordered per draw by a sharply 2-transitive map)
   --reference-spp N      samples per pixel of the reference (default 16 x the largest count,
                          at least 1024, at most 65536; never below the largest count)
   --seed S               seed of the samplers (u64, default 1; the reference has its own)
@@ -94,6 +97,7 @@ struct Args {
     spp: Vec<u32>,
     size: (u32, u32),
     scene: SceneKind,
+    padding: Padding,
     reference_spp: Option<u32>,
     seed: u64,
     seeds: u32,
@@ -108,6 +112,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         spp: vec![4, 16, 64, 256],
         size: (128, 128),
         scene: SceneKind::Cornell,
+        padding: Padding::Nested,
         reference_spp: None,
         seed: 1,
         seeds: 4,
@@ -156,6 +161,17 @@ fn parse() -> Result<Option<Args>, CliError> {
                     other => {
                         return Err(cli_error(format!(
                             "--scene {other:?} is not a scene; allowed: cornell, spheres"
+                        )));
+                    }
+                }
+            }
+            Long("padding") => {
+                a.padding = match string_value("--padding", p.value()?)?.as_str() {
+                    "nested" => Padding::Nested,
+                    "uniform" => Padding::Uniform,
+                    other => {
+                        return Err(cli_error(format!(
+                            "--padding {other:?} is not a padding; allowed: nested, uniform"
                         )));
                     }
                 }
@@ -685,8 +701,9 @@ fn render(
     size: (u32, u32),
     seed: u64,
     progress: Option<&str>,
+    padding: Padding,
 ) -> Result<Vec<Vec3>, strata::Error> {
-    let sampler = PixelSampler::new(sequence, spp, strata::Seed(seed))?;
+    let sampler = PixelSampler::new(sequence, spp, strata::Seed(seed))?.with_padding(padding);
     let rows_done = std::sync::atomic::AtomicU32::new(0);
     let rows: Vec<Vec<Vec3>> = (0..size.1)
         .into_par_iter()
@@ -919,6 +936,7 @@ fn main() -> ExitCode {
             size,
             0x5eed_0000_0001,
             Some("reference"),
+            Padding::Nested,
         )?;
         eprintln!("reference: {:.1} s", start.elapsed().as_secs_f64());
         io::write_png(args.out.join("reference.png"), &to_canvas(&reference, size))?;
@@ -937,6 +955,7 @@ fn main() -> ExitCode {
                         size,
                         args.seed.wrapping_add(k),
                         None,
+                        args.padding,
                     )?;
                     ms += start.elapsed().as_secs_f64() * 1e3 / args.seeds as f64;
                     let n = image.len() as f64 * args.seeds as f64;

@@ -161,7 +161,7 @@ mod stats;
 
 pub use error::{Error, Result};
 pub use glam;
-pub use pixel::{PixelSampler, Sequence};
+pub use pixel::{Padding, PixelSampler, Sequence};
 pub use sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 
 /// The README's code examples, compiled and run by `cargo test`.

@@ -494,3 +494,61 @@ fn stateful_draws_equal_the_stateless_ones_across_pixels_samples_and_dims() {
         }
     }
 }
+
+#[test]
+fn uniform_padding_keeps_each_block_and_reorders_it_per_draw() {
+    use strata::Padding;
+    for name in ["sobol", "pmj02", "lattice", "zsobol", "zpmj02"] {
+        let seq = Sequence::by_name_at(name, [16, 16]).unwrap();
+        let nested = PixelSampler::new(seq.clone(), 16, strata::Seed(5)).unwrap();
+        let uniform = nested.clone().with_padding(Padding::Uniform);
+        assert_eq!(uniform.padding(), Padding::Uniform);
+        let mut reordered = 0;
+        for pixel in [[0u32, 0], [3, 9]] {
+            for block in [0u64, 1, 7] {
+                for dim in [0u32, 2, 10, 70] {
+                    let draw = |s: &PixelSampler| -> Vec<[u32; 2]> {
+                        (0..16)
+                            .map(|i| {
+                                let v = s.sample_2d(pixel, block * 16 + i, dim);
+                                [v.x.to_bits(), v.y.to_bits()]
+                            })
+                            .collect()
+                    };
+                    let (a, b) = (draw(&nested), draw(&uniform));
+                    // the same points (the block is the same net), in another order
+                    let (mut sa, mut sb) = (a.clone(), b.clone());
+                    sa.sort();
+                    sb.sort();
+                    assert_eq!(sa, sb, "{name} {pixel:?} block {block} dim {dim}");
+                    reordered += (a != b) as u32;
+                    // stateful draws agree with the stateless ones
+                    let mut t = uniform.clone();
+                    t.start_pixel_sample(pixel, block * 16 + 3, dim);
+                    assert_eq!(t.get_2d(), uniform.sample_2d(pixel, block * 16 + 3, dim));
+                    t.start_pixel_sample(pixel, block * 16 + 3, dim);
+                    assert_eq!(t.get_4d(), uniform.sample_4d(pixel, block * 16 + 3, dim));
+                }
+            }
+        }
+        assert!(
+            reordered >= 20,
+            "{name}: only {reordered} of 24 blocks reordered"
+        );
+        // whole blocks keep their promise, prefixes do not; the shader has no uniform padding
+        assert!(!uniform.promised_strata(16).is_empty(), "{name}");
+        assert!(uniform.promised_strata(8).is_empty(), "{name}");
+        assert!(!nested.promised_strata(8).is_empty(), "{name}");
+        assert!(uniform.gpu_parameters().is_none() && nested.gpu_parameters().is_some());
+    }
+    // the sequences that already pad by whole blocks are unchanged by it
+    for name in ["random", "jittered", "halton"] {
+        let s = PixelSampler::new(Sequence::by_name(name).unwrap(), 16, strata::Seed(5)).unwrap();
+        let u = s.clone().with_padding(Padding::Uniform);
+        assert_eq!(
+            s.sample_2d([1, 2], 5, 4),
+            u.sample_2d([1, 2], 5, 4),
+            "{name}"
+        );
+    }
+}

@@ -186,6 +186,47 @@ pub(crate) fn z_global(z: u32, bits: u32, index: u32) -> Option<(u32, u32)> {
     Some((tile, (z << bits) | index))
 }
 
+/// Irreducible polynomials of GF(2^m) for `m = 0..=16`, without their `x^m` term.
+const GF_POLY: [u32; 17] = [
+    0, 0x1, 0x3, 0x3, 0x3, 0x5, 0x3, 0x3, 0x1d, 0x11, 0x9, 0x5, 0x53, 0x1b, 0x443, 0x3, 0x100b,
+];
+
+/// `a b` in GF(2^m) (`m <= 16`, `a, b < 2^m`), the polynomials of [`GF_POLY`]; branch-free.
+#[inline(always)]
+pub(crate) fn gf_mul(a: u32, b: u32, m: u32) -> u32 {
+    let top = 1u32 << m;
+    let reduce = top | GF_POLY[(m as usize).min(16)];
+    let (mut a, mut r) = (a, 0u32);
+    for i in 0..m {
+        r ^= a & 0u32.wrapping_sub((b >> i) & 1);
+        a <<= 1;
+        a ^= reduce & 0u32.wrapping_sub((a >> m) & 1);
+    }
+    r
+}
+
+/// Salt of the keys of [`uniform_block`].
+const UNIFORM_PAD: u32 = 0x7061_6431;
+
+/// Uniform padding: the index's position inside its aligned block of `2^bits` samples mapped
+/// by `x -> alpha x + beta` over GF(2^bits), `alpha != 0` and `beta` keyed by `key`, the draw's
+/// dimension and the block. The maps `alpha x + beta` are sharply 2-transitive, so two draws'
+/// samples meet pair by pair as under independent uniform permutations (the second moments of
+/// a product of two draws are those of uniform padding), and each block keeps its points: a
+/// net at `2^bits` stays a net. Blocks wider than `2^16` keep their order.
+#[inline(always)]
+pub(crate) fn uniform_block(index: u32, bits: u32, key: u32, dim: u32) -> u32 {
+    if bits == 0 || bits > 16 {
+        return index;
+    }
+    let mask = (1u32 << bits) - 1;
+    let h = hash32(index >> bits, hash32(dim, key ^ UNIFORM_PAD));
+    let alpha = 1 + h % mask.max(1);
+    let alpha = if bits == 1 { 1 } else { alpha };
+    let beta = hash32(h, UNIFORM_PAD) & mask;
+    (index & !mask) | (gf_mul(alpha, index & mask, bits) ^ beta)
+}
+
 /// The keys of one draw (see the [module docs](self)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct DrawKeys {
@@ -329,6 +370,60 @@ mod tests {
         );
         assert_eq!(z_global(9, 0, 0), Some((0, 9)));
         assert_eq!(z_global(9, 0, 1), None);
+    }
+
+    #[test]
+    fn gf_multiplication_is_a_field_and_uniform_blocks_are_2_transitive() {
+        // every nonzero element has an inverse: multiplication by it is a bijection
+        for m in 1..=16u32 {
+            let n = 1u32 << m;
+            let alphas: Vec<u32> = if m <= 8 {
+                (1..n).collect()
+            } else {
+                (1..40u32)
+                    .map(|k| k.wrapping_mul(2_654_435_761) % (n - 1) + 1)
+                    .collect()
+            };
+            for a in alphas {
+                let mut seen = vec![false; n as usize];
+                for x in 0..n {
+                    let y = gf_mul(a, x, m);
+                    assert!(y < n && !seen[y as usize], "m {m}: {a} x {x}");
+                    seen[y as usize] = true;
+                }
+            }
+        }
+        // the padding is a bijection of each block, and over keys every ordered pair of
+        // positions goes to every ordered pair of positions equally often (chi-square)
+        for bits in [2u32, 3, 6] {
+            let n = 1u32 << bits;
+            for block in [0u32, 5] {
+                let mut seen = std::collections::HashSet::new();
+                for i in 0..n {
+                    let j = uniform_block(block * n + i, bits, 77, 3);
+                    assert_eq!(j / n, block);
+                    assert!(seen.insert(j));
+                }
+            }
+            let cells = (n * (n - 1)) as usize;
+            let mut counts = vec![0u32; cells];
+            let trials = 200 * cells as u32;
+            for key in 0..trials {
+                let (a, b) = (
+                    uniform_block(0, bits, key, 1),
+                    uniform_block(1, bits, key, 1),
+                );
+                counts[(a * (n - 1) + if b > a { b - 1 } else { b }) as usize] += 1;
+            }
+            let e = trials as f64 / cells as f64;
+            let chi2: f64 = counts.iter().map(|&c| (c as f64 - e).powi(2) / e).sum();
+            // df = cells - 1; mean df, sd sqrt(2 df): 6 sd is a false alarm below 1e-6
+            let df = (cells - 1) as f64;
+            assert!(
+                chi2 < df + 6.0 * (2.0 * df).sqrt(),
+                "bits {bits}: chi2 {chi2} df {df}"
+            );
+        }
     }
 
     #[test]

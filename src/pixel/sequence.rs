@@ -455,6 +455,16 @@ impl Sequence {
         })
     }
 
+    /// Whether [`Padding::Uniform`](super::Padding::Uniform) changes this sequence (the
+    /// digital sequences and the lattice).
+    #[inline]
+    pub(crate) fn pads_uniformly(&self) -> bool {
+        matches!(
+            self.kind,
+            Kind::Sobol | Kind::Pmj02 | Kind::Lattice | Kind::ZSobol | Kind::ZPmj02
+        )
+    }
+
     /// The sample count nearest above `n` at which the sequence is best stratified (a square
     /// for jittered, a power of two for pmj02 and Sobol', `2^a 3^b` for Halton), at most the
     /// largest such count below `2^32`.
