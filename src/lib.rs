@@ -150,6 +150,8 @@ pub mod pixel;
 #[cfg(feature = "std")]
 pub mod pointsets;
 #[cfg(feature = "std")]
+pub mod power;
+#[cfg(feature = "std")]
 pub mod registry;
 mod sampler;
 pub mod samplers;

@@ -18,8 +18,8 @@ pub use entry::{CountRule, Entry, Family, Parameter, ParameterSpec, Params, Rate
 use crate::error::{Error, Result};
 use crate::sampler::{Sampler, SamplerNd};
 use crate::samplers::{
-    best_candidate, ccvt, halton, jittered, latin, lattice, multijitter, net02bn, oa, pmj, poisson,
-    random, regular, sobol, uncorrelated,
+    best_candidate, bnot, ccvt, halton, jittered, latin, lattice, multijitter, net02bn, oa, pmj,
+    poisson, random, regular, sobol, uncorrelated,
 };
 
 /// Every registered sampler, in a stable order (simplest first).
@@ -42,6 +42,7 @@ static ENTRIES: &[Entry] = &[
     #[cfg(feature = "lloyd")]
     crate::samplers::lloyd::ENTRY,
     ccvt::ENTRY,
+    bnot::ENTRY,
     sobol::ENTRY,
     halton::ENTRY,
     lattice::LATTICE,

@@ -15,6 +15,7 @@
 //! | `best-candidate` | [`BestCandidate`] | progressive | see [`best_candidate`] | Mitchell 1991 |
 //! | `lloyd` | `LloydSets` | fixed, any `N` | Lloyd relaxation (feature `lloyd`) | Lloyd 1982 |
 //! | `ccvt` | [`CcvtSets`] | fixed, any `N` | see [`ccvt`] | Balzer et al. 2009 |
+//! | `bnot` | [`BnotSets`] | fixed, any `N` | equal-area power cells, see [`bnot`] | de Goes et al. 2012 |
 //! | `net02bn` | [`Net02BnSets`] | fixed `N = 2^m` | see [`net02bn`] | Ahmed, Wonka 2021 |
 //! | `sobol` | [`Sobol`], [`SobolNd`] | progressive | see [`sobol`] | Sobol' 1967, Burley 2020 |
 //! | `halton` | [`Halton`], [`HaltonNd`] | progressive | see [`halton`] | Halton 1960 |
@@ -32,6 +33,8 @@
 #[cfg(feature = "std")]
 pub mod best_candidate;
 mod blocks;
+#[cfg(feature = "std")]
+pub mod bnot;
 #[cfg(feature = "std")]
 pub mod ccvt;
 pub mod halton;
@@ -63,6 +66,8 @@ pub(crate) mod uncorrelated;
 #[cfg(feature = "std")]
 pub use best_candidate::BestCandidate;
 pub use blocks::{BlockCursor, Blocks, SetGenerator, Sets};
+#[cfg(feature = "std")]
+pub use bnot::{Bnot, BnotSets};
 #[cfg(feature = "std")]
 pub use ccvt::{Ccvt, CcvtSets};
 pub use halton::{Halton, HaltonNd};
