@@ -27,7 +27,8 @@
 //!   image and the draw's dimension (Vegdahl's base-4 hash, then a random affine map of each
 //!   digit position over GF(2)^2, so that every one of the 24 permutations of a digit occurs),
 //!   which keeps every aligned `2^k x 2^k` tile of pixels on consecutive blocks and each
-//!   pixel's block a (0,m,2)-net per draw.
+//!   pixel's block a (0,m,2)-net per draw. Only the image's digits are permuted, so a pixel's
+//!   place depends on the image's size (its `ceil(log2(max side))`), not on its position alone.
 //! * `halton`: scrambled Halton in bases 2 and 3 for every draw, padded as Kollig and Keller
 //!   ("Efficient Multidimensional Sampling", Eurographics 2002) pad 2D sets: the index is
 //!   permuted at random inside aligned blocks of `M = 2^a 3^b` samples (the smallest such
