@@ -222,3 +222,19 @@ fn no_sampler_ever_returns_one() {
     }
     assert!(strata::float::f32_in_stratum(u32::MAX as u64 - 1, u32::MAX as u64, 1.0 - 1e-17) < 1.0);
 }
+
+#[test]
+fn huge_counts_never_overflow() {
+    // found by the constructor property test: a count past 2^63 has no next power of two in
+    // u64, and pmj02bn's prefix length overflowed; it now optimises its longest prefix (with
+    // 0 sweeps here, to stay quick)
+    for n in [(1u64 << 63) + 1, u64::MAX] {
+        assert!(strata::samplers::Pmj02Bn::new(strata::Seed(1), n, 0).is_ok());
+    }
+    for spp in [u32::MAX, (1 << 31) + 1] {
+        for name in strata::pixel::Sequence::NAMES {
+            let seq = strata::pixel::Sequence::by_name(name).unwrap();
+            let _ = strata::PixelSampler::new(seq, spp, strata::Seed(2));
+        }
+    }
+}

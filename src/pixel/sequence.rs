@@ -108,7 +108,11 @@ impl SamplesPerPixel {
             strata: Strata::new(s as u64),
             block: DivMod::new(m).expect("m >= 1"),
             block_exponents: (a, b),
-            z_bits: spp.max(1).next_power_of_two().trailing_zeros().min(31),
+            z_bits: spp
+                .max(1)
+                .checked_next_power_of_two()
+                .map_or(32, u32::trailing_zeros)
+                .min(31),
         }
     }
 

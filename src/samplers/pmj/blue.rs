@@ -167,10 +167,11 @@ impl Pmj02Bn {
                 format!("0 to {MAX_SWEEPS} sweeps"),
             ));
         }
+        // (a count past 2^63 has no next power of two in u64: it optimises the longest prefix)
         let log2 = count
             .max(1)
-            .next_power_of_two()
-            .trailing_zeros()
+            .checked_next_power_of_two()
+            .map_or(64, u64::trailing_zeros)
             .clamp(FIRST_PREFIX_LOG2, MAX_OPTIMIZED_LOG2);
         let epochs = Epochs::new(seed, MAX_SEQUENCE_LEN);
         let flags = optimize(epochs.key(0), log2, sweeps);
