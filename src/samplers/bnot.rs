@@ -138,13 +138,7 @@ impl Bnot {
     ///
     /// [`Error::InvalidCount`] or [`Error::InvalidParameter`], saying what is allowed.
     pub fn new(count: u64, iterations: u32) -> Result<Self> {
-        if count == 0 || count > MAX_BNOT_COUNT {
-            return Err(Error::count(
-                ENTRY.name,
-                count,
-                format!("the count must be between 1 and {MAX_BNOT_COUNT}"),
-            ));
-        }
+        super::check_count(ENTRY.name, count, MAX_BNOT_COUNT)?;
         if iterations > MAX_ITERATIONS {
             return Err(Error::parameter(
                 ENTRY.name,

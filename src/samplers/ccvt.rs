@@ -130,13 +130,7 @@ impl Ccvt {
     /// As [`new`](Ccvt::new) with `capacity` points per site (1 to [`MAX_CAPACITY`], and
     /// `count * capacity` at most [`MAX_POINTS`]).
     pub fn with_capacity(count: u64, iterations: u32, capacity: u32) -> Result<Self> {
-        if count == 0 || count > MAX_CCVT_COUNT {
-            return Err(Error::count(
-                ENTRY.name,
-                count,
-                format!("the count must be between 1 and {MAX_CCVT_COUNT}"),
-            ));
-        }
+        super::check_count(ENTRY.name, count, MAX_CCVT_COUNT)?;
         if iterations == 0 || iterations > MAX_ITERATIONS {
             return Err(Error::parameter(
                 ENTRY.name,

@@ -309,13 +309,7 @@ impl Lloyd {
     /// `count` points (1 to [`MAX_LLOYD_COUNT`]) relaxed until converged, at most `iterations`
     /// steps (0 to [`MAX_ITERATIONS`]).
     pub fn new(count: u64, iterations: u32) -> Result<Self> {
-        if count == 0 || count > MAX_LLOYD_COUNT {
-            return Err(Error::count(
-                ENTRY.name,
-                count,
-                format!("the count must be between 1 and {MAX_LLOYD_COUNT}"),
-            ));
-        }
+        super::check_count(ENTRY.name, count, MAX_LLOYD_COUNT)?;
         if iterations > MAX_ITERATIONS {
             return Err(Error::parameter(
                 ENTRY.name,

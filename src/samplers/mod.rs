@@ -131,6 +131,18 @@ pub(crate) fn check_dims(sampler: &'static str, dims: u32, max: u32, note: &str)
     Ok(())
 }
 
+/// Validates a point count of a sampler that makes 1 to `max` points.
+pub(crate) fn check_count(sampler: &'static str, count: u64, max: u64) -> Result<()> {
+    if count == 0 || count > max {
+        return Err(Error::count(
+            sampler,
+            count,
+            format!("the count must be between 1 and {max}"),
+        ));
+    }
+    Ok(())
+}
+
 /// Replaces `out` with `k` independent permutations of `[0, len)` for block key `key` (one per
 /// dimension or group of dimensions, permutation `d` keyed by stream `d` of `key`).
 #[cfg(feature = "std")]

@@ -123,13 +123,7 @@ pub(crate) fn below(rng: &mut Pcg32, len: usize) -> usize {
 
 /// Validates the count and the relative radius shared by the Poisson-disk samplers.
 fn check(name: &'static str, count: u64, rho: f64, max_rho: f64) -> Result<u32> {
-    if count == 0 || count > MAX_POISSON_COUNT {
-        return Err(Error::count(
-            name,
-            count,
-            format!("the count must be between 1 and {MAX_POISSON_COUNT}"),
-        ));
-    }
+    super::check_count(name, count, MAX_POISSON_COUNT)?;
     if !(rho > 0.0 && rho < 1.0) {
         return Err(Error::parameter(
             name,
