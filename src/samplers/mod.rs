@@ -132,6 +132,7 @@ pub(crate) fn check_dims(sampler: &'static str, dims: u32, max: u32, note: &str)
 }
 
 /// Validates a point count of a sampler that makes 1 to `max` points.
+#[cfg(feature = "std")]
 pub(crate) fn check_count(sampler: &'static str, count: u64, max: u64) -> Result<()> {
     if count == 0 || count > max {
         return Err(Error::count(
