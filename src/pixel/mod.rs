@@ -214,7 +214,8 @@ impl SampleIndex {
 /// A fixed budget per bounce keeps each draw at the same dimension for every sample of a
 /// pixel, whatever the path did before it (how many lights it sampled, whether it took a
 /// discrete choice), so that each draw stays stratified across the samples. Budgets too
-/// generous cost nothing: dimensions that are never asked for are never computed.
+/// generous cost nothing: dimensions that are never asked for are never computed (but for
+/// the pair [`PixelSampler::get_2d`] computes ahead at a multiple of 4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DimensionLayout {
     /// Dimensions of the camera sample (film 0-1, then lens, time, wavelength...).
@@ -352,6 +353,18 @@ struct PixelState {
     own: PixelKeys,
     /// The Z-ordered sequences' view of the pixel (epoch 0, inside the image).
     z: Option<ZPixel>,
+    /// With [`Padding::Uniform`], for the sequences it changes: the pixel's padding key and
+    /// `log2` of the block.
+    pad: Option<(u32, u32)>,
+}
+
+impl PixelState {
+    /// Whether this is the state of `pixel` in `epoch` (one branch-free comparison: it runs
+    /// once per pixel sample).
+    #[inline(always)]
+    fn is(&self, pixel: [u32; 2], epoch: u32) -> bool {
+        (pixel[0] ^ self.pixel[0]) | (pixel[1] ^ self.pixel[1]) | (epoch ^ self.epoch) == 0
+    }
 }
 
 /// The per-thread sampler state of a path tracer.
@@ -371,6 +384,11 @@ pub struct PixelSampler {
     /// them), valid where `z_valid` has the dimension's bit.
     z_places: [u32; 64],
     z_valid: u64,
+    /// The draw at `next_dim` of the current sample, computed beside the previous one by
+    /// [`get_2d`](Self::get_2d) (`next_dim` is `u32::MAX`, no dimension such a draw can
+    /// start at, when there is none).
+    next_pair: [f32; 2],
+    next_dim: u32,
     dim: u32,
     /// The end of the current bounce's dimensions (checked in debug builds).
     limit: u32,
@@ -396,6 +414,7 @@ impl PixelSampler {
                 epoch: 0,
                 own: kernel::pixel_keys(&key, [0, 0]),
                 z: None,
+                pad: None,
             },
             current: SampleState {
                 keys: kernel::pixel_keys(&key, [0, 0]),
@@ -407,6 +426,8 @@ impl PixelSampler {
             z_tile0: kernel::tile_keys(&key, 0),
             z_places: [0; 64],
             z_valid: 0,
+            next_pair: [0.0; 2],
+            next_dim: u32::MAX,
             dim: 0,
             limit: u32::MAX,
         };
@@ -428,6 +449,7 @@ impl PixelSampler {
         let (pixel, index) = (self.pixel.pixel, self.current.index.get());
         self.pixel = self.pixel_state(pixel, self.pixel.epoch);
         self.z_valid = 0;
+        self.next_dim = u32::MAX;
         self.current = self.sample_state(&self.pixel, index);
         self
     }
@@ -493,7 +515,7 @@ impl PixelSampler {
     #[inline]
     pub fn start_pixel_sample(&mut self, pixel: [u32; 2], index: u64, dim: u32) {
         let epoch = (index >> 32) as u32;
-        if pixel != self.pixel.pixel || epoch != self.pixel.epoch {
+        if !self.pixel.is(pixel, epoch) {
             self.pixel = self.pixel_state(pixel, epoch);
             self.current.keys = self.pixel.own;
             self.z_valid = 0;
@@ -502,10 +524,11 @@ impl PixelSampler {
             // the pixel's own copy: its keys are already in place
             self.current.index = SampleIndex::new(index as u32);
             self.current.z = None;
-            self.current.pad = self.pad_of(&self.pixel);
+            self.current.pad = self.pixel.pad;
         } else {
             self.current = self.sample_state(&self.pixel, index as u32);
         }
+        self.next_dim = u32::MAX;
         self.dim = dim;
         self.limit = u32::MAX;
     }
@@ -547,20 +570,39 @@ impl PixelSampler {
     #[inline]
     pub fn get_1d(&mut self) -> f32 {
         self.check_budget(1);
-        let (keys, index) = self.draw_at(self.dim);
-        let v = self.sequence.sample_1d(&keys, index, self.dim, &self.spp);
+        let v = if self.dim == self.next_dim {
+            self.next_pair[0]
+        } else {
+            let (keys, index) = self.draw_at(self.dim);
+            self.sequence.sample_1d(&keys, index, self.dim, &self.spp)
+        };
         self.dim = self.dim.wrapping_add(1);
         v
     }
 
     /// The next two dimensions as a 2D value.
+    ///
+    /// At a dimension that is a multiple of 4, the sequences whose kernel computes two draws
+    /// in one pass of four lanes (all but `jittered` and `halton`) compute the draw at the
+    /// next two dimensions too and keep it for the next call, as [`get_4d`](Self::get_4d)
+    /// does: the same values, for little more than the cost of one draw.
     #[inline]
     pub fn get_2d(&mut self) -> Vec2 {
         self.check_budget(2);
-        let (keys, index) = self.draw_at(self.dim);
-        let [x, y] = self.sequence.sample_2d(&keys, index, self.dim, &self.spp);
-        self.dim = self.dim.wrapping_add(2);
-        Vec2::new(x, y)
+        let dim = self.dim;
+        let v = if dim == self.next_dim {
+            self.next_pair
+        } else if dim.is_multiple_of(4) && self.sequence.pairs_draws() {
+            let [x, y, z, w] = self.draw_4(dim);
+            self.next_pair = [z, w];
+            self.next_dim = dim + 2;
+            [x, y]
+        } else {
+            let (keys, index) = self.draw_at(dim);
+            self.sequence.sample_2d(&keys, index, dim, &self.spp)
+        };
+        self.dim = dim.wrapping_add(2);
+        Vec2::from_array(v)
     }
 
     /// The next four dimensions as two 2D draws `(x0, y0, x1, y1)`: the same values as two
@@ -570,17 +612,22 @@ impl PixelSampler {
     #[inline]
     pub fn get_4d(&mut self) -> Vec4 {
         self.check_budget(4);
-        let dim = self.dim;
-        let v = if self.current.z.is_none() && self.current.pad.is_none() {
+        let v = self.draw_4(self.dim);
+        self.dim = self.dim.wrapping_add(4);
+        Vec4::from_array(v)
+    }
+
+    /// The draws at `dim` and `dim + 2` of the current sample.
+    #[inline(always)]
+    fn draw_4(&mut self, dim: u32) -> [f32; 4] {
+        if self.current.z.is_none() && self.current.pad.is_none() {
             let c = &self.current;
             self.sequence.sample_4d(&c.keys, c.index, dim, &self.spp)
         } else {
             let (ka, ia) = self.draw_at(dim);
             let (kb, ib) = self.draw_at(dim.wrapping_add(2));
             self.two_2d(ka, ia, kb, ib, dim)
-        };
-        self.dim = self.dim.wrapping_add(4);
-        Vec4::from_array(v)
+        }
     }
 
     /// The position inside the pixel: a 2D draw meant for dimensions 0-1 (call it first).
@@ -633,11 +680,13 @@ impl PixelSampler {
             Some(res) if epoch == 0 => kernel::z_pixel(&self.key, res, pixel),
             _ => None,
         };
+        let own = kernel::pixel_keys(&key, pixel);
         PixelState {
             pixel,
             epoch,
-            own: kernel::pixel_keys(&key, pixel),
+            own,
             z,
+            pad: self.current_pads().then(|| (own.0[0], self.spp.z_bits())),
         }
     }
 
@@ -649,7 +698,7 @@ impl PixelSampler {
     #[inline]
     fn sample_state(&self, pixel: &PixelState, index: u32) -> SampleState {
         let bits = self.spp.z_bits();
-        let pad = self.pad_of(pixel);
+        let pad = pixel.pad;
         match pixel.z {
             Some(z) if bits < 32 && index >> bits == 0 => SampleState {
                 keys: self.z_tile0,
@@ -664,14 +713,6 @@ impl PixelSampler {
                 pad,
             },
         }
-    }
-
-    /// The padding key and block of `pixel` under [`Padding::Uniform`], for the sequences it
-    /// changes (the digital ones and the lattice); `None` otherwise.
-    #[inline]
-    fn pad_of(&self, pixel: &PixelState) -> Option<(u32, u32)> {
-        self.current_pads()
-            .then(|| (pixel.own.0[0], self.spp.z_bits()))
     }
 
     /// The four values of [`get_4d`](Self::get_4d) at `dim`: the Z-ordered sequences place the
@@ -725,7 +766,7 @@ impl PixelSampler {
     /// The state of sample `index` of `pixel`, without changing `self`.
     fn stateless(&self, pixel: [u32; 2], index: u64) -> SampleState {
         let epoch = (index >> 32) as u32;
-        let p = if pixel == self.pixel.pixel && epoch == self.pixel.epoch {
+        let p = if self.pixel.is(pixel, epoch) {
             self.pixel
         } else {
             self.pixel_state(pixel, epoch)

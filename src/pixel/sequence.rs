@@ -406,7 +406,7 @@ impl Sequence {
 
     /// Two 2D draws at `dim` and `dim + 2`, each with its own keys and index (the Z-ordered
     /// sequences place a pixel per draw), computed together where the kernel can.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn sample_2x2d(
         &self,
         draws: [(&PixelKeys, SampleIndex); 2],
@@ -439,6 +439,13 @@ impl Sequence {
                 [x, y, z, w]
             }
         }
+    }
+
+    /// Whether [`sample_2x2d`](Sequence::sample_2x2d) computes its two draws in one pass (the
+    /// kernel sequences), rather than one after the other (`jittered`, `halton`).
+    #[inline(always)]
+    pub(crate) fn pairs_draws(&self) -> bool {
+        !matches!(self.kind, Kind::Jittered | Kind::Halton)
     }
 
     /// The kernel's 32-bit fixed-point values of the 2D draw at `dim` (what the shader computes);
