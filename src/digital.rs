@@ -357,6 +357,14 @@ pub(crate) fn sobol_byte_tables(dim: u32) -> Option<&'static ByteTables> {
     None
 }
 
+/// The byte tables of every Sobol' dimension the build has (see [`sobol_dimensions`]).
+pub(crate) fn sobol_all_byte_tables() -> &'static [ByteTables] {
+    #[cfg(feature = "std")]
+    return &sobol_tables().bytes;
+    #[cfg(not(feature = "std"))]
+    &SOBOL_FIRST
+}
+
 /// The number of Sobol' dimensions available (1000 with the `joe-kuo` feature, else 2).
 pub(crate) fn sobol_dimensions() -> u32 {
     #[cfg(feature = "std")]
@@ -365,13 +373,83 @@ pub(crate) fn sobol_dimensions() -> u32 {
     2
 }
 
+/// The t-value of the first `2^m` points (`m <= 32`) of the digital sequence with generator
+/// matrices `matrices` as a base-2 `(t, m, s)`-net (`s` the number of matrices): `m` minus the
+/// largest strength `rho` for which, for every choice of `d_1 + ... + d_s = rho` leading digits,
+/// the rows of those digits (over the first `m` index bits) are linearly independent; the same
+/// for every aligned block of `2^m` points, and under any Owen scramble or nested index shuffle.
+/// (Niederreiter 1992, Theorem 4.28; a digital net's t-value is its matrices' rank property.)
+#[cfg(feature = "std")]
+pub(crate) fn digital_t_value(matrices: &[Matrix], m: u32) -> u32 {
+    // row r (digit 2^-(r+1)) of matrix j over index bits 0..m, as an m-bit word
+    let row = |j: usize, r: usize| -> u32 {
+        (0..m as usize).fold(0u32, |w, i| w | ((matrices[j][i] >> (31 - r)) & 1) << i)
+    };
+    let independent = |rows: &mut Vec<u32>| -> bool {
+        // Gaussian elimination over GF(2): each row must keep a pivot of its own
+        let mut basis: Vec<u32> = Vec::with_capacity(rows.len());
+        for &r in rows.iter() {
+            let mut x = r;
+            for &b in &basis {
+                x = x.min(x ^ b);
+            }
+            if x == 0 {
+                return false;
+            }
+            basis.push(x);
+            basis.sort_unstable_by(|a, b| b.cmp(a));
+        }
+        true
+    };
+    let s = matrices.len();
+    // every composition of rho into s parts (each at most 32), depth first
+    fn compositions(
+        s: usize,
+        rho: u32,
+        parts: &mut Vec<u32>,
+        f: &mut dyn FnMut(&[u32]) -> bool,
+    ) -> bool {
+        if parts.len() + 1 == s {
+            if rho > 32 {
+                return true;
+            }
+            parts.push(rho);
+            let ok = f(parts);
+            parts.pop();
+            return ok;
+        }
+        for d in 0..=rho.min(32) {
+            parts.push(d);
+            let ok = compositions(s, rho - d, parts, f);
+            parts.pop();
+            if !ok {
+                return false;
+            }
+        }
+        true
+    }
+    let mut strength = 0;
+    let mut rows = Vec::new();
+    for rho in 1..=m {
+        let ok = compositions(s, rho, &mut Vec::new(), &mut |parts: &[u32]| {
+            rows.clear();
+            for (j, &d) in parts.iter().enumerate() {
+                rows.extend((0..d as usize).map(|r| row(j, r)));
+            }
+            independent(&mut rows)
+        });
+        if !ok {
+            break;
+        }
+        strength = rho;
+    }
+    m - strength
+}
+
 /// The generator matrix of Sobol' dimension `dim`.
-#[cfg(test)]
+#[cfg(feature = "std")]
 pub(crate) fn sobol_matrix(dim: u32) -> Option<Matrix> {
-    #[cfg(feature = "std")]
-    return sobol_tables().matrices.get(dim as usize).copied();
-    #[cfg(not(feature = "std"))]
-    sobol01_matrices().get(dim as usize).copied()
+    sobol_tables().matrices.get(dim as usize).copied()
 }
 
 #[cfg(test)]
@@ -494,6 +572,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "std")]
     fn byte_tables_match_the_bit_loop() {
         for dim in 0..sobol_dimensions().min(40) {
             let m = sobol_matrix(dim).unwrap();
@@ -502,5 +581,33 @@ mod tests {
                 assert_eq!(lookup(t, i.reverse_bits()).reverse_bits(), apply(&m, i));
             }
         }
+    }
+
+    #[test]
+    #[cfg(feature = "joe-kuo")]
+    fn digital_t_values_match_the_points_counted() {
+        use crate::analysis::discrepancy::net_t_value;
+        // the rank criterion against the elementary intervals counted on the points, for pairs
+        // of Sobol' dimensions with t from 0 up, at several m
+        for (a, b) in [(0u32, 1u32), (0, 2), (1, 2), (2, 3), (3, 5), (4, 7), (6, 7)] {
+            let (ma, mb) = (sobol_matrix(a).unwrap(), sobol_matrix(b).unwrap());
+            for m in [1u32, 3, 6, 9] {
+                let pts: Vec<f64> = (0..1u32 << m)
+                    .flat_map(|i| [apply(&ma, i), apply(&mb, i)])
+                    .map(|v| v as f64 / 4_294_967_296.0)
+                    .collect();
+                let counted = net_t_value(&pts).unwrap().unwrap();
+                assert_eq!(digital_t_value(&[ma, mb], m), counted, "dims {a},{b} m {m}");
+            }
+        }
+        // Sobol' 0-1 is a (0,2)-sequence; a matrix repeated is as bad as it gets
+        assert!(
+            (1..=20).all(|m| digital_t_value(
+                &[sobol_matrix(0).unwrap(), sobol_matrix(1).unwrap()],
+                m
+            ) == 0)
+        );
+        let m0 = sobol_matrix(0).unwrap();
+        assert_eq!(digital_t_value(&[m0, m0], 8), 7);
     }
 }

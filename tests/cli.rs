@@ -438,3 +438,26 @@ fn points_writes_every_format_and_measure_reads_them_back() {
     assert!(err.contains("FILE"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn nets_tabulates_every_pair_of_a_group_and_refuses_bad_groups() {
+    let (code, out, err) = run_example("nets", &["--group", "4", "--max-m", "4"]);
+    assert_eq!(code, 0, "{err}");
+    // the six pairs of four dimensions, each with its t at m = 2 and 4; Sobol' 0-1 is a net
+    let pairs: Vec<&str> = out
+        .lines()
+        .filter(|l| l.starts_with("| ") && l.chars().nth(2).is_some_and(|c| c.is_ascii_digit()))
+        .collect();
+    assert_eq!(pairs.len(), 6 + 1, "{out}"); // and the row of the set 0, 1, 2, 3
+    assert!(out.contains("| 0, 1 | 0 | 0 |"), "{out}");
+    for bad in [
+        ["--group", "3"],
+        ["--group", "32"],
+        ["--max-m", "5"],
+        ["--max-m", "0"],
+    ] {
+        let (code, _, err) = run_example("nets", &bad);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+        assert!(err.contains(bad[0]), "{bad:?}: {err}");
+    }
+}

@@ -189,6 +189,7 @@ fn help_and_lists() -> Vec<(&'static str, Vec<&'static str>)> {
         "conformance",
         "render",
         "path_tracer",
+        "nets",
     ]
     .into_iter()
     .map(|p| (p, vec!["--help"]))

@@ -609,3 +609,69 @@ fn uniform_padding_keeps_each_block_and_reorders_it_per_draw() {
         );
     }
 }
+
+#[test]
+fn zjoint_in_groups_of_two_is_zsobol() {
+    // with groups of two dimensions every draw is its own group: the same bits as zsobol at
+    // every even dimension (inside the image, outside it, past the pixel's block, both paddings)
+    let zsobol = Sequence::zsobol(5, 3).unwrap();
+    let joint = Sequence::by_name_at("zjoint-2", [5, 3]).unwrap();
+    assert_eq!(joint.group(), 2);
+    for padding in [strata::Padding::Nested, strata::Padding::Uniform] {
+        let a = PixelSampler::new(zsobol.clone(), 16, strata::Seed(3))
+            .unwrap()
+            .with_padding(padding);
+        let b = PixelSampler::new(joint.clone(), 16, strata::Seed(3))
+            .unwrap()
+            .with_padding(padding);
+        for pixel in [[0u32, 0], [4, 2], [2, 1], [7, 1]] {
+            for index in [0u64, 5, 15, 16, 40, (1 << 32) + 1] {
+                for dim in (0..40).step_by(2) {
+                    assert_eq!(
+                        a.sample_2d(pixel, index, dim),
+                        b.sample_2d(pixel, index, dim),
+                        "{padding:?} {pixel:?} {index} {dim}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn zjoint_stratifies_the_draws_of_a_group_jointly() {
+    use strata::analysis::discrepancy::net_t_value;
+    // a pixel's 64 samples: the first coordinates of two draws of one group are a projection
+    // of one aligned block of the multi-dimensional Sobol' sequence, a (t, 6, 2)-net with that
+    // projection's t-value in every pixel; zsobol's draws are independent, their projection as
+    // coarse as chance makes it; and two draws of different groups are independent in zjoint too
+    let t_of = |seq: &Sequence, pixel: [u32; 2], da: u32, db: u32| {
+        let s = PixelSampler::new(seq.clone(), 64, strata::Seed(17)).unwrap();
+        let pts: Vec<f32> = (0..64)
+            .flat_map(|i| [s.sample(pixel, i, da), s.sample(pixel, i, db)])
+            .collect();
+        net_t_value(&pts).unwrap().unwrap()
+    };
+    let joint = Sequence::by_name_at("zjoint", [8, 8]).unwrap();
+    let zsobol = Sequence::zsobol(8, 8).unwrap();
+    let pixels: Vec<[u32; 2]> = (0..16).map(|k| [k % 8, k / 2 % 8]).collect();
+    for (da, db) in [(0u32, 2u32), (0, 4), (1, 3), (2, 6), (3, 5)] {
+        let tj: Vec<u32> = pixels.iter().map(|&p| t_of(&joint, p, da, db)).collect();
+        let tz: Vec<u32> = pixels.iter().map(|&p| t_of(&zsobol, p, da, db)).collect();
+        let tx: Vec<u32> = pixels
+            .iter()
+            .map(|&p| t_of(&joint, p, da, db + 8))
+            .collect();
+        // the projection's own t-value (0 to 2 for these pairs of Sobol' dimensions 0-6)
+        assert!(
+            tj.iter().all(|&t| t == tj[0] && t <= 2),
+            "dims {da},{db}: zjoint {tj:?}"
+        );
+        // independent draws: no pixel's pair is that fine (t >= 3 here, fixed seed)
+        assert!(tz.iter().all(|&t| t >= 3), "dims {da},{db}: zsobol {tz:?}");
+        assert!(
+            tx.iter().all(|&t| t >= 3),
+            "dims {da},{db}+8: zjoint {tx:?}"
+        );
+    }
+}

@@ -25,7 +25,7 @@
 //!    toroidal shift for `lattice`; two hashes of an affine map of the index for `random`.
 
 use super::SampleIndex;
-use crate::digital::PairTables;
+use crate::digital::{ByteTables, PairTables, lookup};
 use crate::hash::{hash32, mix64, stream_seed};
 use crate::morton::morton;
 use crate::sampler::Seed;
@@ -285,6 +285,25 @@ pub(crate) fn shuffled(k: &DrawKeys, index: SampleIndex) -> u32 {
 pub(crate) fn digital<P: Pair>(table: &PairTables, k: &DrawKeys, index: SampleIndex) -> P {
     let p = P::new(table.point_rev(shuffled(k, index)));
     owen_scramble_lanes(p, P::new(k.v)).reverse_bits()
+}
+
+/// `zjoint`: dimensions `o` and `o + 1` (`o = dim - group`) of the multi-dimensional Sobol'
+/// sequence of `tables` at the index of the draw's group, shuffled once for the whole group
+/// (under the keys of its first dimension `group`), each coordinate Owen-scrambled under the
+/// draw's own value keys; values in natural bit order. With `group == dim` this is
+/// [`digital`] over Sobol' dimensions 0 and 1.
+#[inline(always)]
+pub(crate) fn joint<P: Pair>(
+    tables: &[ByteTables],
+    keys: &PixelKeys,
+    group: u32,
+    dim: u32,
+    index: SampleIndex,
+) -> P {
+    let s = shuffled(&DrawKeys::new(keys, group), index);
+    let o = (dim - group) as usize;
+    let p = P::new([lookup(&tables[o], s), lookup(&tables[o + 1], s)]);
+    owen_scramble_lanes(p, P::new(DrawKeys::new(keys, dim).v)).reverse_bits()
 }
 
 /// `lattice`: the rank-1 lattice point at the shuffled index (the shuffled index reversed is

@@ -25,7 +25,8 @@
 //! claimed, nothing more. The shader's domain is sample indices below `2^32`: at and past
 //! `2^32` the CPU draws from a fresh key per block of `2^32` ([`Key::epoch`]), which a renderer
 //! that goes that far computes on the CPU and uploads. `jittered` and `halton` divide by their
-//! block sizes in 64-bit arithmetic and are CPU-only.
+//! block sizes in 64-bit arithmetic and are CPU-only, and so is `zjoint` (its many Sobol'
+//! dimensions' tables are not in the shader).
 //!
 //! # Guarantees
 //!
@@ -34,12 +35,16 @@
 //!   `hash(seed, p, d)`: padding (Kollig and Keller 2002), Cook's uncorrelated jitter
 //!   generalized. Within a pixel, the values of different draws are statistically independent,
 //!   and so are those of different pixels and seeds; [`crate::conformance`] tests it per pixel
-//!   and per pair of dimensions. A scene that never asks for lens or time dimensions never
+//!   and per pair of dimensions. The one exception is by design: `zjoint`'s draws of one
+//!   *group* of dimensions are distinct dimensions of one multi-dimensional Sobol' sequence,
+//!   stratified jointly rather than independent (its groups are independent of each other). A scene that never asks for lens or time dimensions never
 //!   computes them.
 //! * **Stratified draws.** Per pixel and draw: `pmj02` and `sobol` are (0,m,2)-nets at every
 //!   power-of-two prefix; `lattice` has one point per `1/n` in each coordinate at every power of
 //!   two `n`; `zsobol` and `zpmj02` are nets at every power of two up to the samples per pixel
-//!   (rounded up to a power of two); `jittered` has one point per cell of `s x s` in each block of `spp`;
+//!   (rounded up to a power of two); `zjoint` has one point per `1/n` in each coordinate of
+//!   every draw at those counts, the first draw of each group is a net, and the pairs of draws
+//!   of a group are `(t, m, 2)`-nets with the t-values of their Sobol' dimensions; `jittered` has one point per cell of `s x s` in each block of `spp`;
 //!   `halton` one per cell of `2^a x 3^b` in each block of `M = 2^a 3^b >= spp` samples. How
 //!   each sequence is randomized is in [`sequence`](self#sequences).
 //! * **Limits.** Sample indices are `u64`; at `2^32` and beyond, a draw uses the index modulo
@@ -56,7 +61,9 @@
 //! (Owen-scrambled digital pmj02), `sobol` (Owen-scrambled Sobol', Burley 2020), `halton`
 //! (scrambled bases 2 and 3), `lattice` (the extensible rank-1 lattice of Cools, Kuo and
 //! Nuyens, shifted), `zsobol` and `zpmj02` (pixels along a scrambled Z curve of one global
-//! sequence: screen-space blue-noise error; they need the image's resolution). The
+//! sequence: screen-space blue-noise error; they need the image's resolution), `zjoint` (the
+//! same order, one per group of dimensions, over a multi-dimensional Sobol' sequence:
+//! [`Sequence::zjoint`]; `zjoint-G` by name for groups of `G` dimensions). The
 //! samples-per-pixel count given to [`PixelSampler::new`] is used only by `jittered` (the size
 //! of its sets), `halton` (the size of its blocks) and the Z-ordered sequences (the block each
 //! pixel takes); the progressive `random`, `pmj02`, `sobol` and `lattice` give the same values
@@ -165,7 +172,9 @@ use glam::{Vec2, Vec4};
 pub use kernel::Key;
 pub use rng::PixelRng;
 use sequence::SamplesPerPixel;
-pub use sequence::{DEFAULT_Z_RESOLUTION, MAX_Z_RESOLUTION, Sequence};
+pub use sequence::{
+    DEFAULT_JOINT_GROUP, DEFAULT_Z_RESOLUTION, MAX_JOINT_GROUP, MAX_Z_RESOLUTION, Sequence,
+};
 
 use crate::error::Result;
 use crate::prelude::*;
@@ -496,8 +505,8 @@ impl PixelSampler {
         self.padding == Padding::Uniform && self.sequence.pads_uniformly()
     }
 
-    /// What the [`WGSL`] shader needs to compute this sampler's draws; `None` for `jittered`
-    /// and `halton`, which run on the CPU only, and under [`Padding::Uniform`] (the shader has
+    /// What the [`WGSL`] shader needs to compute this sampler's draws; `None` for `jittered`,
+    /// `halton` and `zjoint`, which run on the CPU only, and under [`Padding::Uniform`] (the shader has
     /// the nested padding only).
     pub fn gpu_parameters(&self) -> Option<GpuParameters> {
         if self.current_pads() {
@@ -646,14 +655,14 @@ impl PixelSampler {
     /// Stateless: the 1D value [`get_1d`](Self::get_1d) gives at `dim` for `(pixel, index)`.
     pub fn sample(&self, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
         let c = self.stateless(pixel, index);
-        let (keys, index) = c.at(&self.key, self.spp.z_bits(), dim);
+        let (keys, index) = self.at(&c, dim);
         self.sequence.sample_1d(&keys, index, dim, &self.spp)
     }
 
     /// Stateless: the 2D value [`get_2d`](Self::get_2d) gives at `dim` for `(pixel, index)`.
     pub fn sample_2d(&self, pixel: [u32; 2], index: u64, dim: u32) -> Vec2 {
         let c = self.stateless(pixel, index);
-        let (keys, index) = c.at(&self.key, self.spp.z_bits(), dim);
+        let (keys, index) = self.at(&c, dim);
         let [x, y] = self.sequence.sample_2d(&keys, index, dim, &self.spp);
         Vec2::new(x, y)
     }
@@ -669,7 +678,7 @@ impl PixelSampler {
     /// values the [`WGSL`] shader computes; `None` for `jittered` and `halton`.
     pub fn sample_2d_u32(&self, pixel: [u32; 2], index: u64, dim: u32) -> Option<[u32; 2]> {
         let c = self.stateless(pixel, index);
-        let (keys, index) = c.at(&self.key, self.spp.z_bits(), dim);
+        let (keys, index) = self.at(&c, dim);
         self.sequence.sample_2d_u32(&keys, index, dim)
     }
 
@@ -723,9 +732,8 @@ impl PixelSampler {
         if c.z.is_none() && c.pad.is_none() {
             return self.sequence.sample_4d(&c.keys, c.index, dim, &self.spp);
         }
-        let bits = self.spp.z_bits();
-        let (ka, ia) = c.at(&self.key, bits, dim);
-        let (kb, ib) = c.at(&self.key, bits, dim.wrapping_add(2));
+        let (ka, ia) = self.at(c, dim);
+        let (kb, ib) = self.at(c, dim.wrapping_add(2));
         self.two_2d(ka, ia, kb, ib, dim)
     }
 
@@ -747,6 +755,7 @@ impl PixelSampler {
     /// sequences the pixel's place in this draw comes from the per-pixel cache.
     #[inline(always)]
     fn draw_at(&mut self, dim: u32) -> (PixelKeys, SampleIndex) {
+        let dim = self.sequence.group_start(dim);
         let Some(zp) = self.current.z else {
             return (self.current.keys, self.current.padded(dim));
         };
@@ -763,6 +772,13 @@ impl PixelSampler {
         self.current.at_place(&self.key, self.spp.z_bits(), z, dim)
     }
 
+    /// The keys and the index of the draw at `dim` of sample state `c` (the index of
+    /// `dim`'s group: [`Sequence::group_start`]).
+    #[inline(always)]
+    fn at(&self, c: &SampleState, dim: u32) -> (PixelKeys, SampleIndex) {
+        c.at(&self.key, self.spp.z_bits(), self.sequence.group_start(dim))
+    }
+
     /// The state of sample `index` of `pixel`, without changing `self`.
     fn stateless(&self, pixel: [u32; 2], index: u64) -> SampleState {
         let epoch = (index >> 32) as u32;
@@ -777,7 +793,7 @@ impl PixelSampler {
     /// 40 random bits for the low end of [`PixelRng`]'s words, beyond the sequence's 24.
     #[inline]
     fn low_bits(&self) -> u64 {
-        let (keys, index) = self.current.at(&self.key, self.spp.z_bits(), self.dim);
+        let (keys, index) = self.at(&self.current, self.dim);
         let k = kernel::DrawKeys::new(&keys, self.dim);
         crate::hash::hash_u64(!k.stream(), index.get() as u64)
     }

@@ -45,7 +45,7 @@
 
 use super::SampleIndex;
 use super::kernel::{self, DrawKeys, PixelKeys};
-use crate::digital::{PMJ02, PairTables, SOBOL01};
+use crate::digital::{ByteTables, PMJ02, PairTables, SOBOL01};
 use crate::error::{Error, Result};
 use crate::float::Strata;
 use crate::hash::{DivMod, GOLDEN_GAMMA, Permutation, hash_u64, mix64};
@@ -139,6 +139,7 @@ pub(crate) enum Kind {
     Lattice,
     ZSobol,
     ZPmj02,
+    ZJoint,
 }
 
 impl Kind {
@@ -151,13 +152,13 @@ impl Kind {
             Kind::Lattice => 3,
             Kind::ZSobol => 4,
             Kind::ZPmj02 => 5,
-            Kind::Jittered | Kind::Halton => return None,
+            Kind::Jittered | Kind::Halton | Kind::ZJoint => return None,
         })
     }
 
     /// Whether pixels read blocks of one global sequence (Z order).
     pub(crate) fn z_ordered(self) -> bool {
-        matches!(self, Kind::ZSobol | Kind::ZPmj02)
+        matches!(self, Kind::ZSobol | Kind::ZPmj02 | Kind::ZJoint)
     }
 }
 
@@ -172,11 +173,16 @@ pub struct Sequence {
     /// The digital sequence a `sobol`, `pmj02`, `zsobol` or `zpmj02` reads (one branch on the
     /// draw path instead of a dispatch on the kind).
     digital: Option<&'static PairTables>,
+    /// The dimensions of a group of `zjoint` (a power of two, at least 2), whose draws share
+    /// one index; 1 for the other sequences (every draw its own group).
+    group: u32,
+    /// The Sobol' dimensions `zjoint` reads (empty for the others).
+    joint: &'static [ByteTables],
 }
 
 impl PartialEq for Sequence {
     fn eq(&self, other: &Self) -> bool {
-        (self.kind, self.resolution) == (other.kind, other.resolution)
+        (self.kind, self.resolution, self.group) == (other.kind, other.resolution, other.group)
     }
 }
 
@@ -184,9 +190,16 @@ impl Eq for Sequence {}
 
 impl core::hash::Hash for Sequence {
     fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
-        (self.kind, self.resolution).hash(state);
+        (self.kind, self.resolution, self.group).hash(state);
     }
 }
+
+/// The dimensions of a group of [`Sequence::zjoint`] by name: the default
+/// [`DimensionLayout`](super::DimensionLayout)'s blocks (the camera's, each bounce's).
+pub const DEFAULT_JOINT_GROUP: u32 = 8;
+
+/// The largest group of [`Sequence::zjoint`] (a path of 63 bounces at 8 dimensions each).
+pub const MAX_JOINT_GROUP: u32 = 512;
 
 /// The largest side of the image of a Z-ordered sequence (the Morton code of a pixel has 32
 /// bits).
@@ -201,6 +214,8 @@ impl Sequence {
             kind,
             resolution: [0, 0],
             digital: Self::digital_table(kind),
+            group: 1,
+            joint: &[],
         }
     }
 
@@ -262,10 +277,66 @@ impl Sequence {
             kind,
             resolution: [width, height],
             digital: Self::digital_table(kind),
+            group: 1,
+            joint: &[],
         })
     }
 
-    /// The names the adapter knows.
+    /// Jointly Z-ordered Sobol' for an image of `width x height` pixels (see
+    /// [`Sequence::zsobol`]), its dimensions in groups of `group` (a power of two from 2 to
+    /// [`MAX_JOINT_GROUP`]; [`DEFAULT_JOINT_GROUP`] matches the default
+    /// [`DimensionLayout`](super::DimensionLayout), one group per bounce): every draw of a
+    /// group of a pixel sample reads the same Z-ordered index (one pixel order, one padding
+    /// and one index shuffle per group), and the draws take *distinct* dimensions of the
+    /// multi-dimensional Sobol' sequence (the draw at dimension `d` reads Sobol' dimensions
+    /// `d mod group` and the next), each Owen-scrambled under its own key. A pixel's samples
+    /// are then stratified jointly across the draws of a group, not only draw by draw, and
+    /// neighbouring pixels take neighbouring blocks of the joint sequence; groups are
+    /// independent of each other.
+    ///
+    /// Within a group only Sobol' dimensions 0 and 1 (the first draw) are a `(0, 2)`-sequence;
+    /// the others' pairs have the t-values of consecutive Joe-Kuo dimensions
+    /// (`docs/results.md` tabulates them), so a lone draw past the first is less finely
+    /// stratified than `zsobol`'s. Needs `group + 1` Sobol' dimensions: the `joe-kuo` feature
+    /// (without it the build has two, and this returns an error). Not in the WGSL shader.
+    pub fn zjoint(width: u32, height: u32, group: u32) -> Result<Self> {
+        let context = "Sequence::zjoint";
+        if !group.is_power_of_two() || !(2..=MAX_JOINT_GROUP).contains(&group) {
+            return Err(Error::parameter(
+                context,
+                "group",
+                group,
+                format!("a power of two from 2 to {MAX_JOINT_GROUP} dimensions"),
+            ));
+        }
+        let tables = crate::digital::sobol_all_byte_tables();
+        if tables.len() <= group as usize {
+            return Err(Error::parameter(
+                context,
+                "group",
+                group,
+                format!(
+                    "at most {} dimensions in this build, which has {} Sobol' dimensions \
+                     (enable the `joe-kuo` feature for 1000)",
+                    tables.len().saturating_sub(1),
+                    tables.len()
+                ),
+            ));
+        }
+        let mut s = Self::z(Kind::ZJoint, context, width, height)?;
+        s.group = group;
+        s.joint = tables;
+        Ok(s)
+    }
+
+    /// The names the adapter knows (`zjoint` also as `zjoint-G`, groups of `G` dimensions).
+    #[cfg(feature = "joe-kuo")]
+    pub const NAMES: [&'static str; 9] = [
+        "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02", "zjoint",
+    ];
+
+    /// The names the adapter knows (with the `joe-kuo` feature also `zjoint`).
+    #[cfg(not(feature = "joe-kuo"))]
     pub const NAMES: [&'static str; 8] = [
         "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02",
     ];
@@ -288,6 +359,19 @@ impl Sequence {
             "lattice" => Self::lattice(),
             "zsobol" => Self::zsobol(resolution[0], resolution[1])?,
             "zpmj02" => Self::zpmj02(resolution[0], resolution[1])?,
+            "zjoint" => Self::zjoint(resolution[0], resolution[1], DEFAULT_JOINT_GROUP)?,
+            other if other.starts_with("zjoint-") => {
+                let group = other["zjoint-".len()..].parse::<u32>().map_err(|_| {
+                    Error::input(
+                        "Sequence::by_name_at",
+                        format!(
+                            "'{other}': zjoint-G takes a group size G, a power of two from 2 \
+                             to {MAX_JOINT_GROUP}"
+                        ),
+                    )
+                })?;
+                Self::zjoint(resolution[0], resolution[1], group)?
+            }
             other => {
                 return Err(Error::input(
                     "Sequence::by_name_at",
@@ -311,7 +395,22 @@ impl Sequence {
             Kind::Lattice => "lattice",
             Kind::ZSobol => "zsobol",
             Kind::ZPmj02 => "zpmj02",
+            Kind::ZJoint => "zjoint",
         }
+    }
+
+    /// The dimensions of a group whose draws share one index: `zjoint`'s group size, 1 for
+    /// the other sequences.
+    pub fn group(&self) -> u32 {
+        self.group
+    }
+
+    /// The first dimension of the group of `dim`: the dimension that keys the index of the
+    /// draw at `dim` (its pixel place, padding and index shuffle); `dim` itself but in
+    /// `zjoint`.
+    #[inline(always)]
+    pub(crate) fn group_start(&self, dim: u32) -> u32 {
+        dim & !(self.group - 1)
     }
 
     /// The image of a Z-ordered sequence (`None` for the others).
@@ -355,6 +454,9 @@ impl Sequence {
             Kind::Random => kernel::random::<X2>(&k(), index).unit_f32(),
             Kind::Lattice => kernel::lattice::<X2>(&k(), index).unit_f32(),
             Kind::Jittered => jittered(&k(), index.get(), spp),
+            Kind::ZJoint => {
+                kernel::joint::<X2>(self.joint, keys, self.group_start(dim), dim, index).unit_f32()
+            }
             Kind::Halton => {
                 let k = k();
                 let g = halton_index(&k, index.get(), spp);
@@ -433,7 +535,7 @@ impl Sequence {
                 join(p, q).reverse_bits().unit_f32()
             }
             Kind::Lattice => join(kernel::lattice(&a, ia), kernel::lattice(&b, ib)).unit_f32(),
-            Kind::Jittered | Kind::Halton => {
+            Kind::Jittered | Kind::Halton | Kind::ZJoint => {
                 let [x, y] = self.sample_2d(ka, ia, dim, spp);
                 let [z, w] = self.sample_2d(kb, ib, dim.wrapping_add(2), spp);
                 [x, y, z, w]
@@ -463,6 +565,9 @@ impl Sequence {
                 kernel::digital::<[u32; 2]>(self.table(), &k, index)
             }
             Kind::Lattice => kernel::lattice::<[u32; 2]>(&k, index),
+            Kind::ZJoint => {
+                kernel::joint::<[u32; 2]>(self.joint, keys, self.group_start(dim), dim, index)
+            }
             Kind::Jittered | Kind::Halton => return None,
         })
     }
@@ -473,7 +578,7 @@ impl Sequence {
     pub(crate) fn pads_uniformly(&self) -> bool {
         matches!(
             self.kind,
-            Kind::Sobol | Kind::Pmj02 | Kind::Lattice | Kind::ZSobol | Kind::ZPmj02
+            Kind::Sobol | Kind::Pmj02 | Kind::Lattice | Kind::ZSobol | Kind::ZPmj02 | Kind::ZJoint
         )
     }
 
@@ -495,9 +600,12 @@ impl Sequence {
                     65535 * 65535
                 }
             }
-            Kind::Pmj02 | Kind::Sobol | Kind::Lattice | Kind::ZSobol | Kind::ZPmj02 => {
-                n.checked_next_power_of_two().unwrap_or(1 << 31)
-            }
+            Kind::Pmj02
+            | Kind::Sobol
+            | Kind::Lattice
+            | Kind::ZSobol
+            | Kind::ZPmj02
+            | Kind::ZJoint => n.checked_next_power_of_two().unwrap_or(1 << 31),
         }
     }
 
@@ -545,6 +653,18 @@ impl Sequence {
             Kind::Pmj02 | Kind::Sobol => pmj::pmj_grids(n, true),
             // inside a pixel's block of the global sequence: an aligned block, a net
             Kind::ZSobol | Kind::ZPmj02 if n <= 1u64 << spp.z_bits() => pmj::pmj_grids(n, true),
+            // every draw's two coordinates are 1D (0, 1)-sequences (only the first draw of a
+            // group is a 2D net); the same grids as the lattice's
+            Kind::ZJoint if n.is_power_of_two() && n <= 1u64 << spp.z_bits() => vec![
+                StrataGrid {
+                    columns: n as u32,
+                    rows: 1,
+                },
+                StrataGrid {
+                    columns: 1,
+                    rows: n as u32,
+                },
+            ],
             Kind::Lattice if n.is_power_of_two() && n <= 1 << 31 => vec![
                 StrataGrid {
                     columns: n as u32,

@@ -50,6 +50,53 @@ pub fn sobol_u32(index: u32, dim: u32) -> Option<u32> {
     Some(lookup(t, index.reverse_bits()).reverse_bits())
 }
 
+/// The t-value of the projection of the Sobol' sequence onto dimensions `dims` (distinct, each
+/// below [`max_dimensions`]) as a base-2 `(t, m, s)`-net of `2^m` points (`m` up to 32), from
+/// its generator matrices (exact): every aligned block of `2^m` points is such a net, and so
+/// is every Owen scramble or nested index shuffle of it, since both keep the elementary
+/// intervals. `t = 0` for dimensions 0 and 1 at every `m`; `zjoint` pixels
+/// ([`crate::pixel::Sequence::zjoint`]) are these projections.
+///
+/// ```
+/// use strata::samplers::sobol;
+/// assert_eq!(sobol::projection_t_value(&[0, 1], 16)?, 0);
+/// assert!(sobol::projection_t_value(&[0, 1, 2, 3], 16)? > 0);
+/// # Ok::<(), strata::Error>(())
+/// ```
+#[cfg(feature = "std")]
+pub fn projection_t_value(dims: &[u32], m: u32) -> Result<u32> {
+    let context = "sobol::projection_t_value";
+    let max = max_dimensions();
+    if dims.is_empty() || m > 32 {
+        return Err(crate::Error::input(
+            context,
+            format!(
+                "{} dimensions at m = {m}: at least one dimension, and m from 0 to 32",
+                dims.len()
+            ),
+        ));
+    }
+    let mut matrices = Vec::with_capacity(dims.len());
+    for (k, &d) in dims.iter().enumerate() {
+        if dims[..k].contains(&d) {
+            return Err(crate::Error::input(
+                context,
+                format!("dimension {d} is listed twice: the dimensions must be distinct"),
+            ));
+        }
+        match crate::digital::sobol_matrix(d) {
+            Some(m) => matrices.push(m),
+            None => {
+                return Err(crate::Error::input(
+                    context,
+                    format!("dimension {d}: this build has dimensions 0 to {}", max - 1),
+                ));
+            }
+        }
+    }
+    Ok(crate::digital::digital_t_value(&matrices, m))
+}
+
 /// Dimension `dim` of point `index` of the Owen-scrambled Sobol' sequence seeded by `seed`:
 /// the value [`SobolNd`] gives (within its first `2^32` points), stateless and allocation-free.
 /// `None` past [`max_dimensions`].

@@ -1,0 +1,180 @@
+//! `nets`: the stratification of the jointly Z-ordered sequence's groups, counted exactly.
+//!
+//! ```text
+//! cargo run --release --example nets -- [--group G] [--max-m M] [--markdown FILE]
+//! ```
+
+mod common;
+
+use std::process::ExitCode;
+
+use common::{CliError, cli_error, parse_int, string_value};
+use strata::samplers::sobol;
+
+const USAGE: &str = "nets [--group G] [--max-m M] [--markdown FILE]";
+
+const HELP: &str = "\
+nets: the t-values of the projections that `zjoint` draws read, from the Sobol' generator
+matrices (exact, by the rank criterion of digital nets). A pixel's 2^m samples of a zjoint
+group are an aligned block of 2^m points of the multi-dimensional Sobol' sequence, nested-
+shuffled and Owen-scrambled, which keeps every elementary interval: each pair of the group's
+dimensions is a (t, m, 2)-net and each set of four a (t, m, 4)-net with the t printed here
+(t = 0 is the best possible; an independent pair, as two draws of zsobol are, has no such
+guarantee). Prints, for m = 2, 4, ..., M (2^m points, 4^(m/2) for even m), the t-value of
+every pair of dimensions of one group, and the largest and the mean t over every set of four.
+
+Usage:
+  cargo run --release --example nets -- [options]
+
+Options:
+  --group G        dimensions of a group: a power of two from 2 to 16 (default 8, zjoint's)
+  --max-m M        the largest m, an even number from 2 to 24 (default 16)
+  --markdown FILE  also write the tables into FILE, as its section 'nets-zjoint-G'
+  -h, --help       this text";
+
+struct Args {
+    group: u32,
+    max_m: u32,
+    markdown: Option<std::path::PathBuf>,
+}
+
+fn parse() -> Result<Option<Args>, CliError> {
+    use lexopt::prelude::*;
+    let mut args = Args {
+        group: 8,
+        max_m: 16,
+        markdown: None,
+    };
+    let mut parser = lexopt::Parser::from_env();
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Long("group") => {
+                let v = string_value("--group", parser.value()?)?;
+                let g = parse_int("--group", &v, 2, 16)? as u32;
+                if !g.is_power_of_two() {
+                    return Err(cli_error(format!(
+                        "--group {g}: a power of two from 2 to 16 is needed"
+                    )));
+                }
+                args.group = g;
+            }
+            Long("max-m") => {
+                let v = string_value("--max-m", parser.value()?)?;
+                let m = parse_int("--max-m", &v, 2, 24)? as u32;
+                if !m.is_multiple_of(2) {
+                    return Err(cli_error(format!(
+                        "--max-m {m}: an even number from 2 to 24 is needed"
+                    )));
+                }
+                args.max_m = m;
+            }
+            Long("markdown") => args.markdown = Some(parser.value()?.into()),
+            Short('h') | Long("help") => {
+                outln!("{HELP}")?;
+                return Ok(None);
+            }
+            other => return Err(common::unexpected(other, USAGE)),
+        }
+    }
+    if let Some(m) = &args.markdown {
+        common::check_markdown(m, &section(args.group))?;
+    }
+    Ok(Some(args))
+}
+
+fn section(group: u32) -> String {
+    format!("nets-zjoint-{group}")
+}
+
+/// Every `k`-subset of `0..n`, in lexicographic order.
+fn subsets(n: u32, k: usize) -> Vec<Vec<u32>> {
+    let mut out = Vec::new();
+    let mut pick = Vec::with_capacity(k);
+    fn go(start: u32, n: u32, k: usize, pick: &mut Vec<u32>, out: &mut Vec<Vec<u32>>) {
+        if pick.len() == k {
+            out.push(pick.clone());
+            return;
+        }
+        for d in start..n {
+            pick.push(d);
+            go(d + 1, n, k, pick, out);
+            pick.pop();
+        }
+    }
+    go(0, n, k, &mut pick, &mut out);
+    out
+}
+
+fn tables(args: &Args) -> Result<String, CliError> {
+    let ms: Vec<u32> = (2..=args.max_m).step_by(2).collect();
+    let header = |first: &str| {
+        format!(
+            "| {first} | {} |\n|---|{}\n",
+            ms.iter()
+                .map(|m| format!("m = {m}"))
+                .collect::<Vec<_>>()
+                .join(" | "),
+            "---|".repeat(ms.len())
+        )
+    };
+    let mut text = format!(
+        "t-values of the projections of one `zjoint` group of {} dimensions (Sobol' \
+         dimensions 0 to {}: the draw at dimension `d` of a group reads `d` and `d + 1`) \
+         as base-2 nets of `2^m` points; 0 is a perfect net, `m` no stratification at all. \
+         The first draw's pair (0, 1) is a (0, 2)-sequence; an independent pair of draws \
+         (any two of `zsobol`, or of two groups) has no t-value guarantee.\n\n",
+        args.group,
+        args.group - 1
+    );
+    text += "Every pair of dimensions:\n\n";
+    text += &header("dimensions");
+    for pair in subsets(args.group, 2) {
+        let row: Vec<String> = ms
+            .iter()
+            .map(|&m| sobol::projection_t_value(&pair, m).map(|t| t.to_string()))
+            .collect::<Result<_, _>>()?;
+        text += &format!("| {}, {} | {} |\n", pair[0], pair[1], row.join(" | "));
+    }
+    if args.group >= 4 {
+        let quads = subsets(args.group, 4);
+        text += &format!(
+            "\nEvery set of four dimensions ({} sets): the largest t, the mean t, and the \
+             first draw pair with the second, dimensions 0-3:\n\n",
+            quads.len()
+        );
+        text += &header("sets of four");
+        let mut worst = Vec::new();
+        let mut mean = Vec::new();
+        let mut first = Vec::new();
+        for &m in &ms {
+            let ts: Vec<u32> = quads
+                .iter()
+                .map(|q| sobol::projection_t_value(q, m))
+                .collect::<Result<_, _>>()?;
+            worst.push(ts.iter().max().copied().unwrap_or(0).to_string());
+            mean.push(format!(
+                "{:.2}",
+                ts.iter().sum::<u32>() as f64 / ts.len() as f64
+            ));
+            first.push(sobol::projection_t_value(&[0, 1, 2, 3], m)?.to_string());
+        }
+        text += &format!("| largest | {} |\n", worst.join(" | "));
+        text += &format!("| mean | {} |\n", mean.join(" | "));
+        text += &format!("| 0, 1, 2, 3 | {} |\n", first.join(" | "));
+    }
+    Ok(text)
+}
+
+fn main() -> ExitCode {
+    common::run("nets", || {
+        let Some(args) = parse()? else {
+            return Ok(());
+        };
+        let text = tables(&args)?;
+        outln!("{text}")?;
+        if let Some(m) = &args.markdown {
+            common::write_markdown_section(m, &section(args.group), &text)?;
+        }
+        Ok(())
+    })
+}
