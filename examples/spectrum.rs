@@ -4,6 +4,8 @@
 //! ```text
 //! cargo run --release --example spectrum -- [--sampler NAME|all] [-n N] [--realizations R]
 //!         [--seed S] [--resolution K] [--out DIR]
+//! cargo run --release --example spectrum -- --blue-noise-table [-n N] [--realizations R]
+//!         [--seed S] [--resolution K] [--markdown FILE]
 //! ```
 //! See `docs/cli.md` (the command-line contract).
 
@@ -21,7 +23,7 @@ use strata::io::{self, Canvas, Rgb};
 use strata::registry::{self, Entry, Params};
 use strata::spectrum::{self, PointSetMeasures, RadialBin, Spectrum};
 
-const USAGE: &str = "spectrum [--sampler NAME|all] [-n N] [--realizations R] [--seed S] [--resolution K] [--out DIR] [--markdown FILE]";
+const USAGE: &str = "spectrum [--sampler NAME|all] [-n N] [--realizations R] [--seed S] [--resolution K] [--out DIR] [--markdown FILE] | spectrum --blue-noise-table [-n N] [--realizations R] [--seed S] [--resolution K] [--markdown FILE]";
 
 const HELP: &str = "\
 spectrum: expected power spectra of sample patterns, their radial means, anisotropy and PSA
@@ -42,13 +44,33 @@ Options:
   --radius, --iterations, --strength, --candidates, --capacity   passed to the samplers that take them
   --no-overview       skip out/overview.png
   --markdown FILE     also write the table into FILE, as its section 'spectrum'
+                      ('blue-noise-table' with --blue-noise-table)
+  --blue-noise-table  instead: the published-figures table of every blue-noise sampler (below)
   -h, --help          this text
 
 For each sampler NAME it writes DIR/NAME-spectrum.png (log scale, DC centred), NAME-spectrum.exr
 (the values, channel Y, f32), NAME-radial.csv (frequency,power,anisotropy), NAME-radial.png and
 NAME-points.png, then DIR/overview.png and a table on stdout. ms/set is the time to generate
 one set on one core (construction and points; one-time tables, built by a warm-up before
-timing, are not counted).";
+timing, are not counted).
+
+--blue-noise-table: one row per blue-noise sampler of the registry and count (N = 1024 and
+4096, each sampler's allowed count nearest to it; -n N for one count, at most 16384), from R
+seeds (default 8; seed S + r as above), at each sampler's default parameters: rho (the
+smallest toroidal distance between two points of a set relative to r_max(N) =
+sqrt(2 / (sqrt(3) N)), Lagae and Dutre 2008; mean over the seeds), the mean nearest-neighbour
+distance relative to r_max(N) (mean over the seeds), the low-band power of the expected
+spectrum (the mean of its radial bins b = 1, 2, ... below sqrt(N)/2, bin b averaging P over
+w != 0 with round(|w|) == b, as in the main table), the median time per set over the seeds (one
+thread, measured now), and the figure the sampler's paper reports, with the reference. A row
+whose first set takes so long that its R sets would take more than 60 s is skipped after that
+set, and says so. Writes no files but --markdown FILE (section 'blue-noise-table').";
+
+/// The most points per set in `--blue-noise-table` (the relaxations are quadratic or worse).
+const MAX_TABLE_COUNT: u64 = 1 << 14;
+
+/// The time a row of `--blue-noise-table` may take, estimated before it runs.
+const TABLE_BUDGET_S: f64 = 60.0;
 
 struct Args {
     sampler: String,
@@ -60,6 +82,10 @@ struct Args {
     params: Params,
     overview: bool,
     markdown: Option<PathBuf>,
+    /// `--blue-noise-table`.
+    table: bool,
+    /// The flags given that the table mode does not take.
+    not_for_table: Vec<String>,
 }
 
 fn parse() -> Result<Option<Args>, CliError> {
@@ -74,11 +100,16 @@ fn parse() -> Result<Option<Args>, CliError> {
         params: Params::new(1),
         overview: true,
         markdown: None,
+        table: false,
+        not_for_table: Vec::new(),
     };
     let mut p = lexopt::Parser::from_env();
     while let Some(arg) = p.next()? {
         match arg {
-            Long("sampler") => a.sampler = string_value("--sampler", p.value()?)?,
+            Long("sampler") => {
+                a.sampler = string_value("--sampler", p.value()?)?;
+                a.not_for_table.push("--sampler".into());
+            }
             Short('n') => {
                 // two points at least: the spacing measures need a neighbour
                 a.n = Some(parse_int(
@@ -101,12 +132,20 @@ fn parse() -> Result<Option<Args>, CliError> {
                 spectrum::check_resolution(k)?;
                 a.resolution = k;
             }
-            Long("out") => a.out = p.value()?.into(),
+            Long("out") => {
+                a.out = p.value()?.into();
+                a.not_for_table.push("--out".into());
+            }
             Long(flag @ ("radius" | "iterations" | "strength" | "candidates" | "capacity")) => {
                 let flag = flag.to_owned(); // the argument borrows the parser
-                common::sampler_param(&flag, &mut p, &mut a.params)?
+                common::sampler_param(&flag, &mut p, &mut a.params)?;
+                a.not_for_table.push(format!("--{flag}"));
             }
-            Long("no-overview") => a.overview = false,
+            Long("no-overview") => {
+                a.overview = false;
+                a.not_for_table.push("--no-overview".into());
+            }
+            Long("blue-noise-table") => a.table = true,
             Long("markdown") => a.markdown = Some(p.value()?.into()),
             Short('h') | Long("help") => {
                 outln!("{HELP}")?;
@@ -115,9 +154,24 @@ fn parse() -> Result<Option<Args>, CliError> {
             other => return Err(common::unexpected(other, USAGE)),
         }
     }
-    common::check_output_dir(&a.out)?;
+    if a.table {
+        if let Some(flag) = a.not_for_table.first() {
+            return Err(cli_error(format!(
+                "--blue-noise-table takes -n, --realizations, --seed, --resolution and \
+                 --markdown, not {flag} (the table covers every blue-noise sampler at its \
+                 default parameters and writes no files but --markdown)"
+            )));
+        }
+        if let Some(n) = a.n.filter(|&n| n > MAX_TABLE_COUNT) {
+            return Err(cli_error(format!(
+                "--blue-noise-table -n {n}: allowed 2 to {MAX_TABLE_COUNT} points per set"
+            )));
+        }
+    } else {
+        common::check_output_dir(&a.out)?;
+    }
     if let Some(m) = &a.markdown {
-        common::check_markdown(m, "spectrum")?;
+        common::check_markdown(m, if a.table { TABLE_SECTION } else { "spectrum" })?;
     }
     Ok(Some(a))
 }
@@ -204,18 +258,7 @@ fn run_one(
         &grids,
     )?;
 
-    // Mean power over the low band 0 < |w| < sqrt(N)/2: what smooth integrands see.
-    let band = ((count as f64).sqrt() / 2.0).max(1.0);
-    let low: Vec<f64> = radial
-        .iter()
-        .filter(|b| (b.frequency as f64) < band)
-        .map(|b| b.power)
-        .collect();
-    let low_power = if low.is_empty() {
-        f64::NAN
-    } else {
-        low.iter().sum::<f64>() / low.len() as f64
-    };
+    let low_power = low_band_power(&radial, count);
     Ok(Outcome {
         name,
         count,
@@ -228,6 +271,170 @@ fn run_one(
         spectrum,
         radial,
     })
+}
+
+/// Mean power over the low band `0 < |w| < sqrt(N)/2` (what smooth integrands see): the mean of
+/// the radial bins `b = 1, 2, ...` below `sqrt(N)/2` (at least bin 1).
+fn low_band_power(radial: &[RadialBin], count: u64) -> f64 {
+    let band = ((count as f64).sqrt() / 2.0).max(1.0);
+    let low: Vec<f64> = radial
+        .iter()
+        .filter(|b| (b.frequency as f64) < band)
+        .map(|b| b.power)
+        .collect();
+    if low.is_empty() {
+        f64::NAN
+    } else {
+        low.iter().sum::<f64>() / low.len() as f64
+    }
+}
+
+/// The section `--blue-noise-table` writes.
+const TABLE_SECTION: &str = "blue-noise-table";
+
+/// One measured row of `--blue-noise-table`.
+struct TableRow {
+    rho: f64,
+    mean_nn: f64,
+    low_power: f64,
+    ms_per_set: f64,
+}
+
+/// `seeds` sets of `entry` at `count` points (seed `seed + r`), each made on this thread and
+/// timed, measured: the row of the table; `Err(seconds)`, the first set's time, when the
+/// sets would take longer than [`TABLE_BUDGET_S`] (judged after the first).
+fn table_row(
+    entry: &Entry,
+    count: u64,
+    seeds: u32,
+    args: &Args,
+) -> Result<Result<TableRow, f64>, CliError> {
+    // one-time tables (Sobol' directions, shared sequences) are built before the timing
+    let mut warm = Params::new(entry.counts.nearest(4));
+    warm.seed = args.seed;
+    entry.build(&warm)?.next_sample();
+    let mut sets = Vec::with_capacity(seeds as usize);
+    let mut ms = Vec::with_capacity(seeds as usize);
+    for r in 0..seeds {
+        let params = Params::new(count).seed(args.seed.wrapping_add(r as u64));
+        let start = Instant::now();
+        let mut s = entry.build(&params)?;
+        let mut v = vec![Vec2::ZERO; count as usize];
+        s.fill(&mut v);
+        let seconds = start.elapsed().as_secs_f64();
+        if r == 0 && seconds * seeds as f64 > TABLE_BUDGET_S {
+            return Ok(Err(seconds));
+        }
+        ms.push(seconds * 1e3);
+        sets.push(v);
+    }
+    ms.sort_by(f64::total_cmp);
+    let mid = ms.len() / 2;
+    let ms_per_set = if ms.len() % 2 == 1 {
+        ms[mid]
+    } else {
+        (ms[mid - 1] + ms[mid]) / 2.0
+    };
+    let r_max = spectrum::relative_radius_max(count as usize);
+    let (mut rho, mut mean_nn) = (0.0, 0.0);
+    for s in &sets {
+        let d = spectrum::nearest_neighbour_distances(s)
+            .ok_or_else(|| cli_error("a set of one point has no nearest neighbour"))?;
+        rho += d.iter().copied().fold(f64::INFINITY, f64::min) / r_max;
+        mean_nn += d.iter().sum::<f64>() / d.len() as f64 / r_max;
+    }
+    let spectrum = spectrum::expected_spectrum_of_sets(&sets, args.resolution)?;
+    Ok(Ok(TableRow {
+        rho: rho / seeds as f64,
+        mean_nn: mean_nn / seeds as f64,
+        low_power: low_band_power(&spectrum.radial(), count),
+        ms_per_set,
+    }))
+}
+
+/// `--blue-noise-table`: the measured and the published figures of every blue-noise sampler.
+fn blue_noise_table(args: &Args) -> Result<(), CliError> {
+    let seeds = args.realizations.unwrap_or(8);
+    let wanted: Vec<u64> = match args.n {
+        Some(n) => vec![n],
+        None => vec![1024, 4096],
+    };
+    let started = Instant::now();
+    let mut table = String::from(
+        "| sampler | N | seeds | rho | mean NN | low-band power | ms/set | published (reference) |\n\
+         |---|---|---|---|---|---|---|---|\n",
+    );
+    let entries: Vec<&Entry> = registry::blue_noise().collect();
+    for e in &entries {
+        for (k, &n) in wanted.iter().enumerate() {
+            let count = e.counts.nearest(n);
+            let published = if k == 0 {
+                e.blue_noise.map_or("", |b| b.published)
+            } else {
+                "(as above)"
+            };
+            let row = match table_row(e, count, seeds, args)? {
+                Ok(row) => row,
+                Err(first) => {
+                    table.push_str(&format!(
+                        "| {} | {count} | - | skipped: the first set took {first:.1} s, about \
+                         {:.0} s for {seeds}, over the {TABLE_BUDGET_S:.0} s budget | - | - | \
+                         {:.0} | {published} |\n",
+                        e.name,
+                        first * seeds as f64,
+                        first * 1e3
+                    ));
+                    common::progress_line(format!(
+                        "spectrum: {} at {count} skipped (first set {first:.1} s)",
+                        e.name
+                    ));
+                    continue;
+                }
+            };
+            table.push_str(&format!(
+                "| {} | {count} | {seeds} | {:.3} | {:.3} | {:.4} | {:.3} | {published} |\n",
+                e.name, row.rho, row.mean_nn, row.low_power, row.ms_per_set
+            ));
+            common::progress_line(format!(
+                "spectrum: {} at {count} done ({:.0} s)",
+                e.name,
+                started.elapsed().as_secs_f64()
+            ));
+        }
+    }
+    common::out(&table)?;
+    if let Some(path) = &args.markdown {
+        common::write_markdown_section(
+            path,
+            TABLE_SECTION,
+            &format!(
+                "The blue-noise samplers of the registry ({} of them), each at its default \
+                 parameters, {seeds} seeds (seed S + r) per row, against the figures their \
+                 papers report. `rho` is the smallest toroidal distance between two points of \
+                 a set relative to `r_max(N) = sqrt(2 / (sqrt(3) N))` (the relative radius of \
+                 Lagae and Dutré 2008), `mean NN` the mean nearest-neighbour distance relative \
+                 to `r_max(N)`, both means over the seeds; the low-band power is the mean of \
+                 the expected spectrum's radial bins `b = 1, 2, ...` below `sqrt(N)/2` (bin `b` \
+                 averages `P(w)` over `w != 0` with `round(|w|) == b`, K = {}; 1 is white \
+                 noise); ms/set is the median over the seeds of the time to make one set on \
+                 one thread, measured when the table was written (construction and points). \
+                 A row whose first set takes so long that its {seeds} sets would take more \
+                 than {TABLE_BUDGET_S:.0} s is skipped after that set (its ms/set is that \
+                 set's time). \
+                 The published column gives the paper's figure with its reference and says \
+                 where it was not checked against the paper; \"not reported\" where the paper \
+                 has no such figure.\n\n{table}",
+                entries.len(),
+                args.resolution
+            ),
+        )?;
+    }
+    outln!(
+        "\nmeasured {} blue-noise sampler(s) in {:.1} s",
+        entries.len(),
+        started.elapsed().as_secs_f64()
+    )?;
+    Ok(())
 }
 
 fn fmt_opt(v: Option<f64>) -> String {
@@ -273,6 +480,9 @@ fn overview(outcomes: &[Outcome]) -> Canvas {
 fn main() -> ExitCode {
     common::run("spectrum", || {
         let Some(args) = parse()? else { return Ok(()) };
+        if args.table {
+            return blue_noise_table(&args);
+        }
         let all = args.sampler == "all";
         let entries: Vec<&Entry> = if all {
             registry::entries().iter().collect()

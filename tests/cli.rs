@@ -461,3 +461,141 @@ fn nets_tabulates_every_pair_of_a_group_and_refuses_bad_groups() {
         assert!(err.contains(bad[0]), "{bad:?}: {err}");
     }
 }
+
+/// The rows of the table in section `name` of the Markdown text `md`: the cells of each line
+/// below the header and its separator.
+fn section_rows(md: &str, name: &str) -> Vec<Vec<String>> {
+    let begin = format!("<!-- begin {name} -->");
+    let end = format!("<!-- end {name} -->");
+    let a = md
+        .find(&begin)
+        .unwrap_or_else(|| panic!("no {begin} in {md}"));
+    let b = md.find(&end).unwrap_or_else(|| panic!("no {end} in {md}"));
+    md[a..b]
+        .lines()
+        .filter(|l| l.starts_with("| "))
+        .skip(1) // the header; the separator starts with "|-"
+        .map(|l| {
+            l.trim_matches('|')
+                .split(" | ")
+                .map(|c| c.trim().to_string())
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn the_blue_noise_table_has_a_row_per_blue_noise_sampler_and_refuses_bad_input() {
+    let dir = std::env::temp_dir().join(format!("strata-bn-table-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let md = dir.join("results.md");
+    let before = "# Results\n\n<!-- begin spectrum -->\nkept\n<!-- end spectrum -->\n";
+    std::fs::write(&md, before).unwrap();
+    let md_arg = md.to_str().unwrap();
+
+    // bad input: a one-line error, exit 2, and the Markdown file untouched
+    for (args, says) in [
+        (
+            vec!["--blue-noise-table", "--sampler", "poisson"],
+            "not --sampler",
+        ),
+        (
+            vec!["--blue-noise-table", "-n", "100000"],
+            "allowed 2 to 16384",
+        ),
+        (
+            vec!["--blue-noise-table", "--radius", "0.5"],
+            "not --radius",
+        ),
+        (vec!["--blue-noise-table", "--out", md_arg], "not --out"),
+        (
+            vec!["--blue-noise-table", "--no-overview"],
+            "not --no-overview",
+        ),
+        (vec!["--blue-noise-table", "-n", "1"], "-n"),
+        (
+            vec!["--blue-noise-table", "--realizations", "0"],
+            "--realizations",
+        ),
+    ] {
+        let mut args = args;
+        args.extend(["--markdown", md_arg]);
+        let (code, out, err) = run_example("spectrum", &args);
+        assert_eq!(code, 2, "{args:?}: {out}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+        assert_eq!(std::fs::read_to_string(&md).unwrap(), before, "{args:?}");
+    }
+
+    let (code, out, err) = run_example(
+        "spectrum",
+        &[
+            "--blue-noise-table",
+            "-n",
+            "64",
+            "--realizations",
+            "2",
+            "--resolution",
+            "32",
+            "--markdown",
+            md_arg,
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&md).unwrap();
+    assert!(text.contains("<!-- begin spectrum -->\nkept\n<!-- end spectrum -->"));
+    assert!(
+        text.contains(
+            "<!-- written by `cargo run --release --example spectrum -- --blue-noise-table -n 64"
+        ),
+        "{text}"
+    );
+    let rows = section_rows(&text, "blue-noise-table");
+    let names: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
+    let registered: Vec<&str> = registry::blue_noise().map(|e| e.name).collect();
+    // one row per blue-noise sampler of the registry, in its order: a sampler dropped from
+    // the table fails here ...
+    assert_eq!(names, registered, "{text}");
+    // ... and one dropped from the registry's blue-noise list fails here
+    let mut known = vec![
+        "pmjbn",
+        "pmj02bn",
+        "net02bn",
+        "poisson",
+        "bridson",
+        "best-candidate",
+        "ccvt",
+        "bnot",
+    ];
+    if cfg!(feature = "lloyd") {
+        known.push("lloyd");
+    }
+    for name in known {
+        assert!(
+            registered.contains(&name),
+            "{name} is not in {registered:?}"
+        );
+    }
+    for (row, e) in rows.iter().zip(registry::blue_noise()) {
+        assert_eq!(row.len(), 8, "{row:?}");
+        assert_eq!(row[1], "64", "{row:?}");
+        assert_eq!(row[2], "2", "{row:?}");
+        let num = |i: usize| -> f64 {
+            row[i]
+                .parse()
+                .unwrap_or_else(|_| panic!("{}: column {i}: {row:?}", e.name))
+        };
+        let (rho, nn, low, ms) = (num(3), num(4), num(5), num(6));
+        assert!(rho > 0.0 && rho <= nn && nn < 1.2, "{row:?}");
+        assert!(low > 0.0 && low < 1.0, "{row:?}");
+        assert!(ms >= 0.0, "{row:?}");
+        assert_eq!(
+            row[7],
+            e.blue_noise.expect("a blue-noise sampler").published,
+            "{row:?}"
+        );
+    }
+    // the table is printed too
+    assert!(out.contains("| sampler | N | seeds | rho |"), "{out}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -281,6 +281,29 @@ impl Rates {
     }
 }
 
+/// What a blue-noise sampler's paper reports about the spacing of its point sets (the
+/// published figures that `spectrum --blue-noise-table` sets beside its own measurements).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct BlueNoise {
+    /// The figure with its reference (paper, year, table or figure, the count it was reported
+    /// at, and whether it was checked against the paper), or why there is none: `"not
+    /// reported"` when the paper has no such figure. Never a number that was not published.
+    pub published: &'static str,
+}
+
+impl BlueNoise {
+    /// A blue-noise sampler whose paper reports no spacing figure.
+    pub const NOT_REPORTED: BlueNoise = BlueNoise {
+        published: "not reported",
+    };
+
+    /// A blue-noise sampler with a published figure (or a note on why there is none).
+    pub const fn published(text: &'static str) -> BlueNoise {
+        BlueNoise { published: text }
+    }
+}
+
 /// Builds a sampler from parameters.
 pub(crate) type Build = fn(&Params) -> Result<Box<dyn Sampler>>;
 /// Builds a D-dimensional sampler from parameters and `D`.
@@ -312,6 +335,9 @@ pub struct Entry {
     /// True when generating a set takes long (relaxation, optimisation): tools use fewer
     /// realizations by default.
     pub expensive: bool,
+    /// For blue-noise samplers (whatever their family), what their paper reports about the
+    /// spacing of its sets; `None` for the samplers that are not blue noise.
+    pub blue_noise: Option<BlueNoise>,
     pub(crate) build: Build,
     pub(crate) nd: Option<BuildNd>,
 }
@@ -373,6 +399,12 @@ impl Entry {
             ));
         }
         Ok(())
+    }
+
+    /// True for the blue-noise samplers: every sampler of [`Family::BlueNoise`] and the
+    /// blue-noise variants of other families (`pmjbn`, `pmj02bn`).
+    pub fn is_blue_noise(&self) -> bool {
+        self.blue_noise.is_some()
     }
 
     /// True when the sampler has points of more than 2 dimensions.

@@ -13,7 +13,7 @@
 
 mod entry;
 
-pub use entry::{CountRule, Entry, Family, Parameter, ParameterSpec, Params, Rates};
+pub use entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Params, Rates};
 
 use crate::error::{Error, Result};
 use crate::sampler::{Sampler, SamplerNd};
@@ -56,6 +56,11 @@ static ENTRIES: &[Entry] = &[
 /// Every registered sampler, in a stable order (simplest first).
 pub fn entries() -> &'static [Entry] {
     ENTRIES
+}
+
+/// The blue-noise samplers ([`Entry::is_blue_noise`]), in the order of [`entries`].
+pub fn blue_noise() -> impl Iterator<Item = &'static Entry> {
+    ENTRIES.iter().filter(|e| e.is_blue_noise())
 }
 
 /// Every registered name, in the order of [`entries`].
@@ -154,6 +159,25 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_blue_noise_samplers_are_the_family_and_the_pmj_variants() {
+        // every sampler of the blue-noise family is one, and so are the PMJ family's
+        // blue-noise variants; `spectrum --blue-noise-table` has one row per sampler here
+        for e in entries() {
+            if e.family == Family::BlueNoise {
+                assert!(e.is_blue_noise(), "{}", e.name);
+            }
+            if let Some(b) = e.blue_noise {
+                assert!(!b.published.is_empty(), "{}", e.name);
+            }
+        }
+        let names: Vec<&str> = blue_noise().map(|e| e.name).collect();
+        for name in ["pmjbn", "pmj02bn", "net02bn", "poisson", "ccvt", "bnot"] {
+            assert!(names.contains(&name), "{name} missing from {names:?}");
+        }
+        assert!(!names.contains(&"pmj02") && !names.contains(&"sobol"));
     }
 
     #[test]

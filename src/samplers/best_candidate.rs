@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::float::unit_f32_from_f64;
 use crate::grid::TorusGrid;
 use crate::hash::stream_seed;
-use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::{Point2, Progression, Sampler, Seed};
 
 /// The default candidate factor `k`.
@@ -44,6 +44,9 @@ pub(crate) const ENTRY: Entry = Entry {
     promise: "farthest of `k n` candidates",
     rates: Rates::NONE,
     expensive: true,
+    blue_noise: Some(BlueNoise::published(
+        "none found (Mitchell 1991 could not be checked here)",
+    )),
     build: |p| {
         let k = p.candidates.unwrap_or(DEFAULT_FACTOR);
         Ok(Box::new(BestCandidate::new(p.sampler_seed(), k)?))

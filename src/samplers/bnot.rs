@@ -53,7 +53,7 @@ use crate::grid::{relative_radius_max, wrap_unit};
 use crate::hash::{mix64, stream_seed};
 use crate::power::transport::{TransportOptions, TransportReport, TransportSolver};
 use crate::power::{MIN_MAGNITUDE, check_coincident, find_coincident, validate_sites};
-use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 
 /// The default cap on the Lloyd steps: high enough that the stopping rule ends the loop (it
 /// takes about 30 steps from uniform random points).
@@ -94,6 +94,9 @@ pub(crate) const ENTRY: Entry = Entry {
     promise: "equal-area power cells (blue noise)",
     rates: Rates::NONE,
     expensive: true,
+    blue_noise: Some(BlueNoise::published(
+        "none found (de Goes et al. 2012 could not be checked here)",
+    )),
     build: |p| {
         let k = p.iterations.unwrap_or(DEFAULT_ITERATIONS);
         Ok(Box::new(BnotSets::new(

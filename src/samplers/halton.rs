@@ -72,6 +72,7 @@ pub(crate) const ENTRY: Entry = Entry {
     promise: "one point per cell of `2^a x 3^b` at `N = 2^a 3^b`; 1000 dims",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Halton::new(p.sampler_seed()))),
     nd: Some(|p, d| Ok(Box::new(HaltonNd::new(d, p.sampler_seed())?))),
 };

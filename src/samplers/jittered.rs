@@ -28,6 +28,7 @@ pub(crate) const ENTRY: Entry = Entry {
         higher: None,
     },
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Jittered::new(p.count, p.sampler_seed())?)),
     nd: None,
 };

@@ -24,6 +24,7 @@ pub(crate) const NROOKS: Entry = Entry {
     promise: "one point per row and column",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(NRooks::new(p.count, p.sampler_seed())?)),
     nd: None,
 };
@@ -40,6 +41,7 @@ pub(crate) const LATIN: Entry = Entry {
     promise: "every 1D projection into `N` strata",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(LatinHypercube::new(p.count, 2, p.sampler_seed())?)),
     nd: Some(|p, d| Ok(Box::new(LatinHypercube::new(p.count, d, p.sampler_seed())?))),
 };

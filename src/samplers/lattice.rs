@@ -62,6 +62,7 @@ pub(crate) const LATTICE: Entry = Entry {
     promise: "a rank-1 lattice at every `2^m` (1D strata in every dimension)",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Lattice::new(p.sampler_seed()))),
     nd: Some(|p, d| Ok(Box::new(LatticeNd::new(d, p.sampler_seed())?))),
 };
@@ -79,6 +80,7 @@ pub(crate) const FIBONACCI: Entry = Entry {
     promise: "a rank-1 lattice: 1D strata in x and y",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Fibonacci::new(p.count, p.sampler_seed())?)),
     nd: None,
 };

@@ -20,7 +20,7 @@ use crate::error::{Error, Result};
 use crate::float::{unit_f64_from_u32, unit_f64_from_u64};
 use crate::grid::{relative_radius_max, wrap_unit as wrap};
 use crate::hash::{Stream, hash_u64, stream_seed};
-use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 
 /// The convergence tolerance: relaxation stops once the mean distance from a point to its
 /// cell's centroid falls below this fraction of `r_max(N)`. At N = 1024 this takes a few
@@ -57,6 +57,9 @@ pub(crate) const ENTRY: Entry = Entry {
     promise: "a centroidal Voronoi tessellation (near-hexagonal), converged",
     rates: Rates::NONE,
     expensive: true,
+    blue_noise: Some(BlueNoise::published(
+        "not reported (Lloyd 1982 is on quantization; the method predates its use for blue noise)",
+    )),
     build: |p| {
         let k = p.iterations.unwrap_or(DEFAULT_ITERATIONS);
         Ok(Box::new(LloydSets::new(

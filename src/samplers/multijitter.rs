@@ -31,6 +31,7 @@ pub(crate) const MULTIJITTERED: Entry = Entry {
     promise: "jittered on `n x n` and N-rooks",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(MultiJittered::new(p.count, p.sampler_seed())?)),
     nd: None,
 };
@@ -47,6 +48,7 @@ pub(crate) const CMJ: Entry = Entry {
     promise: "multi-jittered on `m x n`, correlated shuffles",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Cmj::new(p.count, p.sampler_seed())?)),
     nd: None,
 };

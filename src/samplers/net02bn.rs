@@ -27,7 +27,7 @@
 use crate::error::{Error, Result};
 use crate::grid::relative_radius_max;
 use crate::hash::{hash_u64, stream_seed};
-use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::samplers::blocks::{SetGenerator, Sets};
 use crate::samplers::sobol;
 
@@ -66,6 +66,9 @@ pub(crate) const ENTRY: Entry = Entry {
         higher: None,
     },
     expensive: true,
+    blue_noise: Some(BlueNoise::published(
+        "none found (Ahmed and Wonka 2021 could not be checked here)",
+    )),
     build: |p| {
         let k = p.iterations.unwrap_or(DEFAULT_SWEEPS);
         Ok(Box::new(Net02BnSets::new(

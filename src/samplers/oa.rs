@@ -42,6 +42,7 @@ pub(crate) const BOSE: Entry = Entry {
     promise: "every 2D projection on `q x q`, every 1D into `N`",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Bose::new(p.count, 2, p.sampler_seed())?)),
     nd: Some(|p, d| Ok(Box::new(Bose::new(p.count, d, p.sampler_seed())?))),
 };
@@ -62,6 +63,7 @@ pub(crate) const BUSH: Entry = Entry {
     promise: "every t-D projection on `q^t`, every 1D into `N`",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(bush(p, 2)?)),
     nd: Some(|p, d| Ok(Box::new(bush(p, d)?))),
 };

@@ -31,7 +31,7 @@ use crate::error::{Error, Result};
 use crate::float::unit_f64_from_u64;
 use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared, wrap_unit as wrap};
 use crate::hash::stream_seed;
-use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 
 /// The default relative radius.
 pub const DEFAULT_RHO: f64 = 0.7;
@@ -62,6 +62,9 @@ pub(crate) const POISSON: Entry = Entry {
     promise: "exactly `N` points at least `rho r_max(N)` apart",
     rates: POISSON_RATES,
     expensive: false,
+    blue_noise: Some(BlueNoise::published(
+        "rho about 0.75-0.76, the largest dart throwing reaches (Lagae and Dutré 2008), as quoted in issue #28; not checked against the paper",
+    )),
     build: |p| {
         let rho = p.radius.unwrap_or(DEFAULT_RHO);
         Ok(Box::new(PoissonDisk::new(
@@ -84,6 +87,7 @@ pub(crate) const BRIDSON: Entry = Entry {
     promise: "exactly `N` points at least `rho r_max(N)` apart",
     rates: POISSON_RATES,
     expensive: false,
+    blue_noise: Some(BlueNoise::NOT_REPORTED),
     build: |p| {
         let rho = p.radius.unwrap_or(DEFAULT_RHO);
         Ok(Box::new(BridsonDisk::new(

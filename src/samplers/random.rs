@@ -26,6 +26,7 @@ pub(crate) const ENTRY: Entry = Entry {
     promise: "nothing (i.i.d. uniform)",
     rates: Rates::RANDOM,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Random::new(p.sampler_seed()))),
     nd: Some(|p, d| Ok(Box::new(RandomNd::new(d, p.sampler_seed())?))),
 };

@@ -23,6 +23,7 @@ pub(crate) const ENTRY: Entry = Entry {
     promise: "cell centres (aliasing, zero variance, biased)",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Regular::new(p.count)?)),
     nd: None,
 };

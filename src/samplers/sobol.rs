@@ -252,6 +252,7 @@ pub(crate) const ENTRY: Entry = Entry {
     promise: "(0,m,2)-nets in dims 0-1 at every `2^m`; up to 1000 dims",
     rates: Rates::NETS,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Sobol::new(p.sampler_seed()))),
     nd: Some(|p, d| Ok(Box::new(SobolNd::new(d, p.sampler_seed())?))),
 };

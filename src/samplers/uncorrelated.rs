@@ -26,6 +26,7 @@ pub(crate) const ENTRY: Entry = Entry {
     promise: "every pair `(2k, 2k+1)` jittered on `s x s`",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| {
         Ok(Box::new(UncorrelatedJitter::new(
             p.count,

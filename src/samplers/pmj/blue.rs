@@ -35,7 +35,7 @@ use crate::error::{Error, Result};
 use crate::float::unit_f32_from_u32;
 use crate::grid::relative_radius_max;
 use crate::hash::{hash_u64, stream_seed};
-use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 use crate::samplers::{Epochs, sobol};
 
@@ -70,6 +70,9 @@ pub(crate) const ENTRY: Entry = Entry {
     promise: "(0,m,2)-net at every `2^m` prefix and aligned block, blue noise up to `N`",
     rates: Rates::NETS,
     expensive: false,
+    blue_noise: Some(BlueNoise::published(
+        "none found (Christensen et al. 2018 could not be checked here)",
+    )),
     build: |p| {
         let k = p.iterations.unwrap_or(DEFAULT_SWEEPS);
         Ok(Box::new(Pmj02Bn::new(p.sampler_seed(), p.count, k)?))

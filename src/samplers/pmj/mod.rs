@@ -58,7 +58,7 @@ use crate::error::{Error, Result};
 use crate::float::unit_f32_from_u32;
 use crate::prelude::*;
 #[cfg(feature = "std")]
-use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::StrataGrid;
 #[cfg(feature = "std")]
 use crate::sampler::{Point2, Progression, Sampler, Seed};
@@ -93,6 +93,7 @@ pub(crate) const PMJ: Entry = Entry {
     promise: "1D strata and squarest grid at every `2^m` prefix",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Pmj::new(p.sampler_seed()))),
     nd: None,
 };
@@ -110,6 +111,9 @@ pub(crate) const PMJBN: Entry = Entry {
     promise: "`pmj` + best-candidate blue noise",
     rates: Rates::NONE,
     expensive: false,
+    blue_noise: Some(BlueNoise::published(
+        "none found (Christensen et al. 2018 could not be checked here)",
+    )),
     build: |p| {
         let k = p.candidates.unwrap_or(DEFAULT_CANDIDATES);
         Ok(Box::new(Pmj::pmjbn(p.sampler_seed(), k)?))
@@ -130,6 +134,7 @@ pub(crate) const PMJ02: Entry = Entry {
     promise: "(0,m,2)-net at every `2^m` prefix and aligned block",
     rates: Rates::NETS,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Pmj::pmj02(p.sampler_seed()))),
     nd: None,
 };

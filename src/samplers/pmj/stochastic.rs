@@ -68,6 +68,7 @@ pub(crate) const ENTRY: Entry = Entry {
     promise: "as `pmj02`, O(1) per sample, stratified classes",
     rates: Rates::NETS,
     expensive: false,
+    blue_noise: None,
     build: |p| Ok(Box::new(Pmj02Stochastic::new(p.sampler_seed()))),
     nd: None,
 };
