@@ -363,9 +363,9 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Flags {
         let mut kept = 0usize;
         for l in 1..depth {
             let per = n >> l;
-            for ax in 0..2 {
+            for (ax, by_ax) in order.iter().enumerate() {
                 for u in 0..1u32 << l {
-                    let s = &order[ax][u as usize * per..(u as usize + 1) * per];
+                    let s = &by_ax[u as usize * per..(u as usize + 1) * per];
                     let before = energy(s, &pos, ax, l, &prefixes);
                     flip(s, ax, l, &mut pos, &mut prefixes);
                     let after = energy(s, &pos, ax, l, &prefixes);
