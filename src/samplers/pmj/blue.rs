@@ -30,14 +30,14 @@
 //! Ahmed and Wonka (2021) note that (0,2)-sequences are much less optimisable than nets, since
 //! a coarse choice serves every later prefix. Choosing flags across all prefixes at once is what
 //! makes it work: with 32 seeds, mean nearest-neighbour distances over `r_max` are 0.754, 0.728,
-//! 0.708, 0.703 and 0.701 at 64, 256, 1024, 4096 and 16384 points, 1.16-1.24x those of `pmj02`
+//! 0.708, 0.703 and 0.702 at 64, 256, 1024, 4096 and 16384 points, 1.16-1.24x those of `pmj02`
 //! (0.61), where best candidate inside the single valid stratum left by `pmj02` reached
-//! 0.99-1.06x; the `pmj` crate's best-candidate pmj02bn (99 retries) reaches 0.59 at 4096.
+//! 0.99-1.06x; the `pmj` crate's best-candidate pmj02bn (99 retries) reaches 0.60 at 4096.
 //!
 //! Guaranteed: the (0,2)-sequence property above (tested on every prefix and aligned block).
 //! Cost: the optimisation, once per sequence, is `O(N log N)` for the intended count `N`
-//! (about 40 ms for 4096 points on a quiet core, several times the `pmj` crate's best
-//! candidate; counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`); each sample is
+//! (4096 points: 0.70 G instructions, 4.1x the `pmj` crate's best candidate, and 4.3x its
+//! time in interleaved runs, about 40 ms on a quiet core; `tools/pmj-peer`); counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`); each sample is
 //! then computed from the flags in `O(32)`.
 
 use super::{MAX_SEQUENCE_LEN, pmj_grids};
