@@ -5,6 +5,11 @@
 //! growth table at 2^20.
 //!
 //! `cargo bench --bench pmj`; `python3 tools/criterion_table.py pmj` prints medians and ratios.
+//!
+//! The `pmj` crate (sjb3d/pmj, whose best-candidate pmj02bn is the peer of `pmj02bn`) is not
+//! on crates.io, so it cannot be a dependency here: `tools/pmj-peer/` is a separate crate
+//! (not built by `cargo test` or `cargo bench`) that times the two interleaved and compares
+//! their mean nearest-neighbour distances; its README says how to get the peer's source.
 
 mod common;
 

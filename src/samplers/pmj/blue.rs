@@ -9,26 +9,36 @@
 //! Kensler and Kilpatrick 2018's pmj02bn, in the form of the scrambling tree that Doignies,
 //! Coeurjolly and Ostromoukhov 2024 optimise for nets):
 //!
-//! * the objective is a sum over the prefixes `2^k`, `k = 4 .. m`, of a Gaussian repulsion energy
-//!   `sum exp(-d^2 / (2 sigma_k^2))` with `sigma_k = SIGMA r_max(2^k)`, each prefix weighted by
-//!   `2^-k` (energy per point), so no prefix is sacrificed for the last one;
+//! * the objective is a sum over the prefixes `2^k`, `k = 4 .. m`, of a repulsion energy
+//!   `sum (1 - d^2 / c_k^2)^4` over the pairs closer than `c_k = sqrt(8) sigma_k`, with
+//!   `sigma_k = SIGMA r_max(2^k)` (`SIGMA = 0.4`; the kernel is the Gaussian of width `sigma_k`
+//!   to second order, with compact support), each prefix weighted by `2^-k` (energy per
+//!   point), so no prefix is sacrificed for the last one;
 //! * coordinate descent: each flag at depths `1 ..= m` (depth 0 is a half-period translation,
-//!   which does not change toroidal distances), in x and in y, is flipped when that lowers the
-//!   objective, exactly (the moved points' energies are recomputed against neighbour grids of
-//!   every prefix); sweeps repeat until none keeps a flip or `--iterations` sweeps have run;
+//!   which does not change toroidal distances), coarse to fine, in x and in y, is flipped when
+//!   that lowers the objective, exactly (the moved points' energies are recomputed against a
+//!   neighbour grid of every prefix); sweeps repeat until none keeps a flip or `--iterations`
+//!   sweeps have run (default 2);
+//! * each prefix's grid has the elementary intervals `2^-ceil(k/2) x 2^-floor(k/2)` as cells:
+//!   since the prefix is a (0,k,2)-net under every scrambling, every cell holds exactly one
+//!   point, so the grid is a flat array of positions (padded by two wrapped columns per row),
+//!   a point's neighbours are the 5 x 5 (or 5 x 3) cells around it, and a flip's update is
+//!   writing the moved points into their new cells;
 //! * deeper flags (finer than the optimised count) stay random, so the sequence continues past
 //!   `2^m` as an Owen-scrambled (0,2)-sequence.
 //!
 //! Ahmed and Wonka (2021) note that (0,2)-sequences are much less optimisable than nets, since
 //! a coarse choice serves every later prefix. Choosing flags across all prefixes at once is what
-//! makes it work: with 32 seeds, mean nearest-neighbour distances are 1.1-1.2x those of `pmj02`
-//! at 64 to 16384 points (`docs/results.md`), where best candidate inside the single valid
-//! stratum left by `pmj02` reached 0.99-1.06x.
+//! makes it work: with 32 seeds, mean nearest-neighbour distances over `r_max` are 0.754, 0.728,
+//! 0.708, 0.703 and 0.702 at 64, 256, 1024, 4096 and 16384 points, 1.16-1.24x those of `pmj02`
+//! (0.61), where best candidate inside the single valid stratum left by `pmj02` reached
+//! 0.99-1.06x; the `pmj` crate's best-candidate pmj02bn (99 retries) reaches 0.60 at 4096.
 //!
 //! Guaranteed: the (0,2)-sequence property above (tested on every prefix and aligned block).
 //! Cost: the optimisation, once per sequence, is `O(N log N)` for the intended count `N`
-//! (about 0.1 s at 1024 points, 2 s at 16384; counts above [`MAX_OPTIMIZED_LOG2`] are optimised
-//! up to `2^16`); each sample is then computed from the flags in `O(32)`.
+//! (4096 points: 0.70 G instructions, 4.1x the `pmj` crate's best candidate, and 4.3x its
+//! time in interleaved runs, about 40 ms on a quiet core; `tools/pmj-peer`); counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`); each sample is
+//! then computed from the flags in `O(32)`.
 
 use super::{MAX_SEQUENCE_LEN, pmj_grids};
 use crate::error::{Error, Result};
@@ -40,13 +50,17 @@ use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 use crate::samplers::{Epochs, sobol};
 
 /// The kernel width relative to `r_max` of each prefix.
-pub(crate) const SIGMA: f64 = 0.5;
+pub(crate) const SIGMA: f64 = 0.4;
+
+/// The kernel's support relative to `SIGMA r_max`: `(1 - d^2/c^2)^4` is `exp(-4 d^2/c^2)` to
+/// second order, the Gaussian of width `sigma` when `c = sqrt(8) sigma`.
+pub(crate) const CUTOFF: f64 = 2.828_427_124_746_19;
 
 /// The smallest prefix `2^k` in the objective.
 pub(crate) const FIRST_PREFIX_LOG2: u32 = 4;
 
 /// The default cap on the sweeps over all flags (they usually stop earlier).
-pub const DEFAULT_SWEEPS: u32 = 4;
+pub const DEFAULT_SWEEPS: u32 = 2;
 
 /// The most sweeps accepted.
 pub const MAX_SWEEPS: u32 = 1000;
@@ -57,7 +71,7 @@ pub const MAX_OPTIMIZED_LOG2: u32 = 16;
 /// The registry entry of `pmj02bn`.
 pub(crate) const ENTRY: Entry = Entry {
     name: "pmj02bn",
-    description: "a (0,2)-sequence whose Owen-scrambling flags are chosen for blue noise at every power-of-two prefix up to N (--iterations K caps the sweeps, default 4)",
+    description: "a (0,2)-sequence whose Owen-scrambling flags are chosen for blue noise at every power-of-two prefix up to N (--iterations K caps the sweeps, default 2)",
     paper: "Christensen et al. 2018; Doignies et al. 2024",
     family: Family::Pmj,
     progressive: true,
@@ -224,32 +238,97 @@ impl Sampler for Pmj02Bn {
 }
 
 /// One prefix's neighbour grid and kernel.
+///
+/// The cells are the elementary intervals `2^-tx x 2^-ty` with `tx + ty = k` and `tx` the
+/// larger: every prefix `2^k` of the sequence is a (0,k,2)-net under every Owen scrambling, so
+/// each cell holds exactly one point, before and after any flip. The grid is therefore a flat
+/// array of positions, and a flip only overwrites the cells of the moved points.
 struct Prefix {
     len: usize,
-    res: usize,
-    cells: Vec<Vec<u32>>,
-    inv_two_sigma2: f64,
-    cutoff2: f64,
+    tx: u32,
+    ty: u32,
+    /// The position of the point in each cell, row-major, each row of `2^tx` cells padded with
+    /// [`PAD`] cells of wrapped columns on both sides (so `stride = 2^tx + 2 PAD`).
+    slots: Vec<[u32; 2]>,
+    stride: usize,
+    /// Whether the rows are wide enough to scan `2 PAD + 1` padded columns without repeats.
+    fast: bool,
+    /// The columns (then rows) to scan around a point's cell, relative and wrapped.
+    span_x: Vec<u32>,
+    span_y: Vec<u32>,
+    /// `1 / cutoff^2` in units of `2^-64` (squared fixed-point distances).
+    inv_cutoff2: f32,
     weight: f64,
 }
 
 impl Prefix {
-    fn cell(&self, p: [u32; 2]) -> usize {
-        let c = |v: u32| ((u64::from(v) * self.res as u64) >> 32) as usize;
-        c(p[1]) * self.res + c(p[0])
+    fn new(k: u32, pos: &[[u32; 2]]) -> Self {
+        let len = 1usize << k;
+        let cutoff = CUTOFF * SIGMA * relative_radius_max(len);
+        let tx = k.div_ceil(2);
+        let ty = k - tx;
+        // the offsets that reach `cutoff` (each cell at most once on a small grid)
+        let span = |t: u32| -> Vec<u32> {
+            let res = 1u32 << t;
+            let reach = (cutoff * f64::from(res)).ceil() as u32;
+            if 2 * reach + 1 >= res {
+                (0..res).collect()
+            } else {
+                (0..=2 * reach).map(|d| (d + res - reach) % res).collect()
+            }
+        };
+        let stride = (1usize << tx) + 2 * PAD;
+        let span_x = span(tx);
+        let fast = span_x.len() <= 2 * PAD + 1 && 1usize << tx > 2 * PAD + 1;
+        let mut p = Prefix {
+            len,
+            tx,
+            ty,
+            slots: vec![[0, 0]; stride << ty],
+            stride,
+            fast,
+            span_x,
+            span_y: span(ty),
+            inv_cutoff2: (1.0 / (cutoff * cutoff * FIXED2)) as f32,
+            weight: 1.0 / len as f64,
+        };
+        for q in &pos[..len] {
+            p.put(*q);
+        }
+        p
+    }
+
+    /// Writes `q` into its cell (and the cell's padding copy, if any).
+    fn put(&mut self, q: [u32; 2]) {
+        let (x, y) = self.cell_xy(q);
+        let (x, row) = (x as usize, y as usize * self.stride);
+        let res = 1usize << self.tx;
+        self.slots[row + x + PAD] = q;
+        if x < PAD {
+            self.slots[row + x + PAD + res] = q;
+        } else if x + PAD >= res {
+            self.slots[row + x + PAD - res] = q;
+        }
+    }
+
+    fn cell_xy(&self, q: [u32; 2]) -> (u32, u32) {
+        // (a shift by 32 is not defined for u32: tx, ty < 32, and ty = 0 is one row)
+        let f = |v: u32, t: u32| if t == 0 { 0 } else { v >> (32 - t) };
+        (f(q[0], self.tx), f(q[1], self.ty))
     }
 }
 
-fn unit(v: u32) -> f64 {
-    f64::from(v) * (1.0 / 4_294_967_296.0)
-}
+/// The columns of padding on each side of a grid row: the kernel reaches at most two cells.
+const PAD: usize = 2;
 
-fn torus_d2(a: [u32; 2], b: [u32; 2]) -> f64 {
-    // wrapping differences are toroidal: the shorter way round is min(d, 2^32 - d)
-    let d = |u: u32, v: u32| {
-        let t = u.wrapping_sub(v);
-        unit(t.min(t.wrapping_neg()))
-    };
+/// `2^64`: a squared distance in units of `2^-64` over this is the distance in the unit torus.
+const FIXED2: f64 = 18_446_744_073_709_551_616.0;
+
+/// The squared toroidal distance in units of `2^-64` (at most `2^63`, so it fits).
+#[cfg(test)]
+fn torus_d2_fixed(a: [u32; 2], b: [u32; 2]) -> u64 {
+    // a wrapping difference read as signed is the shorter way round
+    let d = |u: u32, v: u32| u64::from((u.wrapping_sub(v) as i32).unsigned_abs());
     let (dx, dy) = (d(a[0], b[0]), d(a[1], b[1]));
     dx * dx + dy * dy
 }
@@ -281,37 +360,18 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Flags {
         o
     });
     let mut prefixes: Vec<Prefix> = (FIRST_PREFIX_LOG2.min(m)..=m)
-        .map(|k| {
-            let len = 1usize << k;
-            let sigma = SIGMA * relative_radius_max(len);
-            let cutoff = 3.0 * sigma;
-            let res = ((1.0 / cutoff) as usize).max(1);
-            let mut p = Prefix {
-                len,
-                res,
-                cells: vec![Vec::new(); res * res],
-                inv_two_sigma2: 1.0 / (2.0 * sigma * sigma),
-                cutoff2: cutoff * cutoff,
-                weight: 1.0 / len as f64,
-            };
-            for (i, q) in pos[..len].iter().enumerate() {
-                let c = p.cell(*q);
-                p.cells[c].push(i as u32);
-            }
-            p
-        })
+        .map(|k| Prefix::new(k, &pos))
         .collect();
     for _ in 0..sweeps {
         let mut kept = 0usize;
         for l in 1..depth {
             let per = n >> l;
-            for ax in 0..2 {
+            for (ax, by_ax) in order.iter().enumerate() {
                 for u in 0..1u32 << l {
-                    let s = &order[ax][u as usize * per..(u as usize + 1) * per];
-                    let inside = |j: usize| base[j][ax] >> (32 - l) == u;
-                    let before = energy(s, &pos, &prefixes, &inside);
+                    let s = &by_ax[u as usize * per..(u as usize + 1) * per];
+                    let before = energy(s, &pos, ax, l, &prefixes);
                     flip(s, ax, l, &mut pos, &mut prefixes);
-                    let after = energy(s, &pos, &prefixes, &inside);
+                    let after = energy(s, &pos, ax, l, &prefixes);
                     if after < before {
                         flags.flip(ax, l, u);
                         kept += 1;
@@ -328,69 +388,70 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Flags {
     flags
 }
 
-/// The objective's part that involves the points `s` (each pair inside `s` once).
-fn energy(s: &[u32], pos: &[[u32; 2]], prefixes: &[Prefix], inside: &dyn Fn(usize) -> bool) -> f64 {
+/// The objective's part that involves the points `s` of one node of depth `l` in coordinate
+/// `ax` (each pair inside `s` once).
+///
+/// A point `q` is in the node of `i` when the first `l` digits of their coordinates `ax` agree
+/// (the flags above depth `l` map the nodes of depth `l` one to one), and is `i` itself when
+/// they are at distance 0 (the points of a (0,2)-sequence have distinct coordinates).
+fn energy(s: &[u32], pos: &[[u32; 2]], ax: usize, l: u32, prefixes: &[Prefix]) -> f64 {
     let mut total = 0.0;
+    // the first `l` digits of coordinate `ax`
+    let mask = !(u32::MAX >> l);
+    let node_mask = if ax == 0 { [mask, 0] } else { [0, mask] };
     for p in prefixes {
-        let (mut outer, mut inner) = (0.0, 0.0);
-        let res = p.res as isize;
-        let span: &[isize] = match res {
-            1 => &[0],
-            2 => &[0, 1],
-            _ => &[-1, 0, 1],
-        };
+        let mut outer = 0.0;
+        let my = (1u32 << p.ty) - 1;
+        let res_x = 1u32 << p.tx;
         for &i in s {
             let i = i as usize;
             if i >= p.len {
                 continue;
             }
-            let c = p.cell(pos[i]);
-            let (cx, cy) = ((c % p.res) as isize, (c / p.res) as isize);
-            for &dy in span {
-                let y = (cy + dy).rem_euclid(res) as usize;
-                for &dx in span {
-                    let x = (cx + dx).rem_euclid(res) as usize;
-                    for &j in &p.cells[y * p.res + x] {
-                        let j = j as usize;
-                        if j == i {
-                            continue;
-                        }
-                        let d2 = torus_d2(pos[i], pos[j]);
-                        if d2 < p.cutoff2 {
-                            let e = libm::exp(-d2 * p.inv_two_sigma2);
-                            if inside(j) {
-                                inner += e;
-                            } else {
-                                outer += e;
-                            }
-                        }
+            let pi = pos[i];
+            let (cx, cy) = p.cell_xy(pi);
+            // each pair's kernel, halved inside the node (the point itself adds a constant)
+            let pair = |q: [u32; 2]| {
+                let d = |a: u32, b: u32| (a.wrapping_sub(b) as i32) as f32;
+                let (dx, dy) = (d(pi[0], q[0]), d(pi[1], q[1]));
+                let t = (1.0 - (dx * dx + dy * dy) * p.inv_cutoff2).max(0.0);
+                let t2 = t * t;
+                let same = ((pi[0] ^ q[0]) & node_mask[0]) | ((pi[1] ^ q[1]) & node_mask[1]);
+                let w = if same == 0 { 0.5 } else { 1.0 };
+                w * t2 * t2
+            };
+            for &dy in &p.span_y {
+                let row = ((cy + dy) & my) as usize * p.stride;
+                if p.fast {
+                    let start = row + cx as usize;
+                    let c = &p.slots[start..start + 2 * PAD + 1];
+                    outer +=
+                        f64::from(pair(c[0]) + pair(c[1]) + pair(c[2]) + pair(c[3]) + pair(c[4]));
+                } else {
+                    for &dx in &p.span_x {
+                        outer += f64::from(pair(p.slots[row + PAD + ((cx + dx) % res_x) as usize]));
                     }
                 }
             }
         }
-        total += p.weight * (outer + 0.5 * inner);
+        total += p.weight * outer;
     }
     total
 }
 
 /// Flips digit `l + 1` of coordinate `ax` of the points `s` (the effect of one flag), keeping
 /// the grids current. Its own inverse.
+///
+/// The moved points leave and fill the same set of cells (one point per cell before and
+/// after), so writing each new position into its cell is the whole update.
 fn flip(s: &[u32], ax: usize, l: u32, pos: &mut [[u32; 2]], prefixes: &mut [Prefix]) {
     for &i in s {
         let i = i as usize;
-        let mut q = pos[i];
-        q[ax] ^= 0x8000_0000 >> l;
+        pos[i][ax] ^= 0x8000_0000 >> l;
+        let q = pos[i];
         for p in prefixes.iter_mut().filter(|p| i < p.len) {
-            let (from, to) = (p.cell(pos[i]), p.cell(q));
-            if from != to {
-                let list = &mut p.cells[from];
-                if let Some(k) = list.iter().position(|&x| x as usize == i) {
-                    list.swap_remove(k);
-                }
-                p.cells[to].push(i as u32);
-            }
+            p.put(q);
         }
-        pos[i] = q;
     }
 }
 
@@ -411,7 +472,7 @@ mod tests {
 
     #[test]
     fn toroidal_distance_takes_the_short_way() {
-        let d = torus_d2([0, 0], [u32::MAX, 1 << 31]);
+        let d = torus_d2_fixed([0, 0], [u32::MAX, 1 << 31]) as f64 / FIXED2;
         assert!((d - 0.25).abs() < 1e-9, "{d}");
     }
 }
