@@ -126,8 +126,9 @@ impl<F: Fn(u64, [u32; 2], u64, u32) -> f32 + Sync> Source for F {
 }
 
 /// A [`Sequence`] as a [`Source`]: the values of a [`PixelSampler`] with the given
-/// samples per pixel, laid out as `points --pixel` prints them (dimensions `2k, 2k+1` from
-/// `get_2d` at dimension `2k`), with the stratification the sequence promises.
+/// samples per pixel, laid out by [`PixelSampler::fill_sample`] as `points --pixel` prints them
+/// (dimensions `2k, 2k+1` from `get_2d` at dimension `2k`, a last odd one from `get_1d`), with
+/// the stratification the sequence promises.
 #[derive(Clone, Debug)]
 pub struct SequenceSource {
     sampler: PixelSampler,
@@ -164,14 +165,7 @@ impl Source for SequenceSource {
             .take(spp as usize)
             .enumerate()
         {
-            s.start_pixel_sample(pixel, i as u64, 0);
-            for pair in row.chunks_mut(2) {
-                let v = s.get_2d();
-                pair[0] = v.x;
-                if let Some(y) = pair.get_mut(1) {
-                    *y = v.y;
-                }
-            }
+            s.fill_sample(pixel, i as u64, 0, row);
         }
     }
 
