@@ -219,23 +219,7 @@ fn main() -> ExitCode {
                 .map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
             let mut sampler = PixelSampler::new(sequence, spp, strata::Seed(args.params.seed))?;
             for (index, row) in values.chunks_exact_mut(dims).enumerate() {
-                sampler.start_pixel_sample([px as u32, py as u32], index as u64, 0);
-                let mut d = 0;
-                while d < dims {
-                    if dims - d >= 2 {
-                        let v = if d == 0 {
-                            sampler.get_pixel_2d()
-                        } else {
-                            sampler.get_2d()
-                        };
-                        row[d] = v.x;
-                        row[d + 1] = v.y;
-                        d += 2;
-                    } else {
-                        row[d] = sampler.get_1d();
-                        d += 1;
-                    }
-                }
+                sampler.fill_sample([px as u32, py as u32], index as u64, 0, row);
             }
         } else if dims == 2 {
             let mut sampler = entry.expect("no --pixel").build(&params)?;

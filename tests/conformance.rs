@@ -76,6 +76,15 @@ fn the_z_ordered_sequences_pass() {
 }
 
 #[test]
+fn zjoint_passes() {
+    // the draws of a group share an index: jointly stratified, never the same points twice;
+    // the suite must find them unbiased, uniform and independent across groups, pixels, seeds
+    let r = run("zjoint");
+    assert_passes(&r, "zjoint");
+    assert!(r.row("stratification", "per draw").unwrap().cases > 0);
+}
+
+#[test]
 fn halton_passes() {
     let r = run("halton");
     assert_passes(&r, "halton");
@@ -373,7 +382,9 @@ fn the_shipped_shuffle_pairs_draws_as_chance_does_on_a_small_study() {
 #[ignore = "about 30 s in release: .ci/run runs it"]
 fn the_pair_test_passes_every_sequence_and_fails_one_plain_round() {
     let study = PairStudy::default();
-    for name in ["sobol", "pmj02", "lattice", "zsobol", "zpmj02", "random"] {
+    for name in [
+        "sobol", "pmj02", "lattice", "zsobol", "zpmj02", "zjoint", "random",
+    ] {
         let source = SequenceSource::new(Sequence::by_name(name).unwrap(), 4096).unwrap();
         let r = study.run(&source).unwrap();
         assert_eq!(r.pairs, 786_240);

@@ -52,3 +52,23 @@ fn nothing_refers_outside_the_repository() {
         );
     }
 }
+
+#[test]
+fn the_pixel_docs_name_every_sequence() {
+    // the "Sequences" section of the adapter's module docs describes each of
+    // `Sequence::NAMES` (a new sequence must be described there; issue 27 item 5 would
+    // generate this list as the sampler table is generated)
+    let text = read("src/pixel/mod.rs");
+    let heading = "//! # Sequences\n";
+    let start = text
+        .find(heading)
+        .expect("src/pixel/mod.rs has # Sequences");
+    let rest = &text[start + heading.len()..];
+    let section = &rest[..rest.find("//! # ").unwrap_or(rest.len())];
+    for name in strata::Sequence::NAMES {
+        assert!(
+            section.contains(&format!("`{name}`")),
+            "the Sequences section of src/pixel/mod.rs does not describe `{name}`"
+        );
+    }
+}

@@ -675,3 +675,51 @@ fn zjoint_stratifies_the_draws_of_a_group_jointly() {
         );
     }
 }
+
+#[test]
+fn a_filled_pixel_sample_is_the_stateless_draws() {
+    // `fill_sample` is the row layout of `points --pixel`, the Python binding and the
+    // conformance suite: pairs from `get_2d`, a last `get_1d` for an odd width, from any
+    // starting dimension; every value must be the stateless draw at its dimension
+    for seq in Sequence::NAMES.map(|n| Sequence::by_name_at(n, [3, 2]).unwrap()) {
+        for padding in [strata::Padding::Nested, strata::Padding::Uniform] {
+            let mut s = PixelSampler::new(seq.clone(), 16, strata::Seed(9))
+                .unwrap()
+                .with_padding(padding);
+            for (pixel, index) in [
+                ([0u32, 0], 0u64),
+                ([2, 1], 13),
+                ([3, 0], 5),
+                ([1, 1], 1 << 32),
+            ] {
+                for first in [0u32, 1, 3, 8] {
+                    for width in 0..=11usize {
+                        let name = format!(
+                            "{} {padding:?} {pixel:?} {index} {first}+{width}",
+                            seq.name()
+                        );
+                        // (a draw of another sample first: nothing of it may leak in)
+                        s.start_pixel_sample([1, 0], 3, 2);
+                        let _ = s.get_2d();
+                        let mut row = vec![f32::NAN; width];
+                        s.fill_sample(pixel, index, first, &mut row);
+                        for (k, &v) in row.iter().enumerate() {
+                            let dim = first + k as u32;
+                            let want = if k % 2 == 0 && k + 1 == width {
+                                s.sample(pixel, index, dim)
+                            } else {
+                                s.sample_2d(pixel, index, first + (k as u32 & !1))[k % 2]
+                            };
+                            assert_eq!(v.to_bits(), want.to_bits(), "{name} dim {dim}");
+                            // the first coordinate of the 2D draw, too
+                            if k % 2 == 0 {
+                                assert_eq!(v, s.sample_2d(pixel, index, dim).x, "{name} {dim}");
+                            }
+                        }
+                        assert_eq!(s.dimension(), first + width as u32, "{name}");
+                    }
+                }
+            }
+        }
+    }
+}

@@ -18,27 +18,6 @@ pub struct PyPixelSampler {
     inner: PixelSampler,
 }
 
-/// The values of one pixel sample, as `points --pixel X,Y --dims D` prints them: dimensions
-/// 0-1 from `get_pixel_2d`, then `get_2d` pairs, and a last `get_1d` for an odd count; starting
-/// at dimension `first` (0 in `points`).
-#[inline]
-fn pixel_sample(s: &mut PixelSampler, pixel: [u32; 2], index: u64, first: u32, row: &mut [f32]) {
-    s.start_pixel_sample(pixel, index, first);
-    let dims = row.len();
-    let mut d = 0;
-    while d < dims {
-        if dims - d >= 2 {
-            let v = if d == 0 { s.get_pixel_2d() } else { s.get_2d() };
-            row[d] = v.x;
-            row[d + 1] = v.y;
-            d += 2;
-        } else {
-            row[d] = s.get_1d();
-            d += 1;
-        }
-    }
-}
-
 #[pymethods]
 impl PyPixelSampler {
     /// The adapter over sequence `sequence` (one of `Sequence::NAMES`) with `spp` samples per
@@ -92,7 +71,7 @@ impl PyPixelSampler {
                     let mut s = sampler.clone();
                     for ((row, p), &i) in rows.chunks_exact_mut(dims).zip(p.chunks_exact(2)).zip(i)
                     {
-                        pixel_sample(&mut s, [p[0], p[1]], i, first, row);
+                        s.fill_sample([p[0], p[1]], i, first, row);
                     }
                 });
         });

@@ -126,8 +126,9 @@ impl<F: Fn(u64, [u32; 2], u64, u32) -> f32 + Sync> Source for F {
 }
 
 /// A [`Sequence`] as a [`Source`]: the values of a [`PixelSampler`] with the given
-/// samples per pixel, laid out as `points --pixel` prints them (dimensions `2k, 2k+1` from
-/// `get_2d` at dimension `2k`), with the stratification the sequence promises.
+/// samples per pixel, laid out by [`PixelSampler::fill_sample`] as `points --pixel` prints them
+/// (dimensions `2k, 2k+1` from `get_2d` at dimension `2k`, a last odd one from `get_1d`), with
+/// the stratification the sequence promises.
 #[derive(Clone, Debug)]
 pub struct SequenceSource {
     sampler: PixelSampler,
@@ -164,14 +165,7 @@ impl Source for SequenceSource {
             .take(spp as usize)
             .enumerate()
         {
-            s.start_pixel_sample(pixel, i as u64, 0);
-            for pair in row.chunks_mut(2) {
-                let v = s.get_2d();
-                pair[0] = v.x;
-                if let Some(y) = pair.get_mut(1) {
-                    *y = v.y;
-                }
-            }
+            s.fill_sample(pixel, i as u64, 0, row);
         }
     }
 
@@ -563,18 +557,42 @@ impl Suite {
         self.run(&SequenceSource::new(sequence, self.spp)?)
     }
 
-    /// Runs the suite on `source`.
+    /// Runs the suite on `source`: draws every instance's values, then each family of tests
+    /// in the order of the report's rows.
     pub fn run(&self, source: &(impl Source + ?Sized)) -> Result<Report> {
         self.check()?;
-        let (n, dims) = (self.spp as usize, self.dimensions as usize);
-        let draws = dims / 2; // 2D draws; an odd last dimension is a 1D draw
-        let draw_of = |d: usize| if d < 2 * draws { d / 2 } else { usize::MAX - d };
         let instances: Vec<(u64, [u32; 2])> = self
             .seeds
             .iter()
             .flat_map(|&s| self.pixels.iter().map(move |&p| (s, p)))
             .collect();
-        let values: Vec<Vec<f32>> = parallel_map(&instances, |&(seed, pixel)| {
+        let values = self.draw(source, &instances)?;
+        let run = Run::new(self, &instances, &values);
+        let per_instance = run.per_instance();
+        let mut families = run.instance_families(&per_instance);
+        families.extend(run.seed_families(&per_instance));
+        families.extend(run.cross_families());
+        let mut rows = rows(families, self.false_alarm);
+        rows.push(run.stratification(source));
+        Ok(Report {
+            rows,
+            spp: self.spp,
+            dimensions: self.dimensions,
+            instances: instances.len(),
+            chi_square_side: run.side as u32,
+            false_alarm: self.false_alarm,
+        })
+    }
+
+    /// The values of every instance (seed, pixel): `spp x dimensions`, sample-major, each
+    /// checked to lie in `[0, 1)`.
+    fn draw(
+        &self,
+        source: &(impl Source + ?Sized),
+        instances: &[(u64, [u32; 2])],
+    ) -> Result<Vec<Vec<f32>>> {
+        let (n, dims) = (self.spp as usize, self.dimensions as usize);
+        let values: Vec<Vec<f32>> = parallel_map(instances, |&(seed, pixel)| {
             let mut v = vec![0.0f32; n * dims];
             source.fill(seed, pixel, self.spp, self.dimensions, &mut v);
             v
@@ -590,23 +608,226 @@ impl Suite {
                 format!("seed {seed} pixel {pixel:?} gave {bad}, outside [0, 1)"),
             ));
         }
+        Ok(values)
+    }
+}
 
+/// The rows of `families`, in their order: the false-alarm rate split evenly over the rows
+/// run (the stratification row included), and within a row over its cases.
+fn rows(families: Vec<Family>, false_alarm: f64) -> Vec<Row> {
+    let rows_run = families.iter().filter(|f| !f.cases.is_empty()).count() + 1;
+    let alpha_row = false_alarm / rows_run as f64;
+    families.into_iter().map(|f| f.row(alpha_row)).collect()
+}
+
+impl Family {
+    /// A family of `|z|` cases (two-sided normal critical value, at least `floor`).
+    fn z(
+        test: &'static str,
+        scope: &'static str,
+        cases: Vec<Case>,
+        floor: f64,
+        note: &'static str,
+    ) -> Self {
+        Family {
+            test,
+            scope,
+            statistic: "|z|",
+            cases,
+            critical: normal_critical(),
+            floor,
+            note,
+        }
+    }
+
+    /// The row of these cases at the row's false-alarm rate `alpha_row` (Bonferroni over the
+    /// cases).
+    fn row(self, alpha_row: f64) -> Row {
+        let mut row = Row {
+            test: self.test,
+            scope: self.scope,
+            statistic: self.statistic,
+            cases: self.cases.len(),
+            failures: 0,
+            worst: f64::NAN,
+            worst_p: f64::NAN,
+            threshold: f64::NAN,
+            worst_case: String::new(),
+            note: self.note,
+        };
+        if self.cases.is_empty() {
+            return row;
+        }
+        let threshold = (self.critical)(alpha_row / self.cases.len() as f64).max(self.floor);
+        row.threshold = threshold;
+        row.failures = self
+            .cases
+            .iter()
+            .filter(|c| c.statistic.is_nan() || c.statistic > threshold)
+            .count();
+        let worst = self
+            .cases
+            .iter()
+            .max_by(|x, y| x.statistic.total_cmp(&y.statistic))
+            .expect("non-empty");
+        row.worst = worst.statistic;
+        row.worst_p = worst.p;
+        row.worst_case = worst.place.clone();
+        row
+    }
+}
+
+/// The two-sided normal critical value, as a family's `critical`.
+fn normal_critical() -> Box<dyn Fn(f64) -> f64> {
+    Box::new(|alpha| stats::critical_value(alpha, stats::normal_two_sided))
+}
+
+/// The case of a signed `z`: its magnitude, two-sided.
+fn z_case(z: f64, place: String) -> Case {
+    Case {
+        statistic: z.abs(),
+        p: stats::normal_two_sided(z),
+        place,
+    }
+}
+
+/// The z-scores of one (pixel, pair, function) over the seeds: the variance case
+/// (`sum z^2`, chi-square with `seeds` degrees of freedom) and, with two or more seeds, the
+/// t-test case; `variance` is the function's variance under uniform sampling, `n` the count.
+fn seed_cases(zs: &[f64], variance: f64, n: usize, place: String) -> (Case, Option<Case>) {
+    let r = zs.len();
+    let sum_sq: f64 = zs.iter().map(|z| z * z).sum();
+    let v_case = Case {
+        statistic: sum_sq,
+        p: stats::chi_square_upper(sum_sq, r as f64),
+        place: place.clone(),
+    };
+    if r < 2 {
+        return (v_case, None);
+    }
+    let mean = zs.iter().sum::<f64>() / r as f64;
+    let var = zs.iter().map(|z| (z - mean).powi(2)).sum::<f64>() / (r - 1) as f64;
+    // an estimate of n values resolves 1/n: that floor keeps equal errors over all seeds (a
+    // stratified set meeting a step the same way) from a zero spread and an infinite t
+    let floor = (variance / n as f64).sqrt().recip() / n as f64;
+    let t = mean / (var / r as f64 + floor * floor).sqrt();
+    let t_case = Case {
+        statistic: t.abs(),
+        p: stats::student_t_two_sided(t, (r - 1) as f64),
+        place,
+    };
+    (v_case, Some(t_case))
+}
+
+/// Which 2D draw dimension `d` belongs to, of `draws` 2D draws (an odd last dimension is a
+/// 1D draw of its own).
+fn draw_of(d: usize, draws: usize) -> usize {
+    if d < 2 * draws { d / 2 } else { usize::MAX - d }
+}
+
+/// The largest difference between a cell's count and `m / cells` when the first `m`
+/// samples of `draw` (dimensions `2 draw, 2 draw + 1` of `v`, `dims` per sample) are counted
+/// on `g`; `u64::MAX` when `m` is not a multiple of the cells (a promise it cannot keep).
+fn points_off(v: &[f32], dims: usize, draw: usize, m: usize, g: &StrataGrid) -> u64 {
+    let cells = g.columns as usize * g.rows as usize;
+    if !m.is_multiple_of(cells) {
+        return u64::MAX;
+    }
+    let mut counts = vec![0u32; cells];
+    for i in 0..m {
+        let (x, y) = (v[i * dims + 2 * draw], v[i * dims + 2 * draw + 1]);
+        let cx = (x as f64 * g.columns as f64) as usize;
+        let cy = (y as f64 * g.rows as f64) as usize;
+        counts[cy * g.columns as usize + cx] += 1;
+    }
+    let expect = (m / cells) as u64;
+    counts
+        .iter()
+        .map(|&c| (c as u64).abs_diff(expect))
+        .max()
+        .unwrap_or(0)
+}
+
+/// One run's values with what every family of tests reads: the sizes, the functions and
+/// their moments, the pairs of dimensions, the chi-square grid.
+struct Run<'a> {
+    suite: &'a Suite,
+    instances: &'a [(u64, [u32; 2])],
+    /// Per instance, `n x dims` values, sample-major.
+    values: &'a [Vec<f32>],
+    n: usize,
+    dims: usize,
+    side: usize,
+    chi_df: f64,
+    /// The functions of the `integrands` rows, then the product (index `products`).
+    functions: Vec<Function>,
+    moments: Vec<(f64, f64)>,
+    products: usize,
+    pairs: Vec<(usize, usize)>,
+}
+
+/// Per instance: the z of every (pair, function), pair-major, and the chi-square of every
+/// pair.
+type InstanceStats = (Vec<f64>, Vec<f64>);
+
+impl<'a> Run<'a> {
+    fn new(suite: &'a Suite, instances: &'a [(u64, [u32; 2])], values: &'a [Vec<f32>]) -> Self {
+        let (n, dims) = (suite.spp as usize, suite.dimensions as usize);
         let side = grid_side(n);
-        let chi_df = (side * side - 1) as f64;
         let functions = functions();
-        let products = functions.len() - 1;
-        let moments: Vec<(f64, f64)> = functions.iter().map(Function::moments).collect();
-        let pairs: Vec<(usize, usize)> = (0..dims)
-            .flat_map(|a| (a + 1..dims).map(move |b| (a, b)))
-            .collect();
-        let within = |&(a, b): &(usize, usize)| draw_of(a) == draw_of(b);
+        Run {
+            suite,
+            instances,
+            values,
+            n,
+            dims,
+            side,
+            chi_df: (side * side - 1) as f64,
+            products: functions.len() - 1,
+            moments: functions.iter().map(Function::moments).collect(),
+            functions,
+            pairs: (0..dims)
+                .flat_map(|a| (a + 1..dims).map(move |b| (a, b)))
+                .collect(),
+        }
+    }
 
-        // z of every (instance, pair, function), and the chi-square of every (instance, pair)
-        let per_instance: Vec<(Vec<f64>, Vec<f64>)> = parallel_map(&values, |v| {
-            let mut z = Vec::with_capacity(pairs.len() * functions.len());
-            let mut chi = Vec::with_capacity(pairs.len());
-            for &(a, b) in &pairs {
-                for (f, &(exact, var)) in functions.iter().zip(&moments) {
+    /// Whether the two dimensions of `pair` belong to one draw.
+    fn within(&self, &(a, b): &(usize, usize)) -> bool {
+        let draws = self.dims / 2;
+        draw_of(a, draws) == draw_of(b, draws)
+    }
+
+    /// Instance `k` as the report names it.
+    fn name(&self, k: usize) -> String {
+        let (seed, pixel) = self.instances[k];
+        format!("seed {seed} pixel {},{}", pixel[0], pixel[1])
+    }
+
+    /// The case of a chi-square statistic, upper tail.
+    fn chi_case(&self, c: f64, place: String) -> Case {
+        Case {
+            statistic: c,
+            p: stats::chi_square_upper(c, self.chi_df),
+            place,
+        }
+    }
+
+    /// The chi-square critical value, as a family's `critical`.
+    fn chi_critical(&self) -> Box<dyn Fn(f64) -> f64> {
+        let chi_df = self.chi_df;
+        Box::new(move |alpha| stats::critical_value(alpha, |x| stats::chi_square_upper(x, chi_df)))
+    }
+
+    /// The z of every (instance, pair, function), and the chi-square of every (instance,
+    /// pair).
+    fn per_instance(&self) -> Vec<InstanceStats> {
+        let (n, dims, side) = (self.n, self.dims, self.side);
+        parallel_map(self.values, |v| {
+            let mut z = Vec::with_capacity(self.pairs.len() * self.functions.len());
+            let mut chi = Vec::with_capacity(self.pairs.len());
+            for &(a, b) in &self.pairs {
+                for (f, &(exact, var)) in self.functions.iter().zip(&self.moments) {
                     let sum: f64 = (0..n)
                         .map(|i| f.eval(v[i * dims + a], v[i * dims + b]))
                         .sum();
@@ -620,100 +841,62 @@ impl Suite {
                 ));
             }
             (z, chi)
-        });
+        })
+    }
 
-        let name = |k: usize| {
-            let (seed, pixel) = instances[k];
-            format!("seed {seed} pixel {},{}", pixel[0], pixel[1])
-        };
-        let z_case = |z: f64, place: String| Case {
-            statistic: z.abs(),
-            p: stats::normal_two_sided(z),
-            place,
-        };
-        let chi_case = |c: f64, place: String| Case {
-            statistic: c,
-            p: stats::chi_square_upper(c, chi_df),
-            place,
-        };
-        let normal: fn(f64) -> Box<dyn Fn(f64) -> f64> =
-            |_| Box::new(|alpha| stats::critical_value(alpha, stats::normal_two_sided));
-        let chi_critical = move || -> Box<dyn Fn(f64) -> f64> {
-            Box::new(move |alpha| {
-                stats::critical_value(alpha, |x| stats::chi_square_upper(x, chi_df))
-            })
-        };
-
+    /// Integrands, products and chi-square per instance, within draws then across draws.
+    fn instance_families(&self, per_instance: &[InstanceStats]) -> Vec<Family> {
         let mut families = Vec::new();
         for (scope, inside) in [("within draws", true), ("across draws", false)] {
-            let mut integrands = Vec::new();
-            let mut prods = Vec::new();
-            let mut chis = Vec::new();
+            let (mut integrands, mut prods, mut chis) = (Vec::new(), Vec::new(), Vec::new());
             for (k, (z, chi)) in per_instance.iter().enumerate() {
-                for (pi, pair) in pairs.iter().enumerate() {
-                    if within(pair) != inside {
+                for (pi, pair) in self.pairs.iter().enumerate() {
+                    if self.within(pair) != inside {
                         continue;
                     }
-                    for (fi, f) in functions.iter().enumerate() {
-                        let place = format!("{} dims {},{} {}", name(k), pair.0, pair.1, f.name());
-                        let case = z_case(z[pi * functions.len() + fi], place);
-                        if fi == products {
+                    for (fi, f) in self.functions.iter().enumerate() {
+                        let place =
+                            format!("{} dims {},{} {}", self.name(k), pair.0, pair.1, f.name());
+                        let case = z_case(z[pi * self.functions.len() + fi], place);
+                        if fi == self.products {
                             prods.push(case);
                         } else {
                             integrands.push(case);
                         }
                     }
-                    chis.push(chi_case(
-                        chi[pi],
-                        format!("{} dims {},{}", name(k), pair.0, pair.1),
-                    ));
+                    let place = format!("{} dims {},{}", self.name(k), pair.0, pair.1);
+                    chis.push(self.chi_case(chi[pi], place));
                 }
             }
-            families.push(Family {
-                test: "integrands",
-                scope,
-                statistic: "|z|",
-                cases: integrands,
-                critical: normal(0.0),
-                floor: 0.0,
-                note: "no pair of dimensions in this scope",
-            });
-            families.push(Family {
-                test: "products",
-                scope,
-                statistic: "|z|",
-                cases: prods,
-                critical: normal(0.0),
-                floor: 6.0,
-                note: "no pair of dimensions in this scope",
-            });
-            families.push(Family {
-                test: "chi-square",
-                scope,
-                statistic: "chi2",
-                cases: chis,
-                critical: chi_critical(),
-                floor: 0.0,
-                note: "no pair of dimensions in this scope",
-            });
+            let note = "no pair of dimensions in this scope";
+            families.extend([
+                Family::z("integrands", scope, integrands, 0.0, note),
+                Family::z("products", scope, prods, 6.0, note),
+                self.chi_family(scope, chis, note),
+            ]);
         }
+        families
+    }
 
-        // over seeds: per pixel, pair and function
-        let r = self.seeds.len();
+    /// The t-test and the variance over seeds per pixel, pair and function, within draws
+    /// then across draws.
+    fn seed_families(&self, per_instance: &[InstanceStats]) -> Vec<Family> {
+        let (r, np, nf) = (
+            self.suite.seeds.len(),
+            self.suite.pixels.len(),
+            self.functions.len(),
+        );
+        let mut families = Vec::new();
         for (scope, inside) in [("within draws", true), ("across draws", false)] {
-            let mut t_cases = Vec::new();
-            let mut v_cases = Vec::new();
-            for (pix, pixel) in self.pixels.iter().enumerate() {
-                for (pi, pair) in pairs.iter().enumerate() {
-                    if within(pair) != inside {
+            let (mut t_cases, mut v_cases) = (Vec::new(), Vec::new());
+            for (pix, pixel) in self.suite.pixels.iter().enumerate() {
+                for (pi, pair) in self.pairs.iter().enumerate() {
+                    if self.within(pair) != inside {
                         continue;
                     }
-                    for (fi, f) in functions.iter().enumerate() {
+                    for (fi, f) in self.functions.iter().enumerate() {
                         let zs: Vec<f64> = (0..r)
-                            .map(|s| {
-                                per_instance[s * self.pixels.len() + pix].0
-                                    [pi * functions.len() + fi]
-                            })
+                            .map(|s| per_instance[s * np + pix].0[pi * nf + fi])
                             .collect();
                         let place = format!(
                             "pixel {},{} dims {},{} {}",
@@ -723,31 +906,13 @@ impl Suite {
                             pair.1,
                             f.name()
                         );
-                        let sum_sq: f64 = zs.iter().map(|z| z * z).sum();
-                        v_cases.push(Case {
-                            statistic: sum_sq,
-                            p: stats::chi_square_upper(sum_sq, r as f64),
-                            place: place.clone(),
-                        });
-                        if r >= 2 {
-                            let mean = zs.iter().sum::<f64>() / r as f64;
-                            let var =
-                                zs.iter().map(|z| (z - mean).powi(2)).sum::<f64>() / (r - 1) as f64;
-                            // an estimate of n values resolves 1/n: that floor keeps equal
-                            // errors over all seeds (a stratified set meeting a step the same
-                            // way) from a zero spread and an infinite t
-                            let floor = (moments[fi].1 / n as f64).sqrt().recip() / n as f64;
-                            let t = mean / (var / r as f64 + floor * floor).sqrt();
-                            t_cases.push(Case {
-                                statistic: t.abs(),
-                                p: stats::student_t_two_sided(t, (r - 1) as f64),
-                                place,
-                            });
-                        }
+                        let (v, t) = seed_cases(&zs, self.moments[fi].1, self.n, place);
+                        v_cases.push(v);
+                        t_cases.extend(t);
                     }
                 }
             }
-            let df = (r.max(2) - 1) as f64;
+            let (df, rf) = ((r.max(2) - 1) as f64, r as f64);
             families.push(Family {
                 test: "t-test over seeds",
                 scope,
@@ -759,7 +924,6 @@ impl Suite {
                 floor: 0.0,
                 note: "needs two or more seeds",
             });
-            let rf = r as f64;
             families.push(Family {
                 test: "variance over seeds",
                 scope,
@@ -772,25 +936,37 @@ impl Suite {
                 note: "no pair of dimensions in this scope",
             });
         }
+        families
+    }
 
-        // across pixels (same seed) and across seeds (same pixel): the same dimension
-        let np = self.pixels.len();
-        let mut cross: Vec<(usize, usize, String)> = Vec::new();
+    /// The pairs of instances compared dimension by dimension: every two pixels under one
+    /// seed (`across pixels`), then one pixel under consecutive seeds (`across seeds`).
+    fn cross_pairs(&self) -> Vec<(usize, usize, &'static str)> {
+        let (r, np) = (self.suite.seeds.len(), self.suite.pixels.len());
+        let mut cross = Vec::new();
         for s in 0..r {
             for p in 0..np {
                 for q in p + 1..np {
-                    cross.push((s * np + p, s * np + q, "across pixels".into()));
+                    cross.push((s * np + p, s * np + q, "across pixels"));
                 }
             }
         }
         for s in 1..r {
             for p in 0..np {
-                cross.push(((s - 1) * np + p, s * np + p, "across seeds".into()));
+                cross.push(((s - 1) * np + p, s * np + p, "across seeds"));
             }
         }
-        let (prod_exact, prod_var) = moments[products];
+        cross
+    }
+
+    /// Products and chi-square between the same dimension of two instances, across pixels
+    /// then across seeds.
+    fn cross_families(&self) -> Vec<Family> {
+        let (n, dims, side) = (self.n, self.dims, self.side);
+        let cross = self.cross_pairs();
+        let (prod_exact, prod_var) = self.moments[self.products];
         let cross_stats: Vec<Vec<(f64, f64)>> = parallel_map(&cross, |(a, b, _)| {
-            let (va, vb) = (&values[*a], &values[*b]);
+            let (va, vb) = (&self.values[*a], &self.values[*b]);
             (0..dims)
                 .map(|d| {
                     let sum: f64 = (0..n)
@@ -802,104 +978,43 @@ impl Suite {
                 })
                 .collect()
         });
-        for scope in ["across pixels", "across seeds"] {
-            let mut prods = Vec::new();
-            let mut chis = Vec::new();
-            for ((a, b, sc), st) in cross.iter().zip(&cross_stats) {
-                if sc != scope {
-                    continue;
-                }
+        let mut families = Vec::new();
+        for (scope, note) in [
+            ("across pixels", "needs two or more pixels"),
+            ("across seeds", "needs two or more seeds"),
+        ] {
+            let (mut prods, mut chis) = (Vec::new(), Vec::new());
+            for ((a, b, _), st) in cross.iter().zip(&cross_stats).filter(|(c, _)| c.2 == scope) {
                 for (d, &(z, chi)) in st.iter().enumerate() {
-                    let place = format!("{} / {} dim {d}", name(*a), name(*b));
+                    let place = format!("{} / {} dim {d}", self.name(*a), self.name(*b));
                     prods.push(z_case(z, place.clone()));
-                    chis.push(chi_case(chi, place));
+                    chis.push(self.chi_case(chi, place));
                 }
             }
-            let note = if scope == "across pixels" {
-                "needs two or more pixels"
-            } else {
-                "needs two or more seeds"
-            };
-            families.push(Family {
-                test: "products",
-                scope,
-                statistic: "|z|",
-                cases: prods,
-                critical: normal(0.0),
-                floor: 6.0,
-                note,
-            });
-            families.push(Family {
-                test: "chi-square",
-                scope,
-                statistic: "chi2",
-                cases: chis,
-                critical: chi_critical(),
-                floor: 0.0,
-                note,
-            });
+            families.push(Family::z("products", scope, prods, 6.0, note));
+            families.push(self.chi_family(scope, chis, note));
         }
+        families
+    }
 
-        let rows_run = families.iter().filter(|f| !f.cases.is_empty()).count() + 1;
-        let alpha_row = self.false_alarm / rows_run as f64;
-        let mut rows: Vec<Row> = families
-            .into_iter()
-            .map(|f| {
-                let mut row = Row {
-                    test: f.test,
-                    scope: f.scope,
-                    statistic: f.statistic,
-                    cases: f.cases.len(),
-                    failures: 0,
-                    worst: f64::NAN,
-                    worst_p: f64::NAN,
-                    threshold: f64::NAN,
-                    worst_case: String::new(),
-                    note: f.note,
-                };
-                if f.cases.is_empty() {
-                    return row;
-                }
-                let threshold = (f.critical)(alpha_row / f.cases.len() as f64).max(f.floor);
-                row.threshold = threshold;
-                row.failures = f
-                    .cases
-                    .iter()
-                    .filter(|c| c.statistic.is_nan() || c.statistic > threshold)
-                    .count();
-                let worst = f
-                    .cases
-                    .iter()
-                    .max_by(|x, y| x.statistic.total_cmp(&y.statistic))
-                    .expect("non-empty");
-                row.worst = worst.statistic;
-                row.worst_p = worst.p;
-                row.worst_case = worst.place.clone();
-                row
-            })
-            .collect();
-        rows.push(self.stratification(source, &instances, &values, name));
-        Ok(Report {
-            rows,
-            spp: self.spp,
-            dimensions: self.dimensions,
-            instances: instances.len(),
-            chi_square_side: side as u32,
-            false_alarm: self.false_alarm,
-        })
+    /// The chi-square row of `scope`.
+    fn chi_family(&self, scope: &'static str, cases: Vec<Case>, note: &'static str) -> Family {
+        Family {
+            test: "chi-square",
+            scope,
+            statistic: "chi2",
+            cases,
+            critical: self.chi_critical(),
+            floor: 0.0,
+            note,
+        }
     }
 
     /// The stratification row: every promised grid of every 2D draw of every instance, at
     /// every count that has a promise, counted cell by cell.
-    fn stratification(
-        &self,
-        source: &(impl Source + ?Sized),
-        instances: &[(u64, [u32; 2])],
-        values: &[Vec<f32>],
-        name: impl Fn(usize) -> String,
-    ) -> Row {
-        let dims = self.dimensions as usize;
-        let promises: Vec<(usize, Vec<StrataGrid>)> = (1..=self.spp as usize)
+    fn stratification(&self, source: &(impl Source + ?Sized)) -> Row {
+        let dims = self.dims;
+        let promises: Vec<(usize, Vec<StrataGrid>)> = (1..=self.suite.spp as usize)
             .map(|m| (m, source.promised_strata(m as u64)))
             .filter(|(_, g)| !g.is_empty())
             .collect();
@@ -915,46 +1030,21 @@ impl Suite {
             worst_case: String::new(),
             note: "the source promises no stratification",
         };
-        let results: Vec<Vec<(u64, String)>> = parallel_map(values, |v| {
+        let results: Vec<Vec<(u64, String)>> = parallel_map(self.values, |v| {
             let mut out = Vec::new();
             for draw in 0..dims / 2 {
                 for (m, grids) in &promises {
                     for g in grids {
-                        let cells = g.columns as usize * g.rows as usize;
-                        let mut counts = vec![0u32; cells];
-                        for i in 0..*m {
-                            let (x, y) = (v[i * dims + 2 * draw], v[i * dims + 2 * draw + 1]);
-                            let cx = (x as f64 * g.columns as f64) as usize;
-                            let cy = (y as f64 * g.rows as f64) as usize;
-                            counts[cy * g.columns as usize + cx] += 1;
-                        }
-                        let expect = (*m / cells) as u64;
-                        let off = if m % cells != 0 {
-                            u64::MAX // a promise the count cannot keep
-                        } else {
-                            counts
-                                .iter()
-                                .map(|&c| (c as u64).abs_diff(expect))
-                                .max()
-                                .unwrap_or(0)
-                        };
-                        out.push((
-                            off,
-                            format!(
-                                "draw {draw} (dims {},{}) first {m} on {}x{}",
-                                2 * draw,
-                                2 * draw + 1,
-                                g.columns,
-                                g.rows
-                            ),
-                        ));
+                        let (c, r) = (g.columns, g.rows);
+                        let (a, b) = (2 * draw, 2 * draw + 1);
+                        let place = format!("draw {draw} (dims {a},{b}) first {m} on {c}x{r}");
+                        out.push((points_off(v, dims, draw, *m, g), place));
                     }
                 }
             }
             out
         });
         for (k, cases) in results.iter().enumerate() {
-            let _ = instances;
             for (off, place) in cases {
                 row.cases += 1;
                 if *off > 0 {
@@ -962,7 +1052,7 @@ impl Suite {
                 }
                 if *off as f64 > row.worst || row.worst_case.is_empty() {
                     row.worst = *off as f64;
-                    row.worst_case = format!("{} {place}", name(k));
+                    row.worst_case = format!("{} {place}", self.name(k));
                 }
             }
         }

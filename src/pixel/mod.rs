@@ -645,6 +645,37 @@ impl PixelSampler {
         self.get_2d()
     }
 
+    /// Starts sample `index` of `pixel` at dimension `dim` and fills `out` with its dimensions
+    /// `dim..dim + out.len()`, as `points --pixel X,Y --dims D` prints them (with `dim` 0): one
+    /// [`get_2d`](Self::get_2d) per pair of values, and a last [`get_1d`](Self::get_1d) when
+    /// `out` has an odd length. Value `k` is therefore coordinate `k & 1` of the stateless
+    /// [`sample_2d`](Self::sample_2d)`(pixel, index, dim + (k & !1))` (a 1D draw is the first
+    /// coordinate of the 2D draw at its dimension), and the next draw is at dimension
+    /// `dim + out.len()`.
+    ///
+    /// ```
+    /// use strata::{PixelSampler, Seed, Sequence};
+    /// let mut s = PixelSampler::new(Sequence::pmj02(), 16, Seed(3))?;
+    /// let mut row = [0.0f32; 5];
+    /// s.fill_sample([4, 2], 7, 0, &mut row);
+    /// assert_eq!(row[2..4], s.sample_2d([4, 2], 7, 2).to_array());
+    /// assert_eq!(row[4], s.sample([4, 2], 7, 4));
+    /// # Ok::<(), strata::Error>(())
+    /// ```
+    #[inline]
+    pub fn fill_sample(&mut self, pixel: [u32; 2], index: u64, dim: u32, out: &mut [f32]) {
+        self.start_pixel_sample(pixel, index, dim);
+        let mut pairs = out.chunks_exact_mut(2);
+        for pair in &mut pairs {
+            let v = self.get_2d();
+            pair[0] = v.x;
+            pair[1] = v.y;
+        }
+        if let [last] = pairs.into_remainder() {
+            *last = self.get_1d();
+        }
+    }
+
     /// A `rand::Rng` over the current pixel sample: each `next_u32` / `next_u64` is the next
     /// dimension (see the [module docs](self#dimensions-in-a-renderer-that-bounces) for which
     /// `rand` calls keep their dimension).

@@ -194,8 +194,9 @@ class PixelSampler:
         ``indices`` integer sample indices (shape ``(...)``); the result has the broadcast
         shape of the two plus ``(dims,)``, float32. Each row is what a renderer gets from
         ``start_pixel_sample(pixel, index, first_dim)`` then ``get_pixel_2d`` (dimensions 0-1),
-        ``get_2d`` pairs and, for an odd count, a last ``get_1d``: the values ``points
-        --pixel X,Y --dims D`` prints. Rows are computed in parallel, without the GIL.
+        ``get_2d`` pairs and, for an odd count, a last ``get_1d`` (Rust's
+        ``PixelSampler::fill_sample``): the values ``points --pixel X,Y --dims D`` prints.
+        Rows are computed in parallel, without the GIL.
         """
         dims = _v.whole(dims, "dims", 1, _v.U32_MAX)
         first_dim = _v.whole(first_dim, "first_dim", 0, _v.U32_MAX)
