@@ -72,3 +72,41 @@ fn the_pixel_docs_name_every_sequence() {
         );
     }
 }
+
+#[test]
+fn no_merge_conflict_markers_are_left_in_the_sources_or_the_docs() {
+    // (a merge once committed its markers into CHANGELOG.md and docs/cli.md unnoticed)
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let markers = [format!("{} ", "<".repeat(7)), format!("{} ", ">".repeat(7))];
+    let mut stack: Vec<std::path::PathBuf> =
+        ["src", "docs", "examples", "tests", "benches", "shaders"]
+            .iter()
+            .map(|d| root.join(d))
+            .chain(
+                ["README.md", "CHANGELOG.md", "CONTRIBUTING.md", "Cargo.toml"]
+                    .map(|f| root.join(f)),
+            )
+            .collect();
+    let mut files = 0;
+    while let Some(p) = stack.pop() {
+        if p.is_dir() {
+            for e in std::fs::read_dir(&p).unwrap() {
+                stack.push(e.unwrap().path());
+            }
+            continue;
+        }
+        let Ok(text) = std::fs::read_to_string(&p) else {
+            continue; // pictures and other binary files
+        };
+        files += 1;
+        for (n, line) in text.lines().enumerate() {
+            assert!(
+                !markers.iter().any(|m| line.starts_with(m.as_str())),
+                "{}:{}: a merge conflict marker",
+                p.display(),
+                n + 1
+            );
+        }
+    }
+    assert!(files > 50, "only {files} files read");
+}
