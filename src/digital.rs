@@ -385,21 +385,21 @@ pub(crate) fn digital_t_value(matrices: &[Matrix], m: u32) -> u32 {
     let row = |j: usize, r: usize| -> u32 {
         (0..m as usize).fold(0u32, |w, i| w | ((matrices[j][i] >> (31 - r)) & 1) << i)
     };
-    let independent = |rows: &mut Vec<u32>| -> bool {
-        // Gaussian elimination over GF(2): each row must keep a pivot of its own
-        let mut basis: Vec<u32> = Vec::with_capacity(rows.len());
-        for &r in rows.iter() {
+    let independent = |rows: &[u32]| -> bool {
+        // Gaussian elimination over GF(2): each row must keep a pivot (leading bit) of its own
+        let mut basis = [0u32; 32];
+        rows.iter().all(|&r| {
             let mut x = r;
-            for &b in &basis {
-                x = x.min(x ^ b);
+            while x != 0 {
+                let lead = (31 - x.leading_zeros()) as usize;
+                if basis[lead] == 0 {
+                    basis[lead] = x;
+                    return true;
+                }
+                x ^= basis[lead];
             }
-            if x == 0 {
-                return false;
-            }
-            basis.push(x);
-            basis.sort_unstable_by(|a, b| b.cmp(a));
-        }
-        true
+            false
+        })
     };
     let s = matrices.len();
     // every composition of rho into s parts (each at most 32), depth first
@@ -436,7 +436,7 @@ pub(crate) fn digital_t_value(matrices: &[Matrix], m: u32) -> u32 {
             for (j, &d) in parts.iter().enumerate() {
                 rows.extend((0..d as usize).map(|r| row(j, r)));
             }
-            independent(&mut rows)
+            independent(&rows)
         });
         if !ok {
             break;

@@ -44,6 +44,23 @@ pub struct StrataGrid {
     pub rows: u32,
 }
 
+impl StrataGrid {
+    /// The two 1D stratifications of `n` points: `n x 1` and `1 x n` (a Latin-hypercube
+    /// promise, one point per `1/n` along each axis).
+    pub(crate) fn axes(n: u32) -> Vec<StrataGrid> {
+        vec![
+            StrataGrid {
+                columns: n,
+                rows: 1,
+            },
+            StrataGrid {
+                columns: 1,
+                rows: n,
+            },
+        ]
+    }
+}
+
 /// A source of 2D sample points in `[0,1)^2`.
 ///
 /// The trait is object safe, so samplers can be chosen at run time

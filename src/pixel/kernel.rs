@@ -300,10 +300,16 @@ pub(crate) fn joint<P: Pair>(
     dim: u32,
     index: SampleIndex,
 ) -> P {
-    let s = shuffled(&DrawKeys::new(keys, group), index);
+    let k = DrawKeys::new(keys, dim);
+    // (the group's first draw shuffles under its own keys)
+    let s = if dim == group {
+        shuffled(&k, index)
+    } else {
+        shuffled(&DrawKeys::new(keys, group), index)
+    };
     let o = (dim - group) as usize;
     let p = P::new([lookup(&tables[o], s), lookup(&tables[o + 1], s)]);
-    owen_scramble_lanes(p, P::new(DrawKeys::new(keys, dim).v)).reverse_bits()
+    owen_scramble_lanes(p, P::new(k.v)).reverse_bits()
 }
 
 /// `lattice`: the rank-1 lattice point at the shuffled index (the shuffled index reversed is

@@ -37,15 +37,15 @@
 //!   and so are those of different pixels and seeds; [`crate::conformance`] tests it per pixel
 //!   and per pair of dimensions. The one exception is by design: `zjoint`'s draws of one
 //!   *group* of dimensions are distinct dimensions of one multi-dimensional Sobol' sequence,
-//!   stratified jointly rather than independent (its groups are independent of each other). A scene that never asks for lens or time dimensions never
-//!   computes them.
+//!   stratified jointly rather than independent (its groups are independent of each other).
+//!   A scene that never asks for lens or time dimensions never computes them.
 //! * **Stratified draws.** Per pixel and draw: `pmj02` and `sobol` are (0,m,2)-nets at every
 //!   power-of-two prefix; `lattice` has one point per `1/n` in each coordinate at every power of
 //!   two `n`; `zsobol` and `zpmj02` are nets at every power of two up to the samples per pixel
 //!   (rounded up to a power of two); `zjoint` has one point per `1/n` in each coordinate of
 //!   every draw at those counts, the first draw of each group is a net, and the pairs of draws
-//!   of a group are `(t, m, 2)`-nets with the t-values of their Sobol' dimensions; `jittered` has one point per cell of `s x s` in each block of `spp`;
-//!   `halton` one per cell of `2^a x 3^b` in each block of `M = 2^a 3^b >= spp` samples. How
+//!   of a group are `(t, m, 2)`-nets with the t-values of their Sobol' dimensions; `jittered`
+//!   has one point per cell of `s x s` in each block of `spp`; `halton` one per cell of `2^a x 3^b` in each block of `M = 2^a 3^b >= spp` samples. How
 //!   each sequence is randomized is in [`sequence`](self#sequences).
 //! * **Limits.** Sample indices are `u64`; at `2^32` and beyond, a draw uses the index modulo
 //!   `2^32` in a fresh, independently hashed copy (so nothing panics and nothing repeats; the
@@ -506,8 +506,8 @@ impl PixelSampler {
     }
 
     /// What the [`WGSL`] shader needs to compute this sampler's draws; `None` for `jittered`,
-    /// `halton` and `zjoint`, which run on the CPU only, and under [`Padding::Uniform`] (the shader has
-    /// the nested padding only).
+    /// `halton` and `zjoint`, which run on the CPU only, and under [`Padding::Uniform`] (the
+    /// shader has the nested padding only).
     pub fn gpu_parameters(&self) -> Option<GpuParameters> {
         if self.current_pads() {
             return None;

@@ -655,26 +655,10 @@ impl Sequence {
             Kind::ZSobol | Kind::ZPmj02 if n <= 1u64 << spp.z_bits() => pmj::pmj_grids(n, true),
             // every draw's two coordinates are 1D (0, 1)-sequences (only the first draw of a
             // group is a 2D net); the same grids as the lattice's
-            Kind::ZJoint if n.is_power_of_two() && n <= 1u64 << spp.z_bits() => vec![
-                StrataGrid {
-                    columns: n as u32,
-                    rows: 1,
-                },
-                StrataGrid {
-                    columns: 1,
-                    rows: n as u32,
-                },
-            ],
-            Kind::Lattice if n.is_power_of_two() && n <= 1 << 31 => vec![
-                StrataGrid {
-                    columns: n as u32,
-                    rows: 1,
-                },
-                StrataGrid {
-                    columns: 1,
-                    rows: n as u32,
-                },
-            ],
+            Kind::ZJoint if n.is_power_of_two() && n <= (1u64 << spp.z_bits()).min(1 << 31) => {
+                StrataGrid::axes(n as u32)
+            }
+            Kind::Lattice if n.is_power_of_two() && n <= 1 << 31 => StrataGrid::axes(n as u32),
             _ => Vec::new(),
         }
     }

@@ -119,16 +119,7 @@ impl Blocks for NRooks {
     }
 
     fn grids(&self) -> Vec<StrataGrid> {
-        vec![
-            StrataGrid {
-                columns: self.count,
-                rows: 1,
-            },
-            StrataGrid {
-                columns: 1,
-                rows: self.count,
-            },
-        ]
+        StrataGrid::axes(self.count)
     }
 }
 

@@ -161,16 +161,7 @@ impl Sampler for Lattice {
 
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
         if n.is_power_of_two() && n <= 1 << 31 {
-            vec![
-                StrataGrid {
-                    columns: n as u32,
-                    rows: 1,
-                },
-                StrataGrid {
-                    columns: 1,
-                    rows: n as u32,
-                },
-            ]
+            StrataGrid::axes(n as u32)
         } else {
             Vec::new()
         }
@@ -307,16 +298,7 @@ impl Blocks for Fibonacci {
     }
 
     fn grids(&self) -> Vec<StrataGrid> {
-        vec![
-            StrataGrid {
-                columns: self.n,
-                rows: 1,
-            },
-            StrataGrid {
-                columns: 1,
-                rows: self.n,
-            },
-        ]
+        StrataGrid::axes(self.n)
     }
 }
 
