@@ -3,7 +3,8 @@
 // A line-by-line port of `src/pixel/kernel.rs` (32-bit wrapping integer arithmetic only): for
 // the sequences random (0), sobol (1), pmj02 (2), lattice (3), zsobol (4) and zpmj02 (5), the
 // same bits as `PixelSampler::sample_2d_u32` on the CPU, which the crate's GPU test checks over
-// 2^22 draws per sequence on the Vulkan adapter present. jittered and halton are CPU-only.
+// 2^22 draws per sequence on the Vulkan adapter present. zjoint (6) is strata_zjoint.wgsl,
+// included after this file. jittered and halton are CPU-only.
 //
 // Use: include this file in your shader module, fill a `StrataParameters` from
 // `PixelSampler::gpu_parameters()` (eight u32 words, `GpuParameters::words()`), then
@@ -199,12 +200,24 @@ fn strata_z_mask(resolution: vec2<u32>) -> u32 {
     return (1u << (2u * levels)) - 1u;
 }
 
-// The 2D draw at `dim` of sample `index` of `pixel`, as 32-bit fixed point (value / 2^32).
-fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32) -> vec2<u32> {
+// The keys and the index that a draw reads: the pixel's own keys and the sample index, or
+// for the Z-ordered sequences (4, 5, 6) inside the image and the pixel's block the keys of
+// the global sequence's tile and the pixel's place along it for the draw keyed by `dim`.
+struct StrataSample {
+    keys: vec4<u32>,
+    index: u32,
+}
+
+fn strata_sample(
+    params: StrataParameters,
+    pixel: vec2<u32>,
+    index: u32,
+    dim: u32,
+) -> StrataSample {
     var keys = strata_pixel_keys(params.key, pixel);
     var i = index;
     let seq = params.sequence;
-    if (seq == 4u || seq == 5u) {
+    if (seq == 4u || seq == 5u || seq == 6u) {
         // the pixel's block of the global sequence, along a scrambled Z curve
         let inside = pixel.x < params.resolution.x && pixel.y < params.resolution.y;
         let bits = params.z_bits;
@@ -222,6 +235,16 @@ fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32)
             i = (z << bits) | index;
         }
     }
+    return StrataSample(keys, i);
+}
+
+// The 2D draw at `dim` of sample `index` of `pixel`, as 32-bit fixed point (value / 2^32), for
+// sequences 0-5 (zjoint, 6, is `strata_joint_draw` in strata_zjoint.wgsl; here it gives 0).
+fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32) -> vec2<u32> {
+    let seq = params.sequence;
+    let at = strata_sample(params, pixel, index, dim);
+    let keys = at.keys;
+    let i = at.index;
     let k = strata_draw_keys(keys, dim);
     switch seq {
         case 0u: {

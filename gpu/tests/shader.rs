@@ -1,7 +1,8 @@
 //! The WGSL kernel against the CPU, bit for bit.
 //!
 //! `naga` validates the shader; then, on the Vulkan adapter present (Mesa's lavapipe CPU driver
-//! in CI), `2^22` draws of each of the six kernel sequences, half of them a renderer's grid of
+//! in CI), `2^22` draws of each of the six kernel sequences and of `zjoint` at groups of 2, 8
+//! and 512, half of them a renderer's grid of
 //! pixels, indices and dimensions, half hashed over the whole `u32` range of each, are compared
 //! with `PixelSampler::sample_2d_u32`. Without an adapter the test says which driver to install
 //! and is skipped, unless `STRATA_GPU_REQUIRED` is set (as `.ci/run` sets it), where it fails.
@@ -14,8 +15,14 @@ const COUNT: u32 = 1 << 22;
 
 #[test]
 fn naga_validates_the_shader_and_the_test_kernel() {
+    let joint = format!(
+        "{}\n{}\n@group(0) @binding(0) var<storage, read> strata_joint: array<u32>;",
+        strata::pixel::WGSL,
+        strata::pixel::WGSL_ZJOINT
+    );
     for (what, source) in [
         ("strata.wgsl", strata::pixel::WGSL.to_string()),
+        ("strata.wgsl + strata_zjoint.wgsl", joint),
         ("the test kernel", compute_shader()),
     ] {
         let module = naga::front::wgsl::parse_str(&source)
@@ -47,15 +54,22 @@ fn the_gpu_computes_the_cpu_bits() {
         Sequence::lattice(),
         Sequence::zsobol(64, 48).unwrap(),
         Sequence::zpmj02(64, 64).unwrap(),
+        Sequence::zjoint(64, 48, 8).unwrap(),
+        Sequence::zjoint(64, 64, 2).unwrap(),
+        Sequence::zjoint(48, 64, 512).unwrap(),
     ];
     let grid = COUNT / 2;
     for (k, sequence) in sequences.into_iter().enumerate() {
-        let name = sequence.name();
+        let name = match sequence.group() {
+            1 => sequence.name().to_string(),
+            g => format!("{}-{g}", sequence.name()),
+        };
+        let joint = sequence.gpu_joint_table().unwrap_or(vec![0]);
         // the Z-ordered ones with 16 samples per pixel: the grid's indices up to 255 cross each
         // pixel's block; the others ignore the count
         let s = PixelSampler::new(sequence, 16, Seed(0x5eed + k as u64)).unwrap();
         let params = s.gpu_parameters().expect("a kernel sequence");
-        let got = gpu.draw(&params, COUNT, grid).unwrap();
+        let got = gpu.draw(&params, &joint, COUNT, grid).unwrap();
         assert_eq!(got.len(), 2 * COUNT as usize);
         let mut mismatches = Vec::new();
         for i in 0..COUNT {

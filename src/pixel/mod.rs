@@ -25,8 +25,12 @@
 //! claimed, nothing more. The shader's domain is sample indices below `2^32`: at and past
 //! `2^32` the CPU draws from a fresh key per block of `2^32` ([`Key::epoch`]), which a renderer
 //! that goes that far computes on the CPU and uploads. `jittered` and `halton` divide by their
-//! block sizes in 64-bit arithmetic and are CPU-only, and so is `zjoint` (its many Sobol'
-//! dimensions' tables are not in the shader).
+//! block sizes in 64-bit arithmetic and are CPU-only. `zjoint` reads up to 513 Sobol'
+//! dimensions, too many for a uniform: its draws are [`WGSL_ZJOINT`]'s `strata_joint_draw`
+//! (`shaders/strata_zjoint.wgsl`, included after [`WGSL`]), which reads the generator columns
+//! from a storage buffer `strata_joint` that the including shader declares and fills with
+//! [`Sequence::gpu_joint_table`]; the GPU test compares `2^22` draws of it too, at groups of
+//! 2, 8 and 512.
 //!
 //! # Guarantees
 //!
@@ -186,6 +190,16 @@ use kernel::{PixelKeys, ZPixel};
 /// [module docs](self#on-a-gpu)).
 pub const WGSL: &str = include_str!("../../shaders/strata.wgsl");
 
+/// The WGSL draws of `zjoint` (`shaders/strata_zjoint.wgsl`): `strata_joint_draw` and
+/// `strata_joint_get_2d`, with the arguments of [`WGSL`]'s `strata_draw` and `strata_get_2d`.
+/// Include it after [`WGSL`], and declare the storage buffer it reads, at a binding of your
+/// choice, filled with [`Sequence::gpu_joint_table`]:
+///
+/// ```wgsl
+/// @group(0) @binding(3) var<storage, read> strata_joint: array<u32>;
+/// ```
+pub const WGSL_ZJOINT: &str = include_str!("../../shaders/strata_zjoint.wgsl");
+
 /// A sample index below `2^32` with its bit reversal, which the nets-based sequences need
 /// and which is the same for every draw of a pixel sample: computed once per sample.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -260,7 +274,8 @@ pub struct GpuParameters {
     pub key: [u32; 4],
     /// The image of a Z-ordered sequence (`[0, 0]` for the others).
     pub resolution: [u32; 2],
-    /// The sequence: 0 `random`, 1 `sobol`, 2 `pmj02`, 3 `lattice`, 4 `zsobol`, 5 `zpmj02`.
+    /// The sequence: 0 `random`, 1 `sobol`, 2 `pmj02`, 3 `lattice`, 4 `zsobol`, 5 `zpmj02`, 6
+    /// `zjoint` ([`WGSL_ZJOINT`]).
     pub sequence: u32,
     /// `log2` of the samples per pixel rounded up to a power of two (the Z-ordered sequences'
     /// block of each pixel).
@@ -505,9 +520,10 @@ impl PixelSampler {
         self.padding == Padding::Uniform && self.sequence.pads_uniformly()
     }
 
-    /// What the [`WGSL`] shader needs to compute this sampler's draws; `None` for `jittered`,
-    /// `halton` and `zjoint`, which run on the CPU only, and under [`Padding::Uniform`] (the
-    /// shader has the nested padding only).
+    /// What the [`WGSL`] shader needs to compute this sampler's draws; `None` for `jittered`
+    /// and `halton`, which run on the CPU only, and under [`Padding::Uniform`] (the shader has
+    /// the nested padding only). `zjoint` (sequence 6) also needs [`WGSL_ZJOINT`] and its table
+    /// ([`Sequence::gpu_joint_table`]).
     pub fn gpu_parameters(&self) -> Option<GpuParameters> {
         if self.current_pads() {
             return None;
@@ -595,7 +611,7 @@ impl PixelSampler {
     /// in one pass of four lanes (all but `jittered` and `halton`) compute the draw at the
     /// next two dimensions too and keep it for the next call, as [`get_4d`](Self::get_4d)
     /// does: the same values, for little more than the cost of one draw.
-    #[inline]
+    #[inline(always)]
     pub fn get_2d(&mut self) -> Vec2 {
         self.check_budget(2);
         let dim = self.dim;

@@ -41,7 +41,7 @@
 //! * `random`: hashed independent uniform values.
 //!
 //! `halton` and `jittered` divide by the block size and hash with 64-bit arithmetic: they run on
-//! the CPU only. The other six are the [kernel](super::kernel)'s, 32-bit throughout.
+//! the CPU only. The other seven are the [kernel](super::kernel)'s, 32-bit throughout.
 
 use super::SampleIndex;
 use super::kernel::{self, DrawKeys, PixelKeys};
@@ -152,7 +152,8 @@ impl Kind {
             Kind::Lattice => 3,
             Kind::ZSobol => 4,
             Kind::ZPmj02 => 5,
-            Kind::Jittered | Kind::Halton | Kind::ZJoint => return None,
+            Kind::ZJoint => 6,
+            Kind::Jittered | Kind::Halton => return None,
         })
     }
 
@@ -298,7 +299,8 @@ impl Sequence {
     /// the others' pairs have the t-values of consecutive Joe-Kuo dimensions
     /// (`docs/results.md` tabulates them), so a lone draw past the first is less finely
     /// stratified than `zsobol`'s. Needs `group + 1` Sobol' dimensions: the `joe-kuo` feature
-    /// (without it the build has two, and this returns an error). Not in the WGSL shader.
+    /// (without it the build has two, and this returns an error). On a GPU:
+    /// [`WGSL_ZJOINT`](super::WGSL_ZJOINT) with [`gpu_joint_table`](Self::gpu_joint_table).
     pub fn zjoint(width: u32, height: u32, group: u32) -> Result<Self> {
         let context = "Sequence::zjoint";
         if !group.is_power_of_two() || !(2..=MAX_JOINT_GROUP).contains(&group) {
@@ -403,6 +405,25 @@ impl Sequence {
     /// the other sequences.
     pub fn group(&self) -> u32 {
         self.group
+    }
+
+    /// `zjoint`'s table for the [`WGSL_ZJOINT`](super::WGSL_ZJOINT) shader (`None` for the
+    /// other sequences): word 0 the group size `G`, then the 32 generator columns, in the
+    /// bit-reversed domain, of each of the Sobol' dimensions `0..=G` the draws read (column
+    /// `j` of dimension `d` at word `1 + 32 d + j`: the XOR of the columns of the set bits of a
+    /// reversed index is its point, reversed). `1 + 32 (G + 1)` words: 97 for groups of 2,
+    /// 16 417 (64 KiB) for 512. Upload it as the shader's `strata_joint` storage buffer.
+    pub fn gpu_joint_table(&self) -> Option<Vec<u32>> {
+        if self.kind != Kind::ZJoint {
+            return None;
+        }
+        let dims = &self.joint[..=self.group as usize];
+        let mut words = Vec::with_capacity(1 + 32 * dims.len());
+        words.push(self.group);
+        for t in dims {
+            words.extend((0..32).map(|j| t[j / 8][1 << (j % 8)]));
+        }
+        Some(words)
     }
 
     /// The first dimension of the group of `dim`: the dimension that keys the index of the
