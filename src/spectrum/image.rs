@@ -67,10 +67,75 @@ pub struct ErrorImage {
 /// # Ok::<(), strata::Error>(())
 /// ```
 pub fn error_image(errors: &[f64], width: u32, height: u32) -> Result<ErrorImage> {
+    check(errors, width, height, "spectrum::error_image")?;
+    Ok(measure(errors, None, width, height))
+}
+
+/// [`error_image`] over the pixels where `keep` is true only, for renders whose error some
+/// pixels would dominate or hide (those that see an emitter directly: their error is the
+/// emitter's edge, not the sampler's). `keep` is row-major like `errors`.
+///
+/// * `rmse`: the root mean square over the kept pixels;
+/// * the blurred RMSEs: a normalized convolution, `G * (e k) / G * k` (the Gaussian `G` of
+///   [`error_image`], `k` the mask), at the kept pixels, so a dropped pixel lends no weight;
+/// * the periodogram: of the kept errors less their mean, with the dropped pixels at zero,
+///   over the kept count (white error over the kept pixels: flat at its variance). Zeroing
+///   the holes multiplies the error by the mask, which spreads each frequency of the error by
+///   the mask's own spectrum: for a mask that drops a share `q` of the pixels in compact
+///   regions, about `q` of the power moves, mostly to frequencies near the original ones.
+///
+/// With every pixel kept this gives [`error_image`]'s figures (to rounding).
+///
+/// ```
+/// use strata::spectrum::{error_image, error_image_masked};
+/// // a smooth error with a block of huge values: masked, the block changes nothing
+/// let (w, h) = (32u32, 32u32);
+/// let mut e: Vec<f64> = (0..w * h).map(|i| ((i % w) as f64 * 0.7).sin()).collect();
+/// let keep: Vec<bool> = (0..w * h).map(|i| i % w >= 8 || i / w >= 8).collect();
+/// let a = error_image_masked(&e, &keep, w, h)?;
+/// for i in 0..(w * h) as usize {
+///     if !keep[i] {
+///         e[i] = 1e6;
+///     }
+/// }
+/// let b = error_image_masked(&e, &keep, w, h)?;
+/// assert_eq!(a, b);
+/// assert!(error_image(&e, w, h)?.rmse > 1e4);
+/// # Ok::<(), strata::Error>(())
+/// ```
+pub fn error_image_masked(
+    errors: &[f64],
+    keep: &[bool],
+    width: u32,
+    height: u32,
+) -> Result<ErrorImage> {
+    const WHERE: &str = "spectrum::error_image_masked";
+    check(errors, width, height, WHERE)?;
+    if keep.len() != errors.len() {
+        return Err(Error::input(
+            WHERE,
+            format!(
+                "a mask of {} pixels for {} errors; allowed: one flag per pixel",
+                keep.len(),
+                errors.len()
+            ),
+        ));
+    }
+    if !keep.contains(&true) {
+        return Err(Error::input(
+            WHERE,
+            "the mask keeps no pixel; allowed: a mask that keeps at least one",
+        ));
+    }
+    Ok(measure(errors, Some(keep), width, height))
+}
+
+/// The checks of [`error_image`]: the size, the sides and finite errors.
+fn check(errors: &[f64], width: u32, height: u32, at: &'static str) -> Result<()> {
     let (w, h) = (width as usize, height as usize);
     if w < 2 || h < 2 || w > 1 << 14 || h > 1 << 14 || errors.len() != w * h {
         return Err(Error::input(
-            "spectrum::error_image",
+            at,
             format!(
                 "{} values for a {width} x {height} image; allowed: width x height values, each \
                  side 2 to 16384",
@@ -80,20 +145,47 @@ pub fn error_image(errors: &[f64], width: u32, height: u32) -> Result<ErrorImage
     }
     if let Some(i) = errors.iter().position(|e| !e.is_finite()) {
         return Err(Error::input(
-            "spectrum::error_image",
+            at,
             format!(
                 "pixel {i} has the error {}; errors must be finite",
                 errors[i]
             ),
         ));
     }
-    let n = (w * h) as f64;
-    let rmse = (errors.iter().map(|e| e * e).sum::<f64>() / n).sqrt();
+    Ok(())
+}
+
+/// The measures of a checked error image, over the pixels `keep` marks (all without one).
+fn measure(errors: &[f64], keep: Option<&[bool]>, width: u32, height: u32) -> ErrorImage {
+    let (w, h) = (width as usize, height as usize);
+    let kept = |i: usize| keep.is_none_or(|k| k[i]);
+    let n = keep.map_or(w * h, |k| k.iter().filter(|&&k| k).count()) as f64;
+    let rmse = (errors
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| kept(i))
+        .map(|(_, e)| e * e)
+        .sum::<f64>()
+        / n)
+        .sqrt();
+    // with a mask: the kept errors less their mean, the dropped ones at zero
+    let mean = match keep {
+        None => 0.0,
+        Some(_) => {
+            (0..w * h)
+                .filter(|&i| kept(i))
+                .map(|i| errors[i])
+                .sum::<f64>()
+                / n
+        }
+    };
 
     // the periodogram by two passes of 1D FFTs
     let mut planner = FftPlanner::new();
     let (fft_w, fft_h) = (planner.plan_fft_forward(w), planner.plan_fft_forward(h));
-    let mut data: Vec<Complex64> = errors.iter().map(|&e| Complex64::new(e, 0.0)).collect();
+    let mut data: Vec<Complex64> = (0..w * h)
+        .map(|i| Complex64::new(if kept(i) { errors[i] - mean } else { 0.0 }, 0.0))
+        .collect();
     for row in data.chunks_exact_mut(w) {
         fft_w.process(row);
     }
@@ -139,16 +231,16 @@ pub fn error_image(errors: &[f64], width: u32, height: u32) -> Result<ErrorImage
         .filter(|(_, r)| r.1 > 0)
         .map(|(b, r)| (b as f64 / w.min(h) as f64, r.0 / r.1 as f64))
         .collect();
-    Ok(ErrorImage {
+    ErrorImage {
         width,
         height,
         rmse,
-        blur1_rmse: blurred_rmse(errors, w, h, 1.0),
-        blur2_rmse: blurred_rmse(errors, w, h, 2.0),
+        blur1_rmse: blurred_rmse(errors, keep, w, h, 1.0),
+        blur2_rmse: blurred_rmse(errors, keep, w, h, 2.0),
         lowband: if all > 0.0 { low / all } else { 0.0 },
         spectrum,
         radial,
-    })
+    }
 }
 
 /// Frequency index `k` of an `n`-point FFT as a signed frequency, in `[-n/2, n/2)` (`n`
@@ -162,17 +254,20 @@ fn signed(k: usize, n: usize) -> i64 {
 }
 
 /// The RMSE of `e` after a separable Gaussian blur of standard deviation `sigma` (cut at 3
-/// sigma, renormalized where the kernel leaves the image).
-fn blurred_rmse(e: &[f64], w: usize, h: usize, sigma: f64) -> f64 {
+/// sigma, renormalized where the kernel leaves the image); with a mask, the normalized
+/// convolution `G * (e k) / G * k` at the kept pixels, and the RMSE over them.
+fn blurred_rmse(e: &[f64], keep: Option<&[bool]>, w: usize, h: usize, sigma: f64) -> f64 {
     let r = (3.0 * sigma).ceil() as i64;
     let k: Vec<f64> = (-r..=r)
         .map(|d| (-(d * d) as f64 / (2.0 * sigma * sigma)).exp())
         .collect();
-    let pass = |src: &[f64], along_x: bool| -> Vec<f64> {
-        let mut out = vec![0.0; w * h];
+    // one pass along x or y: the kernel's sum over `src` and the weight it found, where
+    // `weight` is the mask (or 1 inside the image)
+    let pass = |src: &[f64], weight: &[f64], along_x: bool| -> (Vec<f64>, Vec<f64>) {
+        let (mut out, mut out_w) = (vec![0.0; w * h], vec![0.0; w * h]);
         for y in 0..h {
             for x in 0..w {
-                let (mut sum, mut weight) = (0.0, 0.0);
+                let (mut sum, mut wsum) = (0.0, 0.0);
                 for (j, kv) in k.iter().enumerate() {
                     let d = j as i64 - r;
                     let (sx, sy) = if along_x {
@@ -181,17 +276,42 @@ fn blurred_rmse(e: &[f64], w: usize, h: usize, sigma: f64) -> f64 {
                         (x as i64, y as i64 + d)
                     };
                     if sx >= 0 && sy >= 0 && (sx as usize) < w && (sy as usize) < h {
-                        sum += kv * src[sy as usize * w + sx as usize];
-                        weight += kv;
+                        let at = sy as usize * w + sx as usize;
+                        sum += kv * src[at];
+                        wsum += kv * weight[at];
                     }
                 }
-                out[y * w + x] = sum / weight;
+                out[y * w + x] = sum;
+                out_w[y * w + x] = wsum;
             }
         }
-        out
+        (out, out_w)
     };
-    let b = pass(&pass(e, true), false);
-    (b.iter().map(|v| v * v).sum::<f64>() / (w * h) as f64).sqrt()
+    match keep {
+        None => {
+            // (the weight of a pass is the kernel inside the image: renormalize after each)
+            let ones = vec![1.0; w * h];
+            let norm = |(s, wt): (Vec<f64>, Vec<f64>)| -> Vec<f64> {
+                s.iter().zip(&wt).map(|(s, wt)| s / wt).collect()
+            };
+            let b = norm(pass(&norm(pass(e, &ones, true)), &ones, false));
+            (b.iter().map(|v| v * v).sum::<f64>() / (w * h) as f64).sqrt()
+        }
+        Some(keep) => {
+            let m: Vec<f64> = keep.iter().map(|&k| if k { 1.0 } else { 0.0 }).collect();
+            let em: Vec<f64> = e.iter().zip(&m).map(|(e, m)| e * m).collect();
+            let (sx, mx) = pass(&em, &m, true);
+            let (num, _) = pass(&sx, &mx, false);
+            let (den, _) = pass(&mx, &mx, false);
+            let (mut sum, mut count) = (0.0, 0usize);
+            for i in (0..w * h).filter(|&i| keep[i]) {
+                let v = num[i] / den[i];
+                sum += v * v;
+                count += 1;
+            }
+            (sum / count as f64).sqrt()
+        }
+    }
 }
 
 #[cfg(test)]
@@ -252,5 +372,131 @@ mod tests {
         assert!(m.blur1_rmse < 0.05);
         assert!(error_image(&checker, 31, 32).is_err());
         assert!(error_image(&[f64::NAN; 4], 2, 2).is_err());
+    }
+
+    /// White noise from a seeded hash, in [-0.5, 0.5).
+    fn white(n: usize, seed: u64) -> Vec<f64> {
+        let mut x = seed;
+        (0..n)
+            .map(|_| {
+                x = crate::hash::mix64(x);
+                (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_mask_that_keeps_every_pixel_changes_nothing() {
+        let (w, h) = (24usize, 20usize);
+        let e = white(w * h, 5);
+        let a = error_image(&e, w as u32, h as u32).unwrap();
+        let b = error_image_masked(&e, &vec![true; w * h], w as u32, h as u32).unwrap();
+        let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * (1.0 + x.abs());
+        assert!(close(a.rmse, b.rmse) && close(a.blur1_rmse, b.blur1_rmse));
+        assert!(close(a.blur2_rmse, b.blur2_rmse) && close(a.lowband, b.lowband));
+        // (the masked periodogram takes the mean out; only DC differs)
+        for (i, (p, q)) in a.spectrum.iter().zip(&b.spectrum).enumerate() {
+            if i != (h / 2) * w + w / 2 {
+                assert!(close(*p, *q), "{i}: {p} vs {q}");
+            }
+        }
+    }
+
+    #[test]
+    fn dropped_pixels_lend_nothing_to_any_measure() {
+        let (w, h) = (32usize, 32usize);
+        // a disc of 'emitter' pixels, dropped
+        let keep: Vec<bool> = (0..w * h)
+            .map(|i| {
+                let (x, y) = ((i % w) as f64 - 10.5, (i / w) as f64 - 12.5);
+                x * x + y * y > 25.0
+            })
+            .collect();
+        let dropped = keep.iter().filter(|&&k| !k).count();
+        assert!(dropped > 60 && dropped < 100);
+        for seed in 0..8 {
+            let mut e = white(w * h, seed + 1);
+            let a = error_image_masked(&e, &keep, w as u32, h as u32).unwrap();
+            for (e, k) in e.iter_mut().zip(&keep) {
+                if !k {
+                    *e = 1e3 * (*e + 1.0);
+                }
+            }
+            let b = error_image_masked(&e, &keep, w as u32, h as u32).unwrap();
+            assert_eq!(a, b, "seed {seed}");
+            // the kept pixels' own figures: the RMSE of the kept values, white in the band
+            let kept: Vec<f64> = (0..w * h).filter(|&i| keep[i]).map(|i| e[i]).collect();
+            let rms = (kept.iter().map(|v| v * v).sum::<f64>() / kept.len() as f64).sqrt();
+            assert!((a.rmse - rms).abs() < 1e-12, "seed {seed}");
+            assert!(
+                a.lowband > 0.02 && a.lowband < 0.09,
+                "seed {seed}: {}",
+                a.lowband
+            );
+            // a blur of white error divides its RMSE by about sqrt(4 pi sigma^2) = 3.5 at 1
+            assert!(a.blur1_rmse < 0.45 * a.rmse, "seed {seed}");
+            // unmasked, the dropped block dominates every figure
+            let u = error_image(&e, w as u32, h as u32).unwrap();
+            assert!(u.rmse > 50.0 * a.rmse && u.lowband > 0.3, "seed {seed}");
+        }
+    }
+
+    #[test]
+    fn blue_error_stays_blue_around_a_hole() {
+        let (w, h) = (32usize, 32usize);
+        let checker: Vec<f64> = (0..w * h)
+            .map(|i| {
+                if ((i % w) + i / w) % 2 == 0 {
+                    1.0
+                } else {
+                    -1.0
+                }
+            })
+            .collect();
+        let keep: Vec<bool> = (0..w * h)
+            .map(|i| !((8..14).contains(&(i % w)) && (4..12).contains(&(i / w))))
+            .collect();
+        let m = error_image_masked(&checker, &keep, w as u32, h as u32).unwrap();
+        // the hole's spectrum moves to the checkerboard's frequency, far from the low band
+        assert!(m.lowband < 0.01, "{}", m.lowband);
+        assert!(m.blur1_rmse < 0.1, "{}", m.blur1_rmse);
+        // a bias (the mean error) is left out of the spectrum, hole or not
+        let biased: Vec<f64> = checker.iter().map(|e| e + 0.5).collect();
+        let b = error_image_masked(&biased, &keep, w as u32, h as u32).unwrap();
+        assert!((b.lowband - m.lowband).abs() < 1e-12, "{}", b.lowband);
+        assert!(error_image_masked(&checker, &keep[1..], 32, 32).is_err());
+        assert!(error_image_masked(&checker, &vec![false; w * h], 32, 32).is_err());
+        assert!(error_image_masked(&checker[1..], &keep[1..], 32, 32).is_err());
+    }
+
+    #[test]
+    fn the_masked_blur_matches_a_direct_sum() {
+        let (w, h) = (10usize, 9usize);
+        let e = white(w * h, 11);
+        let keep: Vec<bool> = white(w * h, 12).iter().map(|v| *v > -0.3).collect();
+        let m = error_image_masked(&e, &keep, w as u32, h as u32).unwrap();
+        for (sigma, got) in [(1.0f64, m.blur1_rmse), (2.0, m.blur2_rmse)] {
+            let r = (3.0 * sigma).ceil() as i64;
+            let g = |d: i64| (-(d * d) as f64 / (2.0 * sigma * sigma)).exp();
+            let (mut sum, mut count) = (0.0, 0.0);
+            for p in (0..w * h).filter(|&p| keep[p]) {
+                let (px, py) = ((p % w) as i64, (p / w) as i64);
+                let (mut num, mut den) = (0.0, 0.0);
+                for q in (0..w * h).filter(|&q| keep[q]) {
+                    let (dx, dy) = ((q % w) as i64 - px, (q / w) as i64 - py);
+                    if dx.abs() <= r && dy.abs() <= r {
+                        num += g(dx) * g(dy) * e[q];
+                        den += g(dx) * g(dy);
+                    }
+                }
+                sum += (num / den) * (num / den);
+                count += 1.0;
+            }
+            let direct = (sum / count).sqrt();
+            assert!(
+                (got - direct).abs() < 1e-12,
+                "sigma {sigma}: {got} vs {direct}"
+            );
+        }
     }
 }

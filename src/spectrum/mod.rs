@@ -38,7 +38,7 @@ mod measures;
 mod nufft;
 
 pub use crate::grid::relative_radius_max;
-pub use image::{ErrorImage, LOW_BAND, error_image};
+pub use image::{ErrorImage, LOW_BAND, error_image, error_image_masked};
 pub use measures::{PointSetMeasures, nearest_neighbour_distances, point_set_measures};
 
 use rayon::prelude::*;
