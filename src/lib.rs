@@ -83,7 +83,7 @@
 //! expectations depend on them. Within a minor version (`0.y.*`, and `x.*` from 1.0), for the
 //! same seed, parameters, index and dimension, every registered sampler, every
 //! [`PixelSampler`] sequence and every stateless function (`sobol::owen_scrambled`,
-//! `Pmj02Stochastic::point_at`, `halton::scrambled_radical_inverse`, [`scramble`], [`digital`],
+//! `Pmj02Stochastic::point`, `halton::scrambled_radical_inverse`, [`scramble`], [`digital`],
 //! [`pixel::kernel`]) gives the same bits, whatever the platform (x86-64 with or without SIMD,
 //! other architectures), the number of threads, or the order of calls. A release that changes
 //! any of them bumps the minor version and lists the change in `CHANGELOG.md` under
@@ -102,7 +102,7 @@
 //!   [`analysis`]. Without it (`default-features = false`) the crate is `#![no_std]` (with
 //!   `alloc`), for embedded and WASM renderers: [`PixelSampler`] with every [`Sequence`], and
 //!   the stateless functions ([`samplers::sobol::owen_scrambled`],
-//!   [`samplers::Pmj02Stochastic::point_at`], [`samplers::halton::scrambled_radical_inverse`],
+//!   [`samplers::Pmj02Stochastic::point`], [`samplers::halton::scrambled_radical_inverse`],
 //!   the lattice's [`samplers::lattice::GENERATOR`], [`scramble`], [`digital`], [`hash`],
 //!   [`float`]), none of which allocates; `alloc` holds the samplers' stored points. For a GPU
 //!   the crate gives its kernel as WGSL ([`pixel::WGSL`]); the Rust code itself is not compiled

@@ -154,7 +154,7 @@ fn dims_and_pixel_print_the_library_values() {
         let got: Vec<f32> = line.split(',').map(|v| v.parse().unwrap()).collect();
         let a = sampler.sample_2d([3, 7], i as u64, 0);
         let b = sampler.sample_2d([3, 7], i as u64, 2);
-        let c = sampler.sample([3, 7], i as u64, 4);
+        let c = sampler.sample_1d([3, 7], i as u64, 4);
         assert_eq!(got, vec![a.x, a.y, b.x, b.y, c]);
         rows += 1;
     }

@@ -54,21 +54,37 @@ fn nothing_refers_outside_the_repository() {
 }
 
 #[test]
-fn the_pixel_docs_name_every_sequence() {
-    // the "Sequences" section of the adapter's module docs describes each of
-    // `Sequence::NAMES` (a new sequence must be described there; issue 27 item 5 would
-    // generate this list as the sampler table is generated)
-    let text = read("src/pixel/mod.rs");
-    let heading = "//! # Sequences\n";
-    let start = text
-        .find(heading)
-        .expect("src/pixel/mod.rs has # Sequences");
-    let rest = &text[start + heading.len()..];
-    let section = &rest[..rest.find("//! # ").unwrap_or(rest.len())];
-    for name in strata::Sequence::NAMES {
+fn the_sequence_table_is_generated_and_names_every_sequence() {
+    // the pixel module docs include docs/sequences.md, which `Sequence::summary_table` writes
+    let table = strata::Sequence::summary_table();
+    if std::env::var_os("STRATA_BLESS").is_some() {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/sequences.md");
+        std::fs::write(p, &table).unwrap();
+    }
+    assert_eq!(
+        read("docs/sequences.md"),
+        table,
+        "docs/sequences.md is stale (STRATA_BLESS=1)"
+    );
+    assert!(
+        read("src/pixel/mod.rs").contains("include_str!(\"../../docs/sequences.md\")"),
+        "the pixel module docs no longer include the sequence table"
+    );
+    // one row per sequence the adapter knows by name, in the order of `Sequence::NAMES`
+    let rows: Vec<&str> = table.lines().skip(2).collect();
+    assert_eq!(rows.len(), strata::Sequence::NAMES.len());
+    for (row, name) in rows.iter().zip(strata::Sequence::NAMES) {
+        assert!(row.starts_with(&format!("| `{name}` |")), "{row}");
+        // and the row's GPU column says what `gpu_parameters` does
+        let spp = if name == "jittered" { 16 } else { 8 };
+        let seq = strata::Sequence::by_name_at(name, [8, 8]).unwrap();
+        let s = strata::PixelSampler::new(seq, spp, strata::Seed(1)).unwrap();
+        let gpu = s
+            .gpu_parameters()
+            .map(|g| format!("sequence {}", g.sequence));
         assert!(
-            section.contains(&format!("`{name}`")),
-            "the Sequences section of src/pixel/mod.rs does not describe `{name}`"
+            row.contains(&format!("| {} |", gpu.as_deref().unwrap_or("CPU only"))),
+            "{row}"
         );
     }
 }

@@ -51,7 +51,7 @@ fn long_prefixes_stay_nets(pmj: u32, big: u32, block: u32) {
         "pmj02-stochastic: last block"
     );
     let sobol = Sobol::new(strata::Seed(0));
-    let g: Vec<[u32; 2]> = (0..1u32 << big).map(|i| sobol.sample_fixed(i)).collect();
+    let g: Vec<[u32; 2]> = (0..1u32 << big).map(|i| sobol.sample_u32(i)).collect();
     assert!(is_net(&g), "sobol: prefix 2^{big}");
     assert!(is_net(&g[(1 << big) - (1 << block)..]), "sobol: last block");
 }
@@ -99,21 +99,21 @@ fn indices_near_two_to_the_32() {
     // random access at the end of the 32-bit range: in [0,1), and the stochastic sequence's
     // random access agrees with the net property of its last aligned block
     for i in [u32::MAX - 3, u32::MAX - 1, u32::MAX] {
-        let p = Pmj02Stochastic::point_at(strata::Seed(9), i);
+        let p = Pmj02Stochastic::point(i, strata::Seed(9));
         let q = Sobol::new(strata::Seed(9)).sample(i);
         for v in [p.x, p.y, q.x, q.y] {
             assert!((0.0..1.0).contains(&v), "index {i}: {v}");
         }
     }
     let block: Vec<[u32; 2]> = (u32::MAX - 1023..=u32::MAX)
-        .map(|i| Pmj02Stochastic::point_at_fixed(strata::Seed(9), i))
+        .map(|i| Pmj02Stochastic::point_u32(i, strata::Seed(9)))
         .collect();
     assert!(
         is_net(&block),
         "the last 1024 of the 2^32 stochastic pmj02 points"
     );
     let block: Vec<[u32; 2]> = (u32::MAX - 1023..=u32::MAX)
-        .map(|i| Sobol::new(strata::Seed(9)).sample_fixed(i))
+        .map(|i| Sobol::new(strata::Seed(9)).sample_u32(i))
         .collect();
     assert!(is_net(&block), "the last 1024 of the 2^32 Sobol' points");
     // the adapter past 2^32 (documented: a fresh copy)

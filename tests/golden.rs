@@ -96,7 +96,7 @@ fn sequence_digests() -> Vec<(String, u64)> {
                         let v = s.sample_2d(pixel, i, dim);
                         d.floats(&[v.x, v.y]);
                     }
-                    d.floats(&[s.sample(pixel, i, 31)]);
+                    d.floats(&[s.sample_1d(pixel, i, 31)]);
                 }
             }
             (format!("pixel {name}"), d.0)

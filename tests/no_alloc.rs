@@ -59,7 +59,7 @@ fn the_render_loop_allocates_nothing() {
                     for i in 0..16u64 {
                         t.start_pixel_sample([x, y], i, 0);
                         acc += t.get_pixel_2d().x + t.get_2d().y + t.get_1d() + t.get_4d().w;
-                        acc += t.sample([x, y], i + (1 << 32), 3);
+                        acc += t.sample_1d([x, y], i + (1 << 32), 3);
                         acc += t.sample_2d([x, y], i * 70_001, 5).x;
                     }
                 }
@@ -82,7 +82,7 @@ fn the_stateless_core_allocates_nothing() {
                 black_box(halton::scrambled_radical_inverse(dim as usize, i as u64, 7));
                 black_box(zsobol.sample_2d([i % 64, i / 64 % 64], i as u64 % 16, dim));
             }
-            black_box(Pmj02Stochastic::point_at(Seed(7), i));
+            black_box(Pmj02Stochastic::point(i, Seed(7)));
             black_box(hash::permute(i % 1000, 1000, i));
             black_box(float::unit_f32_from_u32(strata::scramble::owen_scramble(
                 i, 9,

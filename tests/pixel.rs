@@ -32,7 +32,7 @@ fn values_stay_in_the_unit_interval_everywhere() {
             ] {
                 for dim in [0u32, 1, 2, 7, 1000, u32::MAX - 3, u32::MAX - 1, u32::MAX] {
                     let v = s.sample_2d(pixel, index, dim);
-                    let w = s.sample(pixel, index, dim);
+                    let w = s.sample_1d(pixel, index, dim);
                     let q = s.sample_4d(pixel, index, dim);
                     for x in [v.x, v.y, w, q.x, q.y, q.z, q.w] {
                         assert!(
@@ -85,7 +85,7 @@ fn revisiting_a_pixel_in_any_order_gives_the_same_bits() {
         let a = t.get_2d();
         let b = t.get_1d();
         assert_eq!(t.sample_2d([1, 5], 9, 0), a);
-        assert_eq!(t.sample([1, 5], 9, 2), b);
+        assert_eq!(t.sample_1d([1, 5], 9, 2), b);
     }
 }
 
@@ -177,7 +177,7 @@ fn bounces_start_at_fixed_dimensions() {
     assert_eq!(s.dimension(), 24);
     assert_eq!(s.get_2d(), s.sample_2d([4, 4], 3, 24));
     s.set_dimension(7);
-    assert_eq!(s.get_1d(), s.sample([4, 4], 3, 7));
+    assert_eq!(s.get_1d(), s.sample_1d([4, 4], 3, 7));
     let layout = strata::pixel::DimensionLayout {
         camera: 5,
         per_bounce: 6,
@@ -209,19 +209,19 @@ fn the_rand_bridge_hands_out_successive_dimensions() {
         // one dimension per word; the value's top 24 bits on top: f32 is the sequence's value
         // rounded down to a multiple of 2^-24 (exactly it for the nets)
         let top24 = |v: f32| (v * 16_777_216.0) as u32 as f32 / 16_777_216.0;
-        assert_eq!(a, top24(s.sample([2, 7], 9, 4)), "{}", seq.name());
+        assert_eq!(a, top24(s.sample_1d([2, 7], 9, 4)), "{}", seq.name());
         assert_eq!(
             (b >> 40) as f32 / 16_777_216.0,
-            top24(s.sample([2, 7], 9, 5))
+            top24(s.sample_1d([2, 7], 9, 5))
         );
         assert_eq!(
             (c >> 8) as f32 / 16_777_216.0,
-            top24(s.sample([2, 7], 9, 6))
+            top24(s.sample_1d([2, 7], 9, 6))
         );
         // (an f64's top 24 bits, truncated: `as f32` would round to nearest)
         assert_eq!(
             (d * 16_777_216.0) as u32 as f32 / 16_777_216.0,
-            top24(s.sample([2, 7], 9, 7))
+            top24(s.sample_1d([2, 7], 9, 7))
         );
         assert_eq!(s.dimension(), 4 + 4 + 2);
         assert!(bytes.iter().any(|&x| x != 0));
@@ -485,7 +485,7 @@ fn stateful_draws_equal_the_stateless_ones_across_pixels_samples_and_dims() {
                 let x = s.get_1d();
                 assert_eq!(
                     x,
-                    s.sample(pixel, index, dim + 6),
+                    s.sample_1d(pixel, index, dim + 6),
                     "{} 1d {dim}",
                     seq.name()
                 );
@@ -525,7 +525,11 @@ fn any_order_of_draws_gives_the_stateless_values() {
                     1 => s.set_dimension(next(12) as u32),
                     2 => {
                         let dim = s.dimension();
-                        assert_eq!(s.get_1d(), s.sample(pixel, index, dim), "{name} 1d {dim}");
+                        assert_eq!(
+                            s.get_1d(),
+                            s.sample_1d(pixel, index, dim),
+                            "{name} 1d {dim}"
+                        );
                     }
                     3 => {
                         let dim = s.dimension();
@@ -648,7 +652,7 @@ fn zjoint_stratifies_the_draws_of_a_group_jointly() {
     let t_of = |seq: &Sequence, pixel: [u32; 2], da: u32, db: u32| {
         let s = PixelSampler::new(seq.clone(), 64, strata::Seed(17)).unwrap();
         let pts: Vec<f32> = (0..64)
-            .flat_map(|i| [s.sample(pixel, i, da), s.sample(pixel, i, db)])
+            .flat_map(|i| [s.sample_1d(pixel, i, da), s.sample_1d(pixel, i, db)])
             .collect();
         net_t_value(&pts).unwrap().unwrap()
     };
@@ -706,7 +710,7 @@ fn a_filled_pixel_sample_is_the_stateless_draws() {
                         for (k, &v) in row.iter().enumerate() {
                             let dim = first + k as u32;
                             let want = if k % 2 == 0 && k + 1 == width {
-                                s.sample(pixel, index, dim)
+                                s.sample_1d(pixel, index, dim)
                             } else {
                                 s.sample_2d(pixel, index, first + (k as u32 & !1))[k % 2]
                             };

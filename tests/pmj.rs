@@ -82,7 +82,7 @@ fn pmj02bn_prefixes_and_aligned_blocks_are_nets() {
     // optimised up to 2^10 and continued with random deeper flags to 2^14
     for seed in [3u64, 4] {
         let s = Pmj02Bn::new(strata::Seed(seed), 1 << 10, 4).unwrap();
-        let pts: Vec<[u32; 2]> = (0..1 << 14).map(|i| s.sample_fixed(i)).collect();
+        let pts: Vec<[u32; 2]> = (0..1 << 14).map(|i| s.sample_u32(i)).collect();
         assert_nets(&pts, &format!("pmj02bn seed {seed}"));
     }
     let mut again = Pmj02Bn::new(strata::Seed(5), 1 << 12, 4).unwrap();
@@ -270,7 +270,7 @@ fn pmj02bn_is_bluer_than_pmj02_at_every_checked_prefix() {
     let bn = |sweeps: u32| {
         move |s: u64| {
             let p = Pmj02Bn::new(strata::Seed(s), 1 << 10, sweeps).unwrap();
-            (0..1 << 10).map(|i| p.sample_fixed(i)).collect::<Vec<_>>()
+            (0..1 << 10).map(|i| p.sample_u32(i)).collect::<Vec<_>>()
         }
     };
     for n in [64usize, 256, 1024] {

@@ -52,7 +52,7 @@ proptest! {
         b.reserve((n * 4) as u64);
         prop_assert!(is_net(&b.generated()[block * n..(block + 1) * n]));
         let s = Sobol::new(strata::Seed(seed));
-        let pts: Vec<[u32; 2]> = (block * n..(block + 1) * n).map(|i| s.sample_fixed(i as u32)).collect();
+        let pts: Vec<[u32; 2]> = (block * n..(block + 1) * n).map(|i| s.sample_u32(i as u32)).collect();
         prop_assert!(is_net(&pts));
     }
 

@@ -49,7 +49,7 @@ pub extern "C" fn strata_zsobol(x: u32, y: u32, index: u64, dim: u32, seed: u64)
 /// Stochastic pmj02 by index.
 #[unsafe(no_mangle)]
 pub extern "C" fn strata_pmj02(index: u32, seed: u64) -> f32 {
-    Pmj02Stochastic::point_at(Seed(seed), index).x
+    Pmj02Stochastic::point(index, Seed(seed)).x
 }
 
 /// Scrambled Halton by dimension, index and seed.

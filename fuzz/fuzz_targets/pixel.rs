@@ -20,5 +20,5 @@ fuzz_target!(|data: &[u8]| {
     let mut t = s.clone();
     t.start_pixel_sample(pixel, index, dim);
     assert_eq!(t.get_2d(), v);
-    assert_eq!(t.get_1d(), s.sample(pixel, index, dim.wrapping_add(2)));
+    assert_eq!(t.get_1d(), s.sample_1d(pixel, index, dim.wrapping_add(2)));
 });

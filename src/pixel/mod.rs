@@ -7,7 +7,7 @@
 //! light, time, each bounce... [`get_4d`](PixelSampler::get_4d) takes two 2D draws at once
 //! (the same values as two `get_2d`, the value scrambles four lanes at a time). Every value is
 //! a pure function of (seed, pixel, index, dimension), so the order in which pixels, samples or
-//! threads run never changes the image; [`sample`](PixelSampler::sample),
+//! threads run never changes the image; [`sample_1d`](PixelSampler::sample_1d),
 //! [`sample_2d`](PixelSampler::sample_2d) and [`sample_4d`](PixelSampler::sample_4d) are the
 //! stateless forms. The adapter is `no_std` (the crate without its `std` feature) and
 //! allocation-free.
@@ -61,18 +61,13 @@
 //!
 //! # Sequences
 //!
-//! [`Sequence`]: `random` (hashed uniform), `jittered` (`spp` must be a square), `pmj02`
-//! (Owen-scrambled digital pmj02), `sobol` (Owen-scrambled Sobol', Burley 2020), `halton`
-//! (scrambled bases 2 and 3), `lattice` (the extensible rank-1 lattice of Cools, Kuo and
-//! Nuyens, shifted), `zsobol` and `zpmj02` (pixels along a scrambled Z curve of one global
-//! sequence: screen-space blue-noise error; they need the image's resolution), `zjoint` (the
-//! same order, one per group of dimensions, over a multi-dimensional Sobol' sequence:
-//! [`Sequence::zjoint`]; `zjoint-G` by name for groups of `G` dimensions). The
-//! samples-per-pixel count given to [`PixelSampler::new`] is used only by `jittered` (the size
-//! of its sets), `halton` (the size of its blocks) and the Z-ordered sequences (the block each
-//! pixel takes); the progressive `random`, `pmj02`, `sobol` and `lattice` give the same values
-//! whatever it is, so a renderer may take any number of samples from them and stop at any
-//! power of two.
+//! Every [`Sequence`], from the table [`Sequence::summary_table`] generates (`docs/sequences.md`):
+//!
+#![doc = include_str!("../../docs/sequences.md")]
+//!
+//! The progressive sequences give the same values whatever the samples-per-pixel count given
+//! to [`PixelSampler::new`], so a renderer may take any number of samples from them and stop at
+//! any power of two; the Z-ordered ones need the image's resolution up front.
 //!
 //! # Padding: how two draws meet
 //!
@@ -157,7 +152,7 @@
 //!     sum += film.x + lens.y + time;
 //! }
 //! // the same value from the stateless form, in any order
-//! assert_eq!(sampler.sample([10, 20], 3, 4), {
+//! assert_eq!(sampler.sample_1d([10, 20], 3, 4), {
 //!     sampler.start_pixel_sample([10, 20], 3, 4);
 //!     sampler.get_1d()
 //! });
@@ -675,7 +670,7 @@ impl PixelSampler {
     /// let mut row = [0.0f32; 5];
     /// s.fill_sample([4, 2], 7, 0, &mut row);
     /// assert_eq!(row[2..4], s.sample_2d([4, 2], 7, 2).to_array());
-    /// assert_eq!(row[4], s.sample([4, 2], 7, 4));
+    /// assert_eq!(row[4], s.sample_1d([4, 2], 7, 4));
     /// # Ok::<(), strata::Error>(())
     /// ```
     #[inline]
@@ -700,10 +695,16 @@ impl PixelSampler {
     }
 
     /// Stateless: the 1D value [`get_1d`](Self::get_1d) gives at `dim` for `(pixel, index)`.
-    pub fn sample(&self, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
+    pub fn sample_1d(&self, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
         let c = self.stateless(pixel, index);
         let (keys, index) = self.at(&c, dim);
         self.sequence.sample_1d(&keys, index, dim, &self.spp)
+    }
+
+    /// The old name of [`sample_1d`](Self::sample_1d) (the same values).
+    #[deprecated(since = "0.1.0", note = "renamed `sample_1d`, beside `sample_2d`")]
+    pub fn sample(&self, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
+        self.sample_1d(pixel, index, dim)
     }
 
     /// Stateless: the 2D value [`get_2d`](Self::get_2d) gives at `dim` for `(pixel, index)`.

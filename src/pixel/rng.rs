@@ -24,7 +24,7 @@ use super::PixelSampler;
 /// let mut sampler = PixelSampler::new(Sequence::sobol(), 16, Seed(1))?;
 /// sampler.start_pixel_sample([3, 4], 0, 2);
 /// let u: f32 = sampler.rng().random(); // dimension 2
-/// assert_eq!(u, sampler.sample([3, 4], 0, 2));
+/// assert_eq!(u, sampler.sample_1d([3, 4], 0, 2));
 /// assert_eq!(sampler.dimension(), 3);
 /// # Ok::<(), strata::Error>(())
 /// ```

@@ -161,6 +161,91 @@ impl Kind {
     pub(crate) fn z_ordered(self) -> bool {
         matches!(self, Kind::ZSobol | Kind::ZPmj02 | Kind::ZJoint)
     }
+
+    /// Every kind, in the order of [`Sequence::NAMES`] (`zjoint` last, whatever the features).
+    const ALL: [Kind; 9] = [
+        Kind::Random,
+        Kind::Jittered,
+        Kind::Pmj02,
+        Kind::Sobol,
+        Kind::Halton,
+        Kind::Lattice,
+        Kind::ZSobol,
+        Kind::ZPmj02,
+        Kind::ZJoint,
+    ];
+
+    /// The row of the sequence table ([`Sequence::table`]): the name, how to build it, what the
+    /// samples-per-pixel count does to it, what each draw's samples promise, and the source.
+    /// One home for these facts: the pixel module docs include the table.
+    fn facts(self) -> [&'static str; 5] {
+        match self {
+            Kind::Random => [
+                "random",
+                "[`Sequence::random`]",
+                "ignored (progressive)",
+                "independent uniform values (hashed)",
+                "-",
+            ],
+            Kind::Jittered => [
+                "jittered",
+                "[`Sequence::jittered`]",
+                "a square `s x s`: the size of each set",
+                "one value per cell of `s x s` in each set of `spp`",
+                "Cook 1986",
+            ],
+            Kind::Pmj02 => [
+                "pmj02",
+                "[`Sequence::pmj02`]",
+                "ignored (progressive)",
+                "every power-of-two prefix a (0,m,2)-net; Owen-scrambled",
+                "Christensen et al. 2018, Helmer et al. 2021",
+            ],
+            Kind::Sobol => [
+                "sobol",
+                "[`Sequence::sobol`]",
+                "ignored (progressive)",
+                "every power-of-two prefix a (0,m,2)-net; Owen-scrambled",
+                "Sobol' 1967, Burley 2020",
+            ],
+            Kind::Halton => [
+                "halton",
+                "[`Sequence::halton`]",
+                "blocks of the smallest `2^a 3^b >= spp`",
+                "each block's `2^a x 3^b` strata, one value each",
+                "Halton 1960",
+            ],
+            Kind::Lattice => [
+                "lattice",
+                "[`Sequence::lattice`]",
+                "ignored (progressive)",
+                "`n x 1` and `1 x n` strata at every power of two; shifted",
+                "Cools, Kuo, Nuyens 2006",
+            ],
+            Kind::ZSobol => [
+                "zsobol",
+                "[`Sequence::zsobol`]`(width, height)`",
+                "rounded up to a power of two: each pixel's block",
+                "as `sobol` per pixel; pixels along a scrambled Z curve (blue-noise error)",
+                "Ahmed, Wonka 2020",
+            ],
+            Kind::ZPmj02 => [
+                "zpmj02",
+                "[`Sequence::zpmj02`]`(width, height)`",
+                "rounded up to a power of two: each pixel's block",
+                "as `pmj02` per pixel; pixels along a scrambled Z curve",
+                "Ahmed, Wonka 2020",
+            ],
+            Kind::ZJoint => [
+                "zjoint",
+                "[`Sequence::zjoint`]`(width, height, group)`, `zjoint-G` by name (feature \
+                 `joe-kuo`)",
+                "rounded up to a power of two: each pixel's block",
+                "the Z order shared by a group's draws, which read distinct Sobol' dimensions",
+                "Ahmed, Wonka 2020; Joe, Kuo 2008",
+            ],
+        }
+    }
 }
 
 /// One of the adapter's sequences, chosen at run time: build it with a constructor
@@ -342,6 +427,28 @@ impl Sequence {
     pub const NAMES: [&'static str; 8] = [
         "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02",
     ];
+
+    /// The table of every sequence (Markdown: name, constructor, what the samples-per-pixel
+    /// count does, what each draw promises, whether the [`WGSL`](super::WGSL) shader has it, the
+    /// source), as the pixel module docs include it from `docs/sequences.md` (a test keeps the
+    /// two equal). Generated from the one place that states each sequence's facts.
+    pub fn summary_table() -> String {
+        let mut t = String::from(
+            "| name | build | samples per pixel | each draw's samples | GPU | source |\n\
+             |---|---|---|---|---|---|\n",
+        );
+        for kind in Kind::ALL {
+            let [name, build, spp, promise, source] = kind.facts();
+            let gpu = match kind.shader_id() {
+                Some(id) => format!("sequence {id}"),
+                None => String::from("CPU only"),
+            };
+            t.push_str(&format!(
+                "| `{name}` | {build} | {spp} | {promise} | {gpu} | {source} |\n"
+            ));
+        }
+        t
+    }
 
     /// The sequence registered under `name` (one of [`Sequence::NAMES`]); the Z-ordered ones
     /// for an image of [`DEFAULT_Z_RESOLUTION`] (see [`Sequence::by_name_at`]).

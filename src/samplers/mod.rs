@@ -1,27 +1,8 @@
 //! The sampler families, one per file.
 //!
-//! | name | type | kind | guarantee | source |
-//! |---|---|---|---|---|
-//! | `random` | [`Random`] | progressive | independent uniform points | - |
-//! | `regular` | [`Regular`] | fixed `N = s^2` | cell centres of an `s x s` grid | - |
-//! | `jittered` | [`Jittered`] | fixed `N = s^2` | one uniform point per cell of an `s x s` grid | Cook 1986 |
-//! | `nrooks` | [`NRooks`] | fixed, any `N` | one point per row and per column of `N x N` (Latin hypercube) | Shirley 1991 |
-//! | `multijittered` | [`MultiJittered`] | fixed `N = n^2` | jittered on `n x n` *and* N-rooks | Chiu, Shirley, Wang 1994 |
-//! | `cmj` | [`Cmj`] | fixed, any `N` | multi-jittered on `m x n` (`m n >= N`), correlated shuffles | Kensler 2013 |
-//! | `pmj`, `pmjbn`, `pmj02` | [`Pmj`] | progressive | see [`pmj`] | Christensen et al. 2018, Pharr 2019 |
-//! | `pmj02bn` | [`Pmj02Bn`] | progressive | see [`pmj::blue`] | Christensen et al. 2018, Doignies et al. 2024 |
-//! | `pmj02-stochastic` | [`Pmj02Stochastic`] | progressive | see [`pmj`] | Helmer et al. 2021 |
-//! | `poisson`, `bridson` | [`PoissonDisk`], [`BridsonDisk`] | fixed, any `N` | see [`poisson`] | Cook 1986, Bridson 2007 |
-//! | `best-candidate` | [`BestCandidate`] | progressive | see [`best_candidate`] | Mitchell 1991 |
-//! | `lloyd` | `LloydSets` | fixed, any `N` | Lloyd relaxation (feature `lloyd`) | Lloyd 1982 |
-//! | `ccvt` | [`CcvtSets`] | fixed, any `N` | see [`ccvt`] | Balzer et al. 2009 |
-//! | `bnot` | [`BnotSets`] | fixed, any `N` | equal-area power cells, see [`bnot`] | de Goes et al. 2012 |
-//! | `net02bn` | [`Net02BnSets`] | fixed `N = 2^m` | see [`net02bn`] | Ahmed, Wonka 2021 |
-//! | `sobol` | [`Sobol`], [`SobolNd`] | progressive | see [`sobol`] | Sobol' 1967, Burley 2020 |
-//! | `halton` | [`Halton`], [`HaltonNd`] | progressive | see [`halton`] | Halton 1960 |
-//! | `latin` | [`LatinHypercube`] | fixed, any `N`, D dims | every 1D projection | McKay et al. 1979 |
-//! | `uncorrelated` | [`UncorrelatedJitter`] | fixed `s^2`, D dims | jittered pairs | Cook 1986 |
-//! | `oa-bose`, `oa-bush` | [`Bose`], [`Bush`] | fixed `q^t`, D dims | see [`oa`] | Jarosz et al. 2019 |
+//! Which sampler is where: the table of the crate docs ([Samplers](crate#samplers)), generated
+//! from the registry ([`crate::registry::table`]), where each sampler's file declares its name,
+//! kind, promises, rates and paper.
 //!
 //! Fixed-count samplers share one piece of machinery, [`Blocks`]: a cursor walks through blocks
 //! of `N` samples and gives each block its own key, `stream_seed(seed, block)`; every point is a

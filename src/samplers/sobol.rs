@@ -287,8 +287,17 @@ impl Sobol {
     }
 
     /// Point `index` (2D) as 32-bit fixed point, without changing the stream position.
-    pub fn sample_fixed(&self, index: u32) -> [u32; 2] {
+    pub fn sample_u32(&self, index: u32) -> [u32; 2] {
         self.scramble.sample2_u32(index, 0)
+    }
+
+    /// The old name of [`sample_u32`](Self::sample_u32).
+    #[deprecated(
+        since = "0.1.0",
+        note = "renamed `sample_u32` (the `_u32` suffix for 32-bit fixed point)"
+    )]
+    pub fn sample_fixed(&self, index: u32) -> [u32; 2] {
+        self.sample_u32(index)
     }
 
     /// Point `index` (2D), without changing the stream position.

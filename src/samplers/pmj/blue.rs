@@ -201,7 +201,7 @@ impl Pmj02Bn {
     }
 
     /// Sample `index` as 32-bit fixed point.
-    pub fn sample_fixed(&self, index: u32) -> [u32; 2] {
+    pub fn sample_u32(&self, index: u32) -> [u32; 2] {
         let x = sobol::sobol_u32(index, 0).unwrap_or(0);
         let y = sobol::sobol_u32(index, 1).unwrap_or(0);
         [self.flags.scramble(0, x), self.flags.scramble(1, y)]
@@ -209,8 +209,17 @@ impl Pmj02Bn {
 
     /// Sample `index`.
     pub fn sample(&self, index: u32) -> Point2 {
-        let p = self.sample_fixed(index);
+        let p = self.sample_u32(index);
         Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]))
+    }
+
+    /// The old name of [`sample_u32`](Self::sample_u32).
+    #[deprecated(
+        since = "0.1.0",
+        note = "renamed `sample_u32` (the `_u32` suffix for 32-bit fixed point)"
+    )]
+    pub fn sample_fixed(&self, index: u32) -> [u32; 2] {
+        self.sample_u32(index)
     }
 }
 
@@ -464,8 +473,8 @@ mod tests {
         let a = Pmj02Bn::new(Seed(1), 256, 0).unwrap();
         let b = Pmj02Bn::new(Seed(1), 256, 2).unwrap();
         assert_ne!(
-            (0..256).map(|i| a.sample_fixed(i)).collect::<Vec<_>>(),
-            (0..256).map(|i| b.sample_fixed(i)).collect::<Vec<_>>()
+            (0..256).map(|i| a.sample_u32(i)).collect::<Vec<_>>(),
+            (0..256).map(|i| b.sample_u32(i)).collect::<Vec<_>>()
         );
         assert!(Pmj02Bn::new(Seed(1), 256, MAX_SWEEPS + 1).is_err());
     }

@@ -250,8 +250,9 @@ impl Pmj {
         Ok(())
     }
 
-    /// Sample `index` (`< 2^32`) as 32-bit fixed point, generating the sequence up to it.
-    pub fn sample_fixed(&mut self, index: u32) -> [u32; 2] {
+    /// Sample `index` (`< 2^32`) as 32-bit fixed point, generating the sequence up to it (hence
+    /// `&mut` and the name: `sample*` methods take `&self`).
+    pub fn generate_u32(&mut self, index: u32) -> [u32; 2] {
         while self.points.len() <= index as usize {
             self.construction.extend(&mut self.points);
         }
@@ -259,9 +260,27 @@ impl Pmj {
     }
 
     /// Sample `index` (`< 2^32`), generating the sequence up to it.
-    pub fn sample(&mut self, index: u32) -> Point2 {
-        let p = self.sample_fixed(index);
+    pub fn generate(&mut self, index: u32) -> Point2 {
+        let p = self.generate_u32(index);
         Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]))
+    }
+
+    /// The old name of [`generate_u32`](Self::generate_u32).
+    #[deprecated(
+        since = "0.1.0",
+        note = "renamed `generate_u32` (it generates, so it takes `&mut self`)"
+    )]
+    pub fn sample_fixed(&mut self, index: u32) -> [u32; 2] {
+        self.generate_u32(index)
+    }
+
+    /// The old name of [`generate`](Self::generate).
+    #[deprecated(
+        since = "0.1.0",
+        note = "renamed `generate` (it generates, so it takes `&mut self`)"
+    )]
+    pub fn sample(&mut self, index: u32) -> Point2 {
+        self.generate(index)
     }
 
     /// The samples generated so far, as 32-bit fixed point.
@@ -304,7 +323,7 @@ impl Sampler for Pmj {
             self.construction = Construction::new(self.variant, key);
             self.points = Vec::new();
         }
-        self.sample(i as u32)
+        self.generate(i as u32)
     }
 
     fn strata(&self, n: u64) -> Vec<StrataGrid> {

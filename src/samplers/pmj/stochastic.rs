@@ -8,7 +8,7 @@
 //! flips digit `k + 1`, and draws all later digits at random. Every prefix and every aligned
 //! block of `2^m` samples is then a (0,m,2)-net, distributed as an Owen-scrambled digital
 //! (0,2)-sequence, at O(1) per sample. Any single sample can also be computed on its own in
-//! O(log i) by following the partner chain ([`Pmj02Stochastic::point_at`]).
+//! O(log i) by following the partner chain ([`Pmj02Stochastic::point`]).
 //!
 //! # Where the XOR values come from
 //!
@@ -43,7 +43,7 @@ use crate::digital::PMJ02_XORS as XORS;
 /// let mut s = Pmj02Stochastic::new(Seed(3));
 /// let a = s.next_sample();
 /// // any sample can also be computed on its own
-/// assert_eq!(Pmj02Stochastic::point_at(Seed(3), 0), a);
+/// assert_eq!(Pmj02Stochastic::point(0, Seed(3)), a);
 /// ```
 #[derive(Clone, Debug)]
 pub struct Pmj02Stochastic {
@@ -123,8 +123,9 @@ impl Pmj02Stochastic {
         }
     }
 
-    /// Sample `index` as 32-bit fixed point, generating the sequence up to it.
-    pub fn sample_fixed(&mut self, index: u32) -> [u32; 2] {
+    /// Sample `index` as 32-bit fixed point, generating the sequence up to it (hence `&mut`
+    /// and the name: `sample*` methods take `&self`).
+    pub fn generate_u32(&mut self, index: u32) -> [u32; 2] {
         while self.points.len() <= index as usize {
             self.extend();
         }
@@ -132,9 +133,27 @@ impl Pmj02Stochastic {
     }
 
     /// Sample `index`, generating the sequence up to it.
-    pub fn sample(&mut self, index: u32) -> Point2 {
-        let p = self.sample_fixed(index);
+    pub fn generate(&mut self, index: u32) -> Point2 {
+        let p = self.generate_u32(index);
         Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]))
+    }
+
+    /// The old name of [`generate_u32`](Self::generate_u32).
+    #[deprecated(
+        since = "0.1.0",
+        note = "renamed `generate_u32` (it generates, so it takes `&mut self`)"
+    )]
+    pub fn sample_fixed(&mut self, index: u32) -> [u32; 2] {
+        self.generate_u32(index)
+    }
+
+    /// The old name of [`generate`](Self::generate).
+    #[deprecated(
+        since = "0.1.0",
+        note = "renamed `generate` (it generates, so it takes `&mut self`)"
+    )]
+    pub fn sample(&mut self, index: u32) -> Point2 {
+        self.generate(index)
     }
 
     /// The samples generated so far, as 32-bit fixed point.
@@ -144,13 +163,26 @@ impl Pmj02Stochastic {
 
     /// Sample `index` of the sequence seeded by `seed`, computed without storing the sequence:
     /// O(log index) by walking the partner chain. Bit-identical to the stored sequence.
-    pub fn point_at(seed: Seed, index: u32) -> Point2 {
-        let p = Self::point_at_fixed(seed, index);
+    /// (The seed last, as in every stateless function of the crate.)
+    pub fn point(index: u32, seed: Seed) -> Point2 {
+        let p = Self::point_u32(index, seed);
         Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]))
     }
 
-    /// [`point_at`](Pmj02Stochastic::point_at) as 32-bit fixed point.
+    /// The old form of [`point`](Self::point), the seed first.
+    #[deprecated(since = "0.1.0", note = "use `point(index, seed)`: the seed last")]
+    pub fn point_at(seed: Seed, index: u32) -> Point2 {
+        Self::point(index, seed)
+    }
+
+    /// The old form of [`point_u32`](Self::point_u32), the seed first.
+    #[deprecated(since = "0.1.0", note = "use `point_u32(index, seed)`: the seed last")]
     pub fn point_at_fixed(seed: Seed, index: u32) -> [u32; 2] {
+        Self::point_u32(index, seed)
+    }
+
+    /// [`point`](Pmj02Stochastic::point) as 32-bit fixed point.
+    pub fn point_u32(index: u32, seed: Seed) -> [u32; 2] {
         let key = stream_seed(seed.0, 0);
         [
             Self::coordinate_at(key, index, 0),
@@ -236,7 +268,7 @@ mod tests {
             s.reserve(4096);
             for i in (0..4096u32).chain([4095]) {
                 assert_eq!(
-                    Pmj02Stochastic::point_at_fixed(Seed(seed), i),
+                    Pmj02Stochastic::point_u32(i, Seed(seed)),
                     s.generated()[i as usize],
                     "seed {seed} index {i}"
                 );
