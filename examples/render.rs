@@ -31,7 +31,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use strata::analysis::study;
 use strata::io::{self, Canvas, LinePlot, Marker, Rgb, Series};
-use strata::pixel::{Padding, PixelSampler, Sequence, warp};
+use strata::pixel::{DimensionLayout, Padding, PixelSampler, Sequence, warp};
 use strata::spectrum::{self, ErrorImage};
 
 const USAGE: &str = "render [--samplers a,b,..|all] [--spp N[,N,..]] [--size WxH] \
@@ -54,8 +54,9 @@ Options:
                          count keeps its image until the pictures are drawn, about 1.2 GB at
                          1024x1024 with four counts)
   --scene NAME           cornell (default: a Cornell box, up to 8 bounces, two lights, a
-                         discrete light and lobe choice, Russian roulette, thin lens) or spheres
-                         (direct lighting, seven dimensions)
+                         discrete light and lobe choice, Russian roulette, thin lens), spheres
+                         (direct lighting, seven dimensions) or cornell-direct (the Cornell box
+                         in direct lighting: the first diffuse hit's next-event estimate)
   --padding nested|uniform  how two draws' samples meet (strata::Padding; default nested:
                          every power-of-two prefix a net; uniform: each block of spp samples
                          reordered per draw by a sharply 2-transitive map)
@@ -66,20 +67,28 @@ Options:
                          64): rmse and rel_rmse are over all of them (the root of the mean
                          squared error), ms is the mean time; the pictures show seed S
   --out DIR              output directory (default out/render)
+  --interactions         at the smallest count, also split the error (emitters masked) into
+                         its one-draw part (each draw's main effect, the other draws
+                         integrated out by 64 Sobol' points) and the interaction part (the
+                         rest), and print their RMSE, blurred RMSE and low-band share
+                         (direct-lighting scenes only: spheres, cornell-direct)
   --markdown FILE        also write the tables into FILE, as its section
                          'render-SCENE-COUNTS' (e.g. render-cornell-4,16,64,256)
   -h, --help             this text
 
-Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband: one
-row per sampler and count; rmse over all pixels and channels of linear radiance, rel_rmse of
-|I - R| / (R + 0.02) on luminance, ms the render time on all cores; the last three describe the
+Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband,
+masked_rmse,masked_blur1_rmse,masked_blur2_rmse,masked_lowband: one row per sampler and count;
+rmse over all pixels and channels of linear radiance, rel_rmse of |I - R| / (R + 0.02) on
+luminance, ms the render time on all cores; blur1_rmse, blur2_rmse and lowband describe the
 signed luminance error image: its RMSE after a Gaussian blur of sigma 1 and 2 pixels, and the
 share of its power (mean error excluded) below 1/8 cycle per pixel, about 0.05 for white
-error), NAME.png and NAME-error.png (the largest count; the error map is the per-pixel
+error; the masked_ columns are rmse and those three without the pixels that see an emitter,
+directly or in a mirror, whose error is the emitter's edge), emitter-mask.png (the reference with
+those pixels in magenta), NAME.png and NAME-error.png (the largest count; the error map is the per-pixel
 relative error, colour-mapped from 0 to 0.5), NAME-SPP.png and NAME-SPP-error-spectrum.png
 (the signed error image beside its periodogram) for each count, reference.png, compare.png
 (one row per sampler), blue-noise.png (every sampler's error image and periodogram at the
-smallest count), convergence.png (RMSE against spp with the fitted slope per sampler) and
+smallest count) and blue-noise-masked.png (the same without the pixels that see an emitter), convergence.png (RMSE against spp with the fitted slope per sampler) and
 pareto.png (RMSE against render time, the sequences on the Pareto front bold); prints the
 tables, the slopes and the renderer's trade: per sequence the render time to reach the RMSE
 that the median sequence reaches at each count but the smallest (power laws of RMSE and
@@ -90,6 +99,20 @@ time against spp fitted over the counts; '*' where extrapolated).";
 enum SceneKind {
     Cornell,
     Spheres,
+    /// The Cornell box in direct lighting: the first diffuse hit's next-event estimate (and the
+    /// lights seen directly or in a mirror), no further bounce.
+    CornellDirect,
+}
+
+impl SceneKind {
+    /// The scene's name on the command line and in section names.
+    fn name(self) -> &'static str {
+        match self {
+            SceneKind::Cornell => "cornell",
+            SceneKind::Spheres => "spheres",
+            SceneKind::CornellDirect => "cornell-direct",
+        }
+    }
 }
 
 struct Args {
@@ -103,6 +126,8 @@ struct Args {
     seeds: u32,
     out: PathBuf,
     markdown: Option<PathBuf>,
+    /// Split the error at the smallest count into one-draw and interaction parts.
+    interactions: bool,
 }
 
 fn parse() -> Result<Option<Args>, CliError> {
@@ -118,6 +143,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         seeds: 4,
         out: PathBuf::from("out/render"),
         markdown: None,
+        interactions: false,
     };
     let mut p = lexopt::Parser::from_env();
     while let Some(arg) = p.next()? {
@@ -158,9 +184,10 @@ fn parse() -> Result<Option<Args>, CliError> {
                 a.scene = match string_value("--scene", p.value()?)?.as_str() {
                     "cornell" => SceneKind::Cornell,
                     "spheres" => SceneKind::Spheres,
+                    "cornell-direct" => SceneKind::CornellDirect,
                     other => {
                         return Err(cli_error(format!(
-                            "--scene {other:?} is not a scene; allowed: cornell, spheres"
+                            "--scene {other:?} is not a scene; allowed: cornell, spheres, cornell-direct"
                         )));
                     }
                 }
@@ -199,6 +226,7 @@ fn parse() -> Result<Option<Args>, CliError> {
             }
             Long("out") => a.out = p.value()?.into(),
             Long("markdown") => a.markdown = Some(p.value()?.into()),
+            Long("interactions") => a.interactions = true,
             Short('h') | Long("help") => {
                 outln!("{HELP}")?;
                 return Ok(None);
@@ -215,6 +243,12 @@ fn parse() -> Result<Option<Args>, CliError> {
                  measured against a noisier image; allowed: {largest} to 65536"
         )));
     }
+    if a.interactions && a.scene == SceneKind::Cornell {
+        return Err(cli_error(
+            "--interactions splits the error of a direct-lighting render; allowed with --scene \
+             spheres or cornell-direct (every bounce has too many draws to integrate each out)",
+        ));
+    }
     common::check_output_dir(&a.out)?;
     if let Some(m) = &a.markdown {
         common::check_markdown(m, &markdown_section(&a))?;
@@ -224,10 +258,7 @@ fn parse() -> Result<Option<Args>, CliError> {
 
 /// The name of the `--markdown` section a run writes: `render-SCENE-COUNTS`.
 fn markdown_section(args: &Args) -> String {
-    let scene = match args.scene {
-        SceneKind::Cornell => "cornell",
-        SceneKind::Spheres => "spheres",
-    };
+    let scene = args.scene.name();
     let counts: Vec<String> = args.spp.iter().map(|n| n.to_string()).collect();
     format!("render-{scene}-{}", counts.join(","))
 }
@@ -329,6 +360,8 @@ struct Scene {
     lights: Vec<(usize, f32)>,
     camera: Camera,
     kind: SceneKind,
+    /// Direct lighting only: the path ends after the first diffuse hit's next-event estimate.
+    direct: bool,
 }
 
 struct Camera {
@@ -498,6 +531,7 @@ fn cornell() -> Scene {
             0.02,
         ),
         kind: SceneKind::Cornell,
+        direct: false,
     }
 }
 
@@ -555,6 +589,7 @@ fn spheres() -> Scene {
             0.12,
         ),
         kind: SceneKind::Spheres,
+        direct: true,
     }
 }
 
@@ -613,7 +648,135 @@ fn next_event(scene: &Scene, p: Vec3, n: Vec3, time: f32, choice: f32, on: Vec2)
 }
 
 /// Radiance along one camera sample.
-fn radiance(px: u32, py: u32, size: (u32, u32), s: &mut PixelSampler, scene: &Scene) -> Vec3 {
+/// What the path tracer asks of its sampler: the adapter's draw calls ([`PixelSampler`], or
+/// [`Mixed`] for the interaction split).
+trait Draws {
+    fn get_pixel_2d(&mut self) -> Vec2;
+    fn get_2d(&mut self) -> Vec2;
+    fn get_1d(&mut self) -> f32;
+    fn start_bounce(&mut self, k: u32);
+    fn dimension(&self) -> u32;
+    fn set_dimension(&mut self, dim: u32);
+}
+
+impl Draws for PixelSampler {
+    fn get_pixel_2d(&mut self) -> Vec2 {
+        PixelSampler::get_pixel_2d(self)
+    }
+    fn get_2d(&mut self) -> Vec2 {
+        PixelSampler::get_2d(self)
+    }
+    fn get_1d(&mut self) -> f32 {
+        PixelSampler::get_1d(self)
+    }
+    fn start_bounce(&mut self, k: u32) {
+        PixelSampler::start_bounce(self, k)
+    }
+    fn dimension(&self) -> u32 {
+        PixelSampler::dimension(self)
+    }
+    fn set_dimension(&mut self, dim: u32) {
+        PixelSampler::set_dimension(self, dim)
+    }
+}
+
+/// A path's draws with one draw (the one starting at dimension `keep`) from the sampler under
+/// test, at sample `index`, and every other draw from an independent Owen-scrambled Sobol'
+/// sampler at sample `inner`: averaged over a block of `inner` samples, the path's radiance
+/// with that draw fixed and the others integrated out (the draw's main effect).
+struct Mixed<'a> {
+    tested: &'a PixelSampler,
+    others: &'a PixelSampler,
+    pixel: [u32; 2],
+    index: u64,
+    inner: u64,
+    keep: u32,
+    dim: u32,
+}
+
+impl Draws for Mixed<'_> {
+    fn get_pixel_2d(&mut self) -> Vec2 {
+        self.get_2d()
+    }
+    fn get_2d(&mut self) -> Vec2 {
+        let d = self.dim;
+        self.dim += 2;
+        if d == self.keep {
+            self.tested.sample_2d(self.pixel, self.index, d)
+        } else {
+            self.others.sample_2d(self.pixel, self.inner, d)
+        }
+    }
+    fn get_1d(&mut self) -> f32 {
+        let d = self.dim;
+        self.dim += 1;
+        if d == self.keep {
+            self.tested.sample_1d(self.pixel, self.index, d)
+        } else {
+            self.others.sample_1d(self.pixel, self.inner, d)
+        }
+    }
+    fn start_bounce(&mut self, k: u32) {
+        self.dim = DimensionLayout::default().bounce_start(k);
+    }
+    fn dimension(&self) -> u32 {
+        self.dim
+    }
+    fn set_dimension(&mut self, dim: u32) {
+        self.dim = dim;
+    }
+}
+
+/// The inner samples per draw and pixel sample of the interaction split (a power of two: each
+/// block a net of the inner Sobol' sampler).
+const INNER: u64 = 64;
+
+/// The one-draw part of a render's luminance error (row-major): per pixel, the mean over its
+/// samples of the sum over the draws of the camera and the first bounce (`draws`: their first
+/// dimensions) of each draw's main effect, `E[L | that draw] - I`, with the expectation over the
+/// other draws estimated by [`INNER`] Sobol' points and `I` the reference. The rest of the
+/// error (the render's minus this) is the draws' interactions (and, for pixels whose camera ray
+/// meets the mirror, the later bounces' draws).
+fn one_draw_errors(
+    scene: &Scene,
+    tested: &PixelSampler,
+    spp: u32,
+    size: (u32, u32),
+    reference: &[Vec3],
+    draws: &[u32],
+) -> Vec<f64> {
+    let others = PixelSampler::new(Sequence::sobol(), 1, strata::Seed(0x1a7e_5eed))
+        .expect("sobol takes any count");
+    (0..size.0 * size.1)
+        .into_par_iter()
+        .map(|p| {
+            let pixel = [p % size.0, p / size.0];
+            let truth = luminance(reference[p as usize]) as f64;
+            let mut sum = 0.0;
+            for i in 0..spp as u64 {
+                for &keep in draws {
+                    let mut mean = 0.0;
+                    for m in 0..INNER {
+                        let mut s = Mixed {
+                            tested,
+                            others: &others,
+                            pixel,
+                            index: i,
+                            inner: i * INNER + m,
+                            keep,
+                            dim: 0,
+                        };
+                        mean += luminance(radiance(pixel[0], pixel[1], size, &mut s, scene)) as f64;
+                    }
+                    sum += mean / INNER as f64 - truth;
+                }
+            }
+            sum / spp as f64
+        })
+        .collect()
+}
+
+fn radiance<S: Draws>(px: u32, py: u32, size: (u32, u32), s: &mut S, scene: &Scene) -> Vec3 {
     let film = s.get_pixel_2d();
     let lens = s.get_2d();
     let time = if scene.kind == SceneKind::Spheres {
@@ -652,11 +815,11 @@ fn radiance(px: u32, py: u32, size: (u32, u32), s: &mut PixelSampler, scene: &Sc
         };
         s.start_bounce(bounce);
         let base = s.dimension();
-        let draw_1d = |s: &mut PixelSampler, k: u32| {
+        let draw_1d = |s: &mut S, k: u32| {
             s.set_dimension(base + k);
             s.get_1d()
         };
-        let draw_2d = |s: &mut PixelSampler, k: u32| {
+        let draw_2d = |s: &mut S, k: u32| {
             s.set_dimension(base + k);
             s.get_2d()
         };
@@ -672,7 +835,7 @@ fn radiance(px: u32, py: u32, size: (u32, u32), s: &mut PixelSampler, scene: &Sc
             let choice = draw_1d(s, LIGHT_CHOICE);
             let on = draw_2d(s, LIGHT_POINT);
             sum += throughput * albedo * next_event(scene, hit.point, n, time, choice, on);
-            if scene.kind == SceneKind::Spheres {
+            if scene.direct {
                 break; // direct lighting only
             }
             let local = warp::cosine_hemisphere(draw_2d(s, DIRECTION));
@@ -731,6 +894,49 @@ fn render(
         })
         .collect();
     Ok(rows.concat())
+}
+
+/// Which pixels do not see an emitter (`true`: kept in the masked figures). A pixel sees one
+/// when any of 144 camera rays through it (4 x 4 film positions, 3 x 3 lens positions, three
+/// times of the shutter) meets a light's emitting side, directly or along a chain of mirror
+/// lobes: its error is then the emitter's edge and the light-or-mirror choice, not the
+/// sampler's distribution of the lighting integral.
+fn emitter_mask(scene: &Scene, size: (u32, u32)) -> Vec<bool> {
+    let sees_emitter = |px: u32, py: u32| {
+        (0..144u32).any(|k| {
+            let film = Vec2::new((k % 4) as f32 + 0.5, (k / 4 % 4) as f32 + 0.5) / 4.0;
+            let lens = Vec2::new((k / 16 % 3) as f32 + 0.5, (k / 48) as f32 + 0.5) / 3.0;
+            let time = if scene.kind == SceneKind::Spheres {
+                ((k % 3) as f32 + 0.5) / 3.0
+            } else {
+                0.0
+            };
+            let (mut origin, mut dir) = scene.camera.ray(px, py, size, film, lens);
+            for _ in 0..MAX_BOUNCES {
+                let Some(hit) = scene.intersect(origin, dir, time) else {
+                    return false;
+                };
+                match hit.material {
+                    Material::Light { .. } => return hit.normal.dot(dir) < 0.0,
+                    Material::Surface { mirror, .. } if mirror > 0.0 => {
+                        let n = if hit.normal.dot(dir) < 0.0 {
+                            hit.normal
+                        } else {
+                            -hit.normal
+                        };
+                        dir -= 2.0 * dir.dot(n) * n;
+                        origin = hit.point + n * 1e-4;
+                    }
+                    Material::Surface { .. } => return false,
+                }
+            }
+            false
+        })
+    };
+    (0..size.0 * size.1)
+        .into_par_iter()
+        .map(|i| !sees_emitter(i % size.0, i / size.0))
+        .collect()
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -833,9 +1039,28 @@ struct Row {
     blur1: f64,
     blur2: f64,
     lowband: f64,
+    /// The same figures without the pixels that see an emitter ([`emitter_mask`]).
+    masked: Masked,
     /// The error image's measures for the first seed (for the pictures), and its pixels.
     errors: ErrorImage,
     error_pixels: Vec<f64>,
+    /// The same without the pixels that see an emitter (their errors at zero), when any pixel
+    /// is kept.
+    masked_errors: Option<(ErrorImage, Vec<f64>)>,
+    /// With `--interactions`, at the smallest count: the one-draw and the interaction parts of
+    /// the error, without the pixels that see an emitter, over the seeds.
+    split: Option<[Masked; 2]>,
+}
+
+/// A row's figures over the pixels that do not see an emitter: the RMSE of linear radiance,
+/// the blurred RMSEs and the low-band share of the luminance error image
+/// ([`spectrum::error_image_masked`]), over the seeds as the unmasked ones.
+#[derive(Default)]
+struct Masked {
+    rmse: f64,
+    blur1: f64,
+    blur2: f64,
+    lowband: f64,
 }
 
 /// The signed luminance error of every pixel.
@@ -918,6 +1143,10 @@ fn main() -> ExitCode {
         let scene = match args.scene {
             SceneKind::Cornell => cornell(),
             SceneKind::Spheres => spheres(),
+            SceneKind::CornellDirect => Scene {
+                direct: true,
+                ..cornell()
+            },
         };
         let size = args.size;
         let largest = *args.spp.last().expect("at least one count");
@@ -940,12 +1169,36 @@ fn main() -> ExitCode {
         )?;
         eprintln!("reference: {:.1} s", start.elapsed().as_secs_f64());
         io::write_png(args.out.join("reference.png"), &to_canvas(&reference, size))?;
+        let keep = emitter_mask(&scene, size);
+        let kept = keep.iter().filter(|&&k| k).count();
+        let mut mask_canvas = to_canvas(&reference, size);
+        for (i, _) in keep.iter().enumerate().filter(|(_, k)| !**k) {
+            let (x, y) = ((i as u32 % size.0) as i64, (i as u32 / size.0) as i64);
+            mask_canvas.set(x, y, Rgb::new(255, 0, 255));
+        }
+        io::write_png(args.out.join("emitter-mask.png"), &mask_canvas)?;
+        // the draws the interaction split integrates out one by one: the film, the lens (and
+        // the shutter time of the spheres), the first bounce's lobe, light choice and light point
+        let b0 = DimensionLayout::default().bounce_start(0);
+        let mut draws = vec![0, 2];
+        if args.scene == SceneKind::Spheres {
+            draws.push(4);
+        }
+        draws.extend([b0 + LOBE, b0 + LIGHT_CHOICE, b0 + LIGHT_POINT]);
+        eprintln!(
+            "{} of {} pixels see an emitter (left out of the masked figures)",
+            keep.len() - kept,
+            keep.len()
+        );
 
         let mut rows = Vec::new();
         for (name, seq) in &sequences {
             for &spp in &args.spp {
                 let (mut mse, mut rel, mut ms, mut first) = (0.0f64, 0.0f64, 0.0f64, None);
                 let (mut blur1, mut blur2, mut lowband, mut errors) = (0.0, 0.0, 0.0, None);
+                let (mut masked, mut masked_errors) = (Masked::default(), None);
+                let mut split = (args.interactions && spp == args.spp[0] && kept > 0)
+                    .then(<[Masked; 2]>::default);
                 for k in 0..args.seeds as u64 {
                     let start = Instant::now();
                     let image = render(
@@ -971,15 +1224,52 @@ fn main() -> ExitCode {
                         .map(|(a, r)| (relative_error(*a, *r) as f64).powi(2))
                         .sum::<f64>()
                         / n;
-                    let e = spectrum::error_image(
-                        &luminance_errors(&image, &reference),
-                        size.0,
-                        size.1,
-                    )?;
+                    let lum = luminance_errors(&image, &reference);
+                    let e = spectrum::error_image(&lum, size.0, size.1)?;
                     let seeds = args.seeds as f64;
                     blur1 += e.blur1_rmse.powi(2) / seeds;
                     blur2 += e.blur2_rmse.powi(2) / seeds;
                     lowband += e.lowband / seeds;
+                    if kept > 0 {
+                        let m = spectrum::error_image_masked(&lum, &keep, size.0, size.1)?;
+                        masked.rmse += image
+                            .iter()
+                            .zip(&reference)
+                            .zip(&keep)
+                            .filter(|(_, k)| **k)
+                            .map(|((a, r), _)| (*a - *r).length_squared() as f64 / 3.0)
+                            .sum::<f64>()
+                            / (kept as f64 * seeds);
+                        masked.blur1 += m.blur1_rmse.powi(2) / seeds;
+                        masked.blur2 += m.blur2_rmse.powi(2) / seeds;
+                        masked.lowband += m.lowband / seeds;
+                        if let Some(parts) = &mut split {
+                            let tested = PixelSampler::new(
+                                seq.clone(),
+                                spp,
+                                strata::Seed(args.seed.wrapping_add(k)),
+                            )?
+                            .with_padding(args.padding);
+                            let one =
+                                one_draw_errors(&scene, &tested, spp, size, &reference, &draws);
+                            let rest: Vec<f64> = lum.iter().zip(&one).map(|(e, o)| e - o).collect();
+                            for (part, errors) in parts.iter_mut().zip([&one, &rest]) {
+                                let m =
+                                    spectrum::error_image_masked(errors, &keep, size.0, size.1)?;
+                                part.rmse += m.rmse.powi(2) / seeds;
+                                part.blur2 += m.blur2_rmse.powi(2) / seeds;
+                                part.lowband += m.lowband / seeds;
+                            }
+                        }
+                        if masked_errors.is_none() {
+                            let dropped = lum
+                                .iter()
+                                .zip(&keep)
+                                .map(|(e, k)| if *k { *e } else { 0.0 })
+                                .collect();
+                            masked_errors = Some((m, dropped));
+                        }
+                    }
                     errors.get_or_insert(e);
                     first.get_or_insert(image);
                 }
@@ -1016,40 +1306,73 @@ fn main() -> ExitCode {
                     blur1: blur1.sqrt(),
                     blur2: blur2.sqrt(),
                     lowband,
+                    masked: Masked {
+                        rmse: masked.rmse.sqrt(),
+                        blur1: masked.blur1.sqrt(),
+                        blur2: masked.blur2.sqrt(),
+                        lowband: masked.lowband,
+                    },
                     errors,
                     error_pixels: e,
+                    masked_errors,
+                    split: split.map(|parts| {
+                        parts.map(|p| Masked {
+                            rmse: p.rmse.sqrt(),
+                            blur1: 0.0,
+                            blur2: p.blur2.sqrt(),
+                            lowband: p.lowband,
+                        })
+                    }),
                 });
             }
         }
 
         write_compare(&args, &rows, &reference, ref_spp)?;
 
-        let mut csv = String::from("sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband\n");
+        let mut csv = String::from(
+            "sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband,masked_rmse,\
+             masked_blur1_rmse,masked_blur2_rmse,masked_lowband\n",
+        );
         let mut full = String::from(
-            "| sampler | spp | rmse | rel_rmse | ms | blur1_rmse | blur2_rmse | lowband |\n|---|---|---|---|---|---|---|---|\n",
+            "| sampler | spp | rmse | rel_rmse | ms | blur1_rmse | blur2_rmse | lowband | masked: rmse | blur1_rmse | blur2_rmse | lowband |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
         );
         for r in &rows {
+            let m = &r.masked;
             csv.push_str(&format!(
-                "{},{},{},{},{},{},{},{}\n",
-                r.name, r.spp, r.rmse, r.rel_rmse, r.ms, r.blur1, r.blur2, r.lowband
+                "{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                r.name,
+                r.spp,
+                r.rmse,
+                r.rel_rmse,
+                r.ms,
+                r.blur1,
+                r.blur2,
+                r.lowband,
+                m.rmse,
+                m.blur1,
+                m.blur2,
+                m.lowband
             ));
             full.push_str(&format!(
-                "| {} | {} | {:.5} | {:.4} | {:.1} | {:.5} | {:.5} | {:.4} |\n",
-                r.name, r.spp, r.rmse, r.rel_rmse, r.ms, r.blur1, r.blur2, r.lowband
+                "| {} | {} | {:.5} | {:.4} | {:.1} | {:.5} | {:.5} | {:.4} | {:.5} | {:.5} | {:.5} | {:.4} |\n",
+                r.name, r.spp, r.rmse, r.rel_rmse, r.ms, r.blur1, r.blur2, r.lowband, m.rmse,
+                m.blur1, m.blur2, m.lowband
             ));
         }
         common::out(&full)?;
         io::write_text(args.out.join("render.csv"), &csv)?;
-        write_blue_noise(&args, &rows)?;
+        write_blue_noise(&args, &rows, false)?;
+        write_blue_noise(&args, &rows, true)?;
+        let split_table = interaction_table(&rows);
+        if let Some(t) = &split_table {
+            outln!("\n{t}")?;
+        }
 
         // RMSE against spp, with the fitted slope per sampler
         let mut plot = LinePlot::new(
             format!(
                 "RMSE against samples per pixel ({} scene)",
-                match args.scene {
-                    SceneKind::Cornell => "cornell",
-                    SceneKind::Spheres => "spheres",
-                }
+                args.scene.name()
             ),
             "samples per pixel",
             "RMSE against the reference",
@@ -1098,14 +1421,14 @@ fn main() -> ExitCode {
                      seeds; slope of log RMSE against log spp.\n\n{table}\nThe error image \
                      (signed luminance error): its RMSE after a Gaussian blur of sigma 1 and 2 \
                      pixels, and the share of its power below 1/8 cycle per pixel (white \
-                     error: about 0.05).\n\n{full}\n{trade}",
-                    match args.scene {
-                        SceneKind::Cornell => "cornell",
-                        SceneKind::Spheres => "spheres",
-                    },
+                     error: about 0.05); 'masked': the same without the {} pixels that see \
+                     an emitter, directly or in a mirror.\n\n{full}\n{trade}{}",
+                    args.scene.name(),
                     size.0,
                     size.1,
-                    args.seeds
+                    args.seeds,
+                    keep.len() - kept,
+                    split_table.map_or(String::new(), |t| format!("\n{t}"))
                 ),
             )?;
         }
@@ -1113,6 +1436,37 @@ fn main() -> ExitCode {
         eprintln!("wrote {} renders into {}", rows.len(), args.out.display());
         Ok(())
     })
+}
+
+/// With `--interactions`: the one-draw and the interaction parts of the error at the smallest
+/// count, emitters masked (Markdown), or `None`.
+fn interaction_table(rows: &[Row]) -> Option<String> {
+    let mut t = String::from(
+        "The error split at the smallest count, without the pixels that see an emitter: the \
+         one-draw part (per pixel, the sum over the camera's and the first bounce's draws of \
+         each draw's main effect, the other draws integrated out by 64 Owen-scrambled Sobol' \
+         points) and the interaction part (the rest); RMSE, RMSE after a blur of sigma 2, \
+         low-band share.\n\n| sampler | spp | one-draw rmse | blur2_rmse | lowband | \
+         interaction rmse | blur2_rmse | lowband |\n|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut any = false;
+    for r in rows {
+        if let Some([one, rest]) = &r.split {
+            any = true;
+            t.push_str(&format!(
+                "| {} | {} | {:.5} | {:.5} | {:.4} | {:.5} | {:.5} | {:.4} |\n",
+                r.name,
+                r.spp,
+                one.rmse,
+                one.blur2,
+                one.lowband,
+                rest.rmse,
+                rest.blur2,
+                rest.lowband
+            ));
+        }
+    }
+    any.then_some(t)
 }
 
 /// The renderer's trade: per sequence, the render time and the time to reach each target RMSE
@@ -1264,24 +1618,34 @@ fn write_trade(
     Ok(table)
 }
 
-/// blue-noise.png: per sampler (side by side), at the smallest count, the signed error image
-/// (one colour scale for all) above its periodogram: white error against blue.
-fn write_blue_noise(args: &Args, rows: &[Row]) -> Result<(), CliError> {
+/// blue-noise.png (or, `masked`, blue-noise-masked.png, without the pixels that see an emitter):
+/// per sampler (side by side), at the smallest count, the signed error image (one colour scale
+/// for all) above its periodogram: white error against blue.
+fn write_blue_noise(args: &Args, rows: &[Row], masked: bool) -> Result<(), CliError> {
     let smallest = args.spp[0];
-    let mine: Vec<&Row> = rows.iter().filter(|r| r.spp == smallest).collect();
+    // each row's error image and pixels: all of them, or without the emitters' pixels
+    let mine: Vec<(&Row, &ErrorImage, &[f64])> = rows
+        .iter()
+        .filter(|r| r.spp == smallest)
+        .filter_map(|r| match (masked, &r.masked_errors) {
+            (false, _) => Some((r, &r.errors, r.error_pixels.as_slice())),
+            (true, Some((e, p))) => Some((r, e, p.as_slice())),
+            (true, None) => None,
+        })
+        .collect();
     let Some(first) = mine.first() else {
         return Ok(());
     };
-    let (w, h) = (first.errors.width, first.errors.height);
+    let (w, h) = (first.1.width, first.1.height);
     let label_h = 34u32;
     let cell_w = w.max(150) + 12;
-    let scale = 4.0 * mine.iter().map(|r| r.errors.rmse).fold(1e-9, f64::max);
+    let scale = 4.0 * mine.iter().map(|r| r.1.rmse).fold(1e-9, f64::max);
     let mut c = Canvas::new(
         8 + cell_w * mine.len() as u32,
         label_h + 2 * h + 16,
         Rgb::WHITE,
     );
-    for (k, r) in mine.iter().enumerate() {
+    for (k, (r, errors, pixels)) in mine.iter().enumerate() {
         let x = 8 + cell_w * k as u32;
         io::label(
             &mut c,
@@ -1294,13 +1658,13 @@ fn write_blue_noise(args: &Args, rows: &[Row]) -> Result<(), CliError> {
             &mut c,
             &format!(
                 "low band {:.3}, blur2 {:.4}",
-                r.errors.lowband, r.errors.blur2_rmse
+                errors.lowband, errors.blur2_rmse
             ),
             x as i32,
             17,
             11,
         );
-        let both = error_image_canvas(&r.errors, &r.error_pixels, scale);
+        let both = error_image_canvas(errors, pixels, scale);
         // the canvas holds the image and the spectrum side by side: stack them
         let mut image = Canvas::new(w, h, Rgb::WHITE);
         image.paste(&both, 0, 0);
@@ -1309,7 +1673,12 @@ fn write_blue_noise(args: &Args, rows: &[Row]) -> Result<(), CliError> {
         c.paste(&image, x as i64, label_h as i64);
         c.paste(&spectrum, x as i64, (label_h + h + 8) as i64);
     }
-    io::write_png(args.out.join("blue-noise.png"), &c)?;
+    let name = if masked {
+        "blue-noise-masked.png"
+    } else {
+        "blue-noise.png"
+    };
+    io::write_png(args.out.join(name), &c)?;
     Ok(())
 }
 

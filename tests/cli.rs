@@ -320,7 +320,8 @@ fn render_sweeps_counts_and_refuses_bad_input() {
     let rows: Vec<&str> = csv.lines().collect();
     assert_eq!(
         rows[0],
-        "sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband"
+        "sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband,masked_rmse,\
+         masked_blur1_rmse,masked_blur2_rmse,masked_lowband"
     );
     // one row per sampler and count, counts in increasing order
     assert_eq!(rows.len(), 5, "{csv}");
@@ -332,6 +333,7 @@ fn render_sweeps_counts_and_refuses_bad_input() {
         "pmj02.png",
         "pmj02-error.png",
         "pmj02-1.png",
+        "emitter-mask.png",
     ] {
         assert!(dir.join(f).exists(), "{f}: {out}");
     }
@@ -339,13 +341,67 @@ fn render_sweeps_counts_and_refuses_bad_input() {
     for (args, says) in [
         (vec!["--spp", "4,x"], "not a whole number"),
         (vec!["--samplers", "jittered", "--spp", "8"], "square"),
-        (vec!["--scene", "teapot"], "cornell, spheres"),
+        (
+            vec!["--scene", "teapot"],
+            "cornell, spheres, cornell-direct",
+        ),
         (vec!["--samplers", "cmj"], "samplers with one"),
+        (vec!["--interactions"], "direct-lighting"),
     ] {
         let (code, _, err) = run_example("render", &args);
         assert_eq!(code, 2, "{args:?}");
         assert!(err.contains(says), "{args:?}: {err}");
     }
+}
+
+#[test]
+fn render_splits_the_error_into_one_draw_and_interaction_parts() {
+    let dir = std::env::temp_dir().join(format!("strata-render-split-{}", std::process::id()));
+    let (code, out, err) = run_example(
+        "render",
+        &[
+            "--scene",
+            "cornell-direct",
+            "--samplers",
+            "random,zjoint",
+            "--spp",
+            "1,2",
+            "--size",
+            "16x16",
+            "--reference-spp",
+            "64",
+            "--seeds",
+            "1",
+            "--interactions",
+            "--out",
+            dir.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    // one row per sampler at the smallest count, each part's figures finite
+    let table: Vec<&str> = out
+        .lines()
+        .skip_while(|l| !l.contains("one-draw rmse"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .collect();
+    assert_eq!(table.len(), 2, "{out}");
+    for (row, name) in table.iter().zip(["random", "zjoint"]) {
+        assert!(row.starts_with(&format!("| {name} | 1 |")), "{row}");
+        let cells: Vec<f64> = row
+            .split('|')
+            .skip(3)
+            .filter_map(|c| c.trim().parse().ok())
+            .collect();
+        assert_eq!(cells.len(), 6, "{row}");
+        assert!(cells.iter().all(|v| v.is_finite() && *v >= 0.0), "{row}");
+        // (both parts carry error at 1 spp)
+        assert!(cells[0] > 0.0 && cells[3] > 0.0, "{row}");
+    }
+    for f in ["emitter-mask.png", "blue-noise-masked.png"] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// `run_example` with raw stdout bytes.
