@@ -28,7 +28,6 @@ pub const GOLDEN_GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
 /// values are fixed forever, since every sampler's output depends on them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u64)]
-#[cfg_attr(not(feature = "std"), allow(dead_code))]
 pub(crate) enum Stream {
     /// Multi-jittered: the shuffles of the x sub-columns.
     MultiJitterX = 0x006d_6a58,
@@ -45,6 +44,7 @@ pub(crate) enum Stream {
     /// N-rooks: the row permutation.
     NRooksY = 0x6c61_7469_6e59,
     /// Orthogonal arrays: the sub-stratum permutations.
+    #[cfg(feature = "std")]
     OaSubstrata = 0x5eed,
     /// Sobol': the scramble of a seed.
     SobolScramble = 0x50b0,
@@ -64,7 +64,6 @@ impl Stream {
 
     /// A 32-bit key for this stream of `key` (for a [`Permutation`]).
     #[inline]
-    #[cfg_attr(not(feature = "std"), allow(dead_code))]
     pub(crate) const fn key32(self, key: u64) -> u32 {
         key32(key ^ self.id())
     }
@@ -127,7 +126,6 @@ pub const fn hash32(x: u32, key: u32) -> u32 {
 
 /// A 32-bit key derived from a 64-bit one (for [`permute`], whose key is 32 bits).
 #[inline]
-#[cfg_attr(not(feature = "std"), allow(dead_code))]
 pub(crate) const fn key32(key: u64) -> u32 {
     (mix64(key) >> 32) as u32
 }

@@ -98,10 +98,13 @@
 //!
 //! ## Features
 //!
-//! * `std` (default): the standard library, every sampler, [`registry`], [`conformance`],
-//!   [`analysis`]. Without it (`default-features = false`) the crate is `#![no_std]` (with
-//!   `alloc`), for embedded and WASM renderers: [`PixelSampler`] with every [`Sequence`], and
-//!   the stateless functions ([`samplers::sobol::owen_scrambled`],
+//! * `std` (default): the standard library, the other samplers (PMJ, blue noise, orthogonal
+//!   arrays), [`conformance`], [`analysis`]. Without it (`default-features = false`) the crate
+//!   is `#![no_std]` (with `alloc`), for embedded and WASM renderers: [`PixelSampler`] with
+//!   every [`Sequence`]; the classic samplers (`random`, `regular`, `jittered`, `nrooks`,
+//!   `multijittered`, `cmj`, `latin`, `uncorrelated`), Sobol', Halton, the lattices and
+//!   stochastic pmj02, with the [`registry`] of these; and the stateless functions
+//!   ([`samplers::sobol::owen_scrambled`],
 //!   [`samplers::Pmj02Stochastic::point`], [`samplers::halton::scrambled_radical_inverse`],
 //!   the lattice's [`samplers::lattice::GENERATOR`], [`scramble`], [`digital`], [`hash`],
 //!   [`float`]), none of which allocates; `alloc` holds the samplers' stored points. For a GPU
@@ -135,6 +138,7 @@ pub mod analysis;
 #[cfg(feature = "std")]
 pub mod conformance;
 pub mod digital;
+mod entry;
 mod error;
 pub mod float;
 #[cfg(feature = "std")]
@@ -151,7 +155,6 @@ pub mod pixel;
 pub mod pointsets;
 #[cfg(feature = "std")]
 pub mod power;
-#[cfg(feature = "std")]
 pub mod registry;
 mod sampler;
 pub mod samplers;

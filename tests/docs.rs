@@ -1,6 +1,8 @@
 //! The documents that state facts about the samplers agree with the registry, which each
 //! sampler's own file declares: the table in `docs/samplers.md` (included in the crate docs)
 //! and in the README. `STRATA_BLESS=1 cargo test --test docs` rewrites `docs/samplers.md`.
+//! And the sources keep the layering `CONTRIBUTING.md` describes: the entry types are a leaf
+//! below the samplers, the registry above them.
 
 use std::path::Path;
 
@@ -125,4 +127,150 @@ fn no_merge_conflict_markers_are_left_in_the_sources_or_the_docs() {
         }
     }
     assert!(files > 50, "only {files} files read");
+}
+
+/// The modules of the crate a source file names by `crate::` paths (outside comments): the
+/// first segment of each path (every name of a `crate::{a, b::c}` group), with a name the
+/// crate root re-exports (`crate::Seed`) taken to the module it comes from.
+fn crate_modules(
+    text: &str,
+    root_reexports: &[(String, String)],
+) -> std::collections::BTreeSet<String> {
+    let mut code = String::new();
+    let mut in_block = false;
+    for line in text.lines() {
+        let mut line = line;
+        if in_block {
+            let Some(end) = line.find("*/") else { continue };
+            line = &line[end + 2..];
+            in_block = false;
+        }
+        if let Some(start) = line.find("/*") {
+            in_block = !line[start..].contains("*/");
+            line = &line[..start];
+        }
+        code.push_str(line.split("//").next().unwrap_or(""));
+        code.push('\n');
+    }
+    let ident = |s: &str| -> String {
+        s.trim_start()
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect()
+    };
+    let mut found = std::collections::BTreeSet::new();
+    for (i, _) in code.match_indices("crate::") {
+        let rest = &code[i + "crate::".len()..];
+        let names: Vec<String> = match rest.strip_prefix('{') {
+            // a group: split at the top level of its braces
+            Some(group) => {
+                let (mut depth, mut parts, mut start) = (0, Vec::new(), 0);
+                for (k, c) in group.char_indices() {
+                    match c {
+                        '{' => depth += 1,
+                        '}' if depth == 0 => {
+                            parts.push(&group[start..k]);
+                            break;
+                        }
+                        '}' => depth -= 1,
+                        ',' if depth == 0 => {
+                            parts.push(&group[start..k]);
+                            start = k + 1;
+                        }
+                        _ => {}
+                    }
+                }
+                parts.into_iter().map(ident).collect()
+            }
+            None => vec![ident(rest)],
+        };
+        for name in names.into_iter().filter(|n| !n.is_empty()) {
+            let module = root_reexports
+                .iter()
+                .find(|(item, _)| *item == name)
+                .map_or(name, |(_, m)| m.clone());
+            found.insert(module);
+        }
+    }
+    found
+}
+
+#[test]
+fn the_entry_types_are_a_leaf_below_the_samplers_and_the_registry_is_above_them() {
+    // The import circle this breaks: the registry imports every sampler's ENTRY, and every
+    // sampler imported the entry types from the registry. Now the entry types (src/entry.rs)
+    // import no sampler and not the registry, neither directly nor through the modules they
+    // import, and no sampler imports the registry.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    // the crate root's re-exports of single items: `pub use module::{A, B};`
+    let lib = read("src/lib.rs");
+    let mut reexports = Vec::new();
+    for line in lib.lines().filter(|l| l.starts_with("pub use ")) {
+        let path = line["pub use ".len()..].trim_end_matches(';');
+        let Some((module, items)) = path.split_once("::") else {
+            continue;
+        };
+        for item in items.trim_matches(|c| c == '{' || c == '}').split(',') {
+            reexports.push((item.trim().to_string(), module.to_string()));
+        }
+    }
+    let file_of = |module: &str| -> Option<String> {
+        [format!("{module}.rs"), format!("{module}/mod.rs")]
+            .into_iter()
+            .find(|f| root.join(f).is_file())
+    };
+    // every module the leaf reaches through its imports (the crate's top-level modules)
+    let mut reached = std::collections::BTreeSet::new();
+    let mut todo = vec!["entry".to_string()];
+    while let Some(module) = todo.pop() {
+        if !reached.insert(module.clone()) {
+            continue;
+        }
+        let file = file_of(&module).unwrap_or_else(|| panic!("no file for crate::{module}"));
+        for next in crate_modules(&read(&format!("src/{file}")), &reexports) {
+            if file_of(&next).is_some() {
+                todo.push(next);
+            }
+        }
+    }
+    for above in ["samplers", "registry"] {
+        assert!(
+            !reached.contains(above),
+            "src/entry.rs reaches crate::{above} through its imports ({reached:?}): the entry \
+             types must stay a leaf below the samplers"
+        );
+    }
+    assert!(
+        reached.contains("error") && reached.contains("sampler"),
+        "{reached:?}"
+    );
+    // no sampler imports the registry (they name the entry types as crate::entry)
+    let mut stack = vec![root.join("samplers")];
+    let mut files = 0;
+    while let Some(p) = stack.pop() {
+        if p.is_dir() {
+            stack.extend(std::fs::read_dir(&p).unwrap().map(|e| e.unwrap().path()));
+            continue;
+        }
+        files += 1;
+        let text = std::fs::read_to_string(&p).unwrap();
+        let modules = crate_modules(&text, &reexports);
+        assert!(
+            !modules.contains("registry"),
+            "{} imports crate::registry: a sampler names its entry's types from crate::entry",
+            p.display()
+        );
+        assert!(
+            modules.contains("entry") || !text.contains("Entry {"),
+            "{}",
+            p.display()
+        );
+    }
+    assert!(files > 15, "only {files} sampler files read");
+    // and the registry does import the samplers and the entry types (the check sees imports)
+    let registry = crate_modules(&read("src/registry/mod.rs"), &reexports);
+    assert!(
+        registry.contains("samplers") && registry.contains("entry"),
+        "{registry:?}"
+    );
 }

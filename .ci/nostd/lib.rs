@@ -1,13 +1,14 @@
 //! The stateless core of strata in a `#![no_std]` library: Sobol' and Z-ordered Sobol' by
 //! (index, dimension, seed), stochastic pmj02 by index, Halton, hashing, Kensler's permutation
-//! and float conversion, exported so that the linker keeps them.
+//! and float conversion, and a classic sampler (jittered), exported so that the linker keeps
+//! them.
 
 #![no_std]
 
 use core::alloc::{GlobalAlloc, Layout};
 
-use strata::samplers::{Pmj02Stochastic, halton, sobol};
-use strata::{PixelSampler, Seed, Sequence, float, hash};
+use strata::samplers::{Jittered, Pmj02Stochastic, halton, sobol};
+use strata::{PixelSampler, Sampler, Seed, Sequence, float, hash};
 
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
@@ -63,4 +64,19 @@ pub extern "C" fn strata_halton(dim: u32, index: u64, seed: u64) -> f32 {
 pub extern "C" fn strata_hash(i: u32, len: u32, key: u64) -> f32 {
     let p = hash::permute(i % len.max(1), len.max(1), hash::hash32(i, key as u32));
     float::unit_f32_from_u32(strata::scramble::owen_scramble(p, hash::mix64(key) as u32))
+}
+
+/// Jittered sampling, a classic sampler (stateful; no allocation for a square `count`): the x
+/// of point `index` of the first set of `count`.
+#[unsafe(no_mangle)]
+pub extern "C" fn strata_jittered(count: u64, index: u32, seed: u64) -> f32 {
+    match Jittered::new(count, Seed(seed)) {
+        Ok(mut s) => {
+            for _ in 0..index {
+                s.next_sample();
+            }
+            s.next_sample().x
+        }
+        Err(_) => -1.0,
+    }
 }

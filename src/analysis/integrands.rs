@@ -8,6 +8,8 @@
 
 use std::f64::consts::PI;
 
+use crate::registry::Rates;
+
 /// A function on `[0,1)^D` with its exact integral.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
@@ -26,6 +28,21 @@ pub enum Integrand {
     Gaussian4d,
     /// `1` inside the 4D ball `|x - c| < 0.45` around the centre `c = (1/2, ..)`. Discontinuous.
     Ball4d,
+}
+
+// The published rate of a sampler on an integrand lives with the integrands: the entry types
+// (`crate::entry`, below the samplers) do not know the analysis tools.
+impl Rates {
+    /// The rate on `integrand`, if published.
+    pub fn on(&self, integrand: Integrand) -> Option<f64> {
+        if integrand.dimensions() != 2 {
+            self.higher
+        } else if integrand.smooth() {
+            self.smooth
+        } else {
+            self.discontinuous
+        }
+    }
 }
 
 /// `erf(1)`, to double precision.

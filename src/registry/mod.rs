@@ -1,5 +1,12 @@
 //! Samplers by name, for the example programs, the benches and users' own tools: the list of
-//! entries, each declared in its sampler's own file, and the lookup by name.
+//! entries, each declared in its sampler's own file, the lookup by name, and the building of an
+//! entry's sampler from [`Params`] (whose errors name the other entries that would do).
+//!
+//! The registry sits above the samplers: it imports each sampler's `ENTRY`, and no sampler
+//! imports it (the entry types are a leaf module of their own, re-exported here). Without the
+//! `std` feature the list holds the samplers that build without it: `random`, `regular`,
+//! `jittered`, `nrooks`, `multijittered`, `cmj`, `pmj02-stochastic`, `sobol`, `halton`,
+//! `lattice`, `fibonacci`, `latin` and `uncorrelated`.
 //!
 //! ```
 //! use strata::registry::{self, Params};
@@ -11,15 +18,17 @@
 //! assert!(err.to_string().contains("jittered")); // the error lists the known names
 //! ```
 
-mod entry;
-
-pub use entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Params, Rates};
+pub use crate::entry::{
+    BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Params, Rates,
+};
 
 use crate::error::{Error, Result};
+use crate::prelude::*;
 use crate::sampler::{Sampler, SamplerNd};
+#[cfg(feature = "std")]
+use crate::samplers::{best_candidate, bnot, ccvt, net02bn, oa, poisson};
 use crate::samplers::{
-    best_candidate, bnot, ccvt, halton, jittered, latin, lattice, multijitter, net02bn, oa, pmj,
-    poisson, random, regular, sobol, uncorrelated,
+    halton, jittered, latin, lattice, multijitter, pmj, random, regular, sobol, uncorrelated,
 };
 
 /// Every registered sampler, in a stable order (simplest first).
@@ -30,18 +39,28 @@ static ENTRIES: &[Entry] = &[
     latin::NROOKS,
     multijitter::MULTIJITTERED,
     multijitter::CMJ,
+    #[cfg(feature = "std")]
     pmj::PMJ,
+    #[cfg(feature = "std")]
     pmj::PMJBN,
+    #[cfg(feature = "std")]
     pmj::PMJ02,
+    #[cfg(feature = "std")]
     pmj::blue::ENTRY,
     pmj::stochastic::ENTRY,
+    #[cfg(feature = "std")]
     net02bn::ENTRY,
+    #[cfg(feature = "std")]
     poisson::POISSON,
+    #[cfg(feature = "std")]
     poisson::BRIDSON,
+    #[cfg(feature = "std")]
     best_candidate::ENTRY,
     #[cfg(feature = "lloyd")]
     crate::samplers::lloyd::ENTRY,
+    #[cfg(feature = "std")]
     ccvt::ENTRY,
+    #[cfg(feature = "std")]
     bnot::ENTRY,
     sobol::ENTRY,
     halton::ENTRY,
@@ -49,7 +68,9 @@ static ENTRIES: &[Entry] = &[
     lattice::FIBONACCI,
     latin::LATIN,
     uncorrelated::ENTRY,
+    #[cfg(feature = "std")]
     oa::BOSE,
+    #[cfg(feature = "std")]
     oa::BUSH,
 ];
 
@@ -89,6 +110,82 @@ pub fn build_nd(name: &str, params: &Params, dims: u32) -> Result<Box<dyn Sample
     find(name)?.build_nd(params, dims)
 }
 
+// Building from an entry lives here, above the samplers, because its errors list the other
+// entries (the samplers that take a parameter, or have D dimensions).
+impl Entry {
+    /// Builds the sampler, after checking that every optional parameter given is one it takes.
+    pub fn build(&self, params: &Params) -> Result<Box<dyn Sampler>> {
+        self.check_params(params)?;
+        (self.build)(params)
+    }
+
+    /// The checks common to both forms: every optional parameter given is one this sampler
+    /// takes, and the count is not 0.
+    fn check_params(&self, params: &Params) -> Result<()> {
+        for (p, value) in params.given() {
+            if !self.takes(p) {
+                let takers: Vec<&str> = entries()
+                    .iter()
+                    .filter(|e| e.takes(p))
+                    .map(|e| e.name)
+                    .collect();
+                let allowed = format!(
+                    "{} takes no {}; samplers that do: {}",
+                    self.name,
+                    p.name(),
+                    takers.join(", ")
+                );
+                return Err(Error::parameter(self.name, p.name(), value, allowed));
+            }
+        }
+        if params.count == 0 {
+            return Err(Error::count(
+                self.name,
+                0,
+                format!("allowed counts: {}", self.counts),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Builds the D-dimensional sampler: the sampler's own for those that have one, the 2D
+    /// sampler itself for `D = 2`; otherwise an error naming the samplers that have D dims.
+    pub fn build_nd(&self, params: &Params, dims: u32) -> Result<Box<dyn SamplerNd>> {
+        if dims == 0 || dims > crate::samplers::MAX_DIMENSIONS {
+            return Err(Error::parameter(
+                self.name,
+                "dims",
+                dims,
+                format!("1 to {} dimensions", crate::samplers::MAX_DIMENSIONS),
+            ));
+        }
+        match self.nd {
+            Some(build) => {
+                self.check_params(params)?;
+                build(params, dims)
+            }
+            None if dims == 2 => Ok(Box::new(self.build(params)?)),
+            None => {
+                let takers: Vec<&str> = entries()
+                    .iter()
+                    .filter(|e| e.has_dimensions())
+                    .map(|e| e.name)
+                    .collect();
+                Err(Error::parameter(
+                    self.name,
+                    "dims",
+                    dims,
+                    format!(
+                        "{} has 2-dimensional points only; samplers with D dimensions: {}",
+                        self.name,
+                        takers.join(", ")
+                    ),
+                ))
+            }
+        }
+    }
+}
+
 /// The table of samplers, generated from the entries (the README and the crate docs show it;
 /// a test keeps them equal): name, kind and counts, dimensions, the stratification each
 /// promises, the published variance rates (discontinuous / smooth 2D integrands), and the paper.
@@ -107,20 +204,6 @@ pub fn table() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn count_rules_list_allowed_counts() {
-        assert_eq!(CountRule::Square.counts_between(2, 30), vec![4, 9, 16, 25]);
-        assert_eq!(CountRule::Square.counts_between(16, 16), vec![16]);
-        assert_eq!(CountRule::Any.counts_between(0, 3), vec![1, 2, 3]);
-        assert!(CountRule::Square.counts_between(17, 24).is_empty());
-        assert_eq!(CountRule::Square.nearest(1000), 1024);
-        assert_eq!(CountRule::Square.nearest(12), 9);
-        assert_eq!(CountRule::Square.nearest(0), 1);
-        assert_eq!(CountRule::Any.nearest(7), 7);
-        assert!(CountRule::Square.check("jittered", 10).is_err());
-        assert_eq!(CountRule::Square.check("jittered", 9).unwrap(), 9);
-    }
 
     #[test]
     fn nearest_and_listed_counts_are_accepted_over_the_whole_range() {
@@ -162,6 +245,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "std")] // the blue-noise samplers need `std`
     fn the_blue_noise_samplers_are_the_family_and_the_pmj_variants() {
         // every sampler of the blue-noise family is one, and so are the PMJ family's
         // blue-noise variants; `spectrum --blue-noise-table` has one row per sampler here

@@ -11,11 +11,11 @@ use rand_pcg::Pcg32;
 
 use super::Epochs;
 use super::poisson::uniform;
+use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::float::unit_f32_from_f64;
 use crate::grid::TorusGrid;
 use crate::hash::stream_seed;
-use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::{Point2, Progression, Sampler, Seed};
 
 /// The default candidate factor `k`.

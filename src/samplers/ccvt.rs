@@ -32,10 +32,10 @@ use rand_pcg::Pcg32;
 
 use super::poisson::{below, uniform};
 use super::{SetGenerator, Sets};
+use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::grid::{TorusGrid, torus_distance_squared, wrap_unit};
 use crate::hash::stream_seed;
-use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 
 /// Discrete points per site.
 pub const DEFAULT_CAPACITY: u32 = 256;

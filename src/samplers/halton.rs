@@ -23,12 +23,11 @@
 //! dimension, none above base 127), so per point only the lower digits are hashed. Same values
 //! as [`scrambled_radical_inverse`], which allocates nothing.
 
+use crate::entry::{CountRule, Entry, Family, Rates};
 use crate::error::Result;
 use crate::float::{Strata, unit_f32_from_u32};
 use crate::hash::{DivMod, Stream, hash32, mix64, stream_seed};
 use crate::prelude::*;
-#[cfg(feature = "std")]
-use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 use crate::scramble::owen_scramble;
 
@@ -60,7 +59,6 @@ pub const PRIMES: [u32; MAX_DIMENSIONS] = {
 /// The registered name.
 const NAME: &str = "halton";
 
-#[cfg(feature = "std")]
 pub(crate) const ENTRY: Entry = Entry {
     name: NAME,
     description: "Halton, Owen-scrambled digits, progressive, any --dims up to 1000",

@@ -7,9 +7,10 @@
 //! low power near DC, no peaks. The cost is a count fixed in advance, and a square one.
 
 use super::{BlockCursor, Blocks};
+use crate::entry::{CountRule, Entry, Family, Rates};
 use crate::float::Strata;
 use crate::hash::{DivMod, hash_u64};
-use crate::registry::{CountRule, Entry, Family, Rates};
+use crate::prelude::*;
 use crate::sampler::{Point2, Seed, StrataGrid};
 
 /// The registry entry of `jittered`.

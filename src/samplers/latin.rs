@@ -7,9 +7,10 @@
 //! axes (low power at `u = 0` or `v = 0`) and is white elsewhere.
 
 use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
+use crate::entry::{CountRule, Entry, Family, Rates};
 use crate::float::Strata;
 use crate::hash::{Permutation, Stream, hash_u64};
-use crate::registry::{CountRule, Entry, Family, Rates};
+use crate::prelude::*;
 use crate::sampler::{Point2, Seed, StrataGrid};
 
 /// The registry entry of `nrooks`.

@@ -18,17 +18,12 @@
 //! Screen-Space Samplers with Blue-Noise Error Distribution", 2021) report lattices on par
 //! with Owen-scrambled Sobol' for rendering once padded: `render` measures it.
 
-#[cfg(feature = "std")]
-use super::{BlockCursor, Blocks};
-use super::{Epochs, check_dims};
+use super::{BlockCursor, Blocks, Epochs, check_dims};
+use crate::entry::{CountRule, Entry, Family, Rates, fibonacci_numbers};
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
-use crate::hash::hash_u64;
-#[cfg(feature = "std")]
-use crate::hash::stream_seed;
+use crate::hash::{hash_u64, stream_seed};
 use crate::prelude::*;
-#[cfg(feature = "std")]
-use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 use crate::scramble::Pair;
 
@@ -50,7 +45,6 @@ pub const GENERATOR: [u32; 100] = [
 const LATTICE_NAME: &str = "lattice";
 
 /// The registry entry of `lattice`.
-#[cfg(feature = "std")]
 pub(crate) const LATTICE: Entry = Entry {
     name: LATTICE_NAME,
     description: "extensible rank-1 lattice (Cools-Kuo-Nuyens vector), toroidally shifted, progressive, up to 100 --dims",
@@ -68,7 +62,6 @@ pub(crate) const LATTICE: Entry = Entry {
 };
 
 /// The registry entry of `fibonacci`.
-#[cfg(feature = "std")]
 pub(crate) const FIBONACCI: Entry = Entry {
     name: "fibonacci",
     description: "Fibonacci lattice, N = F_k points with z = (1, F_(k-1)), toroidally shifted",
@@ -224,14 +217,6 @@ impl SamplerNd for LatticeNd {
     }
 }
 
-/// The Fibonacci numbers that fit a fixed-count set (`F_2 = 1` to below `2^31`).
-#[cfg(feature = "std")]
-pub(crate) fn fibonacci_numbers() -> impl Iterator<Item = u64> {
-    core::iter::successors(Some((1u64, 2u64)), |&(a, b)| Some((b, a + b)))
-        .map(|(a, _)| a)
-        .take_while(|&f| f <= crate::samplers::MAX_FIXED_COUNT)
-}
-
 /// The Fibonacci lattice: `N = F_k` points `(i / N, frac(i F_(k-1) / N))` shifted per set.
 ///
 /// ```
@@ -241,7 +226,6 @@ pub(crate) fn fibonacci_numbers() -> impl Iterator<Item = u64> {
 /// assert!(p.x < 1.0 && p.y < 1.0);
 /// assert!(Fibonacci::new(90, Seed(2)).is_err()); // 89 or 144
 /// ```
-#[cfg(feature = "std")]
 #[derive(Clone, Debug)]
 pub struct Fibonacci {
     n: u32,
@@ -250,7 +234,6 @@ pub struct Fibonacci {
     cursor: BlockCursor,
 }
 
-#[cfg(feature = "std")]
 impl Fibonacci {
     /// Sets of `count` points, a Fibonacci number (1, 2, 3, 5, 8, ..., at most `2^31`).
     pub fn new(count: u64, seed: Seed) -> Result<Self> {
@@ -268,7 +251,6 @@ impl Fibonacci {
     }
 }
 
-#[cfg(feature = "std")]
 impl Blocks for Fibonacci {
     const NAME: &'static str = FIBONACCI.name;
 
@@ -326,7 +308,6 @@ mod tests {
     }
 
     #[test]
-    #[cfg(feature = "std")]
     fn fibonacci_counts_and_strata() {
         let f: Vec<u64> = fibonacci_numbers().take(10).collect();
         assert_eq!(f, [1, 2, 3, 5, 8, 13, 21, 34, 55, 89]);

@@ -16,11 +16,11 @@
 use spade::{DelaunayTriangulation, HasPosition, Point2 as SPoint, Triangulation};
 
 use super::{SetGenerator, Sets};
+use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::float::{unit_f64_from_u32, unit_f64_from_u64};
 use crate::grid::{relative_radius_max, wrap_unit as wrap};
 use crate::hash::{Stream, hash_u64, stream_seed};
-use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 
 /// The convergence tolerance: relaxation stops once the mean distance from a point to its
 /// cell's centroid falls below this fraction of `r_max(N)`. At N = 1024 this takes a few

@@ -19,14 +19,11 @@ pub mod bnot;
 #[cfg(feature = "std")]
 pub mod ccvt;
 pub mod halton;
-#[cfg(feature = "std")]
 pub(crate) mod jittered;
-#[cfg(feature = "std")]
 pub(crate) mod latin;
 pub mod lattice;
 #[cfg(feature = "lloyd")]
 pub mod lloyd;
-#[cfg(feature = "std")]
 pub(crate) mod multijitter;
 #[cfg(feature = "std")]
 pub mod net02bn;
@@ -36,12 +33,9 @@ pub mod pmj;
 #[cfg(feature = "std")]
 pub mod poisson;
 mod progressive;
-#[cfg(feature = "std")]
 pub(crate) mod random;
-#[cfg(feature = "std")]
 pub(crate) mod regular;
 pub mod sobol;
-#[cfg(feature = "std")]
 pub(crate) mod uncorrelated;
 
 #[cfg(feature = "std")]
@@ -52,16 +46,11 @@ pub use bnot::{Bnot, BnotSets};
 #[cfg(feature = "std")]
 pub use ccvt::{Ccvt, CcvtSets};
 pub use halton::{Halton, HaltonNd};
-#[cfg(feature = "std")]
 pub use jittered::Jittered;
-#[cfg(feature = "std")]
 pub use latin::{LatinHypercube, NRooks};
-#[cfg(feature = "std")]
-pub use lattice::Fibonacci;
-pub use lattice::{Lattice, LatticeNd};
+pub use lattice::{Fibonacci, Lattice, LatticeNd};
 #[cfg(feature = "lloyd")]
 pub use lloyd::{Lloyd, LloydSets};
-#[cfg(feature = "std")]
 pub use multijitter::{Cmj, MultiJittered};
 #[cfg(feature = "std")]
 pub use net02bn::{Net02Bn, Net02BnSets};
@@ -73,26 +62,19 @@ pub use pmj::{Pmj, Pmj02Bn};
 #[cfg(feature = "std")]
 pub use poisson::{Bridson, BridsonDisk, DartThrowing, PoissonDisk};
 pub(crate) use progressive::Epochs;
-#[cfg(feature = "std")]
 pub use random::{Random, RandomNd};
-#[cfg(feature = "std")]
 pub use regular::Regular;
 pub use sobol::{Sobol, SobolNd};
-#[cfg(feature = "std")]
 pub use uncorrelated::UncorrelatedJitter;
 
 use alloc::format;
-#[cfg(feature = "std")]
 use alloc::vec::Vec;
 
 use crate::error::{Error, Result};
-#[cfg(feature = "std")]
 use crate::hash::{Permutation, key32, stream_seed};
 
-/// The largest count a fixed-count sampler accepts (`2^31`: indices within a block, and the
-/// `m n` fine strata of a multi-jittered grid, stay 32-bit). Far beyond what a set built in
-/// advance is useful for; progressive samplers go further.
-pub const MAX_FIXED_COUNT: u64 = 1 << 31;
+// The count rules check it, so it lives with them, in the entry types below the samplers.
+pub use crate::entry::MAX_FIXED_COUNT;
 
 /// The most dimensions a D-dimensional sampler accepts (more than any integrand needs; the
 /// limit bounds allocations sized by `D`).
@@ -127,7 +109,6 @@ pub(crate) fn check_count(sampler: &'static str, count: u64, max: u64) -> Result
 
 /// Replaces `out` with `k` independent permutations of `[0, len)` for block key `key` (one per
 /// dimension or group of dimensions, permutation `d` keyed by stream `d` of `key`).
-#[cfg(feature = "std")]
 pub(crate) fn block_permutations(out: &mut Vec<Permutation>, len: u32, key: u64, k: u32) {
     out.clear();
     out.extend(

@@ -14,9 +14,10 @@
 //! Both are computed point by point from hashed permutations ([`Permutation`]), with no tables.
 
 use super::{BlockCursor, Blocks};
+use crate::entry::{CountRule, Entry, Family, Rates};
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, Stream, hash_u64, hash32};
-use crate::registry::{CountRule, Entry, Family, Rates};
+use crate::prelude::*;
 use crate::sampler::{Point2, Seed, StrataGrid};
 
 /// The registry entry of `multijittered`.

@@ -24,10 +24,10 @@
 //! (`tests/blue_noise.rs`, `docs/results.md`): larger nearest-neighbour distances and a weaker
 //! low-frequency band than `pmj02` or Sobol'.
 
+use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::grid::relative_radius_max;
 use crate::hash::{hash_u64, stream_seed};
-use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::samplers::blocks::{SetGenerator, Sets};
 use crate::samplers::sobol;
 

@@ -23,11 +23,13 @@
 //! permutation of `i / q`, the index without its lowest digit (for fixed high digits the column
 //! is a bijection of the lowest one). Everything is computed sample by sample, as in the paper.
 
-use super::{BlockCursor, Blocks, MAX_FIXED_COUNT, check_dims};
+use super::{BlockCursor, Blocks, check_dims};
+use crate::entry::{
+    CountRule, Entry, Family, Parameter, ParameterSpec, Params, Rates, check_oa_count, prime_power,
+};
 use crate::error::{Error, Result};
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, Stream, hash_u64, hash32, key32, stream_seed};
-use crate::registry::{CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::{Seed, StrataGrid};
 
 /// The registry entry of `oa-bose`.
@@ -69,13 +71,12 @@ pub(crate) const BUSH: Entry = Entry {
 };
 
 /// The Bush array the registry builds: strength from the parameters (default 3).
-fn bush(p: &crate::registry::Params, dims: u32) -> Result<Bush> {
+fn bush(p: &Params, dims: u32) -> Result<Bush> {
     let strength = p.strength.unwrap_or(BUSH.parameters[0].default as u32);
     Bush::new(p.count, strength, dims, p.sampler_seed())
 }
 
-/// The largest prime power (not prime) supported as the number of symbols.
-pub const MAX_PRIME_POWER: u32 = 256;
+pub use crate::entry::MAX_PRIME_POWER;
 
 /// A finite field `GF(q)`: arithmetic modulo a prime, or tables for a prime power.
 #[derive(Clone, Debug)]
@@ -84,23 +85,6 @@ pub(crate) struct Field {
     /// For prime powers: `q x q` addition and multiplication tables.
     add: Vec<u16>,
     mul: Vec<u16>,
-}
-
-/// `(p, n)` when `q = p^n` with `p` prime, `n >= 1` (trial division up to `sqrt q`).
-pub(crate) fn prime_power(q: u32) -> Option<(u32, u32)> {
-    if q < 2 {
-        return None;
-    }
-    let p = (2u32..)
-        .take_while(|d| (*d as u64) * (*d as u64) <= q as u64)
-        .find(|&d| q.is_multiple_of(d))
-        .unwrap_or(q);
-    let (mut m, mut n) = (q, 0);
-    while m.is_multiple_of(p) {
-        m /= p;
-        n += 1;
-    }
-    (m == 1).then_some((p, n))
 }
 
 impl Field {
@@ -207,61 +191,6 @@ impl Field {
             self.mul[(a * self.q + b) as usize] as u32
         }
     }
-}
-
-/// True when `q` is a supported number of symbols: a prime, or a prime power up to
-/// [`MAX_PRIME_POWER`].
-pub(crate) fn supported_symbols(q: u32) -> bool {
-    prime_power(q).is_some_and(|(_, n)| n == 1 || q <= MAX_PRIME_POWER)
-}
-
-/// The allowed symbol counts nearest to a requested sample count, for error messages: the
-/// supported `q` with `q^t` just below and above `count`.
-fn nearest_counts(count: u64, t: u32) -> String {
-    let supported = supported_symbols;
-    let root = (count as f64).powf(1.0 / t as f64);
-    let below = (2..=root.floor().max(2.0) as u32 + 1)
-        .rev()
-        .find(|&q| supported(q) && (q as u64).pow(t) <= count);
-    let above =
-        (root.ceil().max(2.0) as u32..).find(|&q| supported(q) && (q as u64).pow(t) >= count);
-    match (below, above) {
-        (Some(b), Some(a)) if b != a => format!(
-            "{} ({b}^{t}) or {} ({a}^{t})",
-            (b as u64).pow(t),
-            (a as u64).pow(t)
-        ),
-        (_, Some(a)) => format!("{} ({a}^{t})", (a as u64).pow(t)),
-        _ => "none".into(),
-    }
-}
-
-/// Checks `count = q^t` for a supported `q`, returning `q`.
-pub(crate) fn check_oa_count(name: &'static str, count: u64, t: u32) -> Result<u32> {
-    let rule = || {
-        format!(
-            "the count must be q^{t} for a prime q, or a prime power q <= {MAX_PRIME_POWER}, at most {MAX_FIXED_COUNT}"
-        )
-    };
-    if count > MAX_FIXED_COUNT {
-        // no search for the nearest counts up there: say the rule and the largest
-        let largest = nearest_counts(MAX_FIXED_COUNT, t);
-        return Err(Error::count(
-            name,
-            count,
-            format!("{} (the largest allowed are about {largest})", rule()),
-        ));
-    }
-    let q = (count as f64).powf(1.0 / t as f64).round() as u64;
-    let ok = count >= 4 && q >= 2 && q.checked_pow(t) == Some(count) && supported_symbols(q as u32);
-    if !ok {
-        return Err(Error::count(
-            name,
-            count,
-            format!("{} (nearest allowed: {})", rule(), nearest_counts(count, t)),
-        ));
-    }
-    Ok(q as u32)
 }
 
 /// Per-block, per-dimension permutation keys: the stratum key and the sub-stratum key.

@@ -27,11 +27,11 @@ use rand::Rng;
 use rand_pcg::Pcg32;
 
 use super::{SetGenerator, Sets};
+use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::float::unit_f64_from_u64;
 use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared, wrap_unit as wrap};
 use crate::hash::stream_seed;
-use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 
 /// The default relative radius.
 pub const DEFAULT_RHO: f64 = 0.7;

@@ -6,9 +6,10 @@
 //! point, not as a sampler to render with.
 
 use super::{BlockCursor, Blocks};
+use crate::entry::{CountRule, Entry, Family, Rates};
 use crate::float::Strata;
 use crate::hash::DivMod;
-use crate::registry::{CountRule, Entry, Family, Rates};
+use crate::prelude::*;
 use crate::sampler::{Point2, Seed, StrataGrid};
 
 /// The registry entry of `regular`.

@@ -23,12 +23,11 @@
 use super::Epochs;
 use super::pmj::MAX_SEQUENCE_LEN;
 use crate::digital::{ByteTables, lookup, sobol_byte_tables, sobol_dimensions};
+use crate::entry::{CountRule, Entry, Family, Rates};
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
 use crate::hash::{GOLDEN_GAMMA, Stream, hash32, mix64};
 use crate::prelude::*;
-#[cfg(feature = "std")]
-use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 use crate::scramble::{Lanes, X4, owen_scramble_lanes, shuffle_lanes};
 
@@ -240,7 +239,6 @@ impl Rows<'_> {
 const NAME: &str = "sobol";
 
 /// The registry entry of `sobol`.
-#[cfg(feature = "std")]
 pub(crate) const ENTRY: Entry = Entry {
     name: NAME,
     description: "Sobol' (Joe-Kuo directions), Owen-scrambled by hashing, progressive, any --dims",

@@ -9,9 +9,10 @@
 //! hypercube sampling (of which this is a special case).
 
 use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
+use crate::entry::{CountRule, Entry, Family, Rates};
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, hash_u64};
-use crate::registry::{CountRule, Entry, Family, Rates};
+use crate::prelude::*;
 use crate::sampler::{Seed, StrataGrid};
 
 /// The registry entry of `uncorrelated`.

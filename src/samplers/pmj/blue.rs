@@ -41,11 +41,11 @@
 //! then computed from the flags in `O(32)`.
 
 use super::{MAX_SEQUENCE_LEN, pmj_grids};
+use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::float::unit_f32_from_u32;
 use crate::grid::relative_radius_max;
 use crate::hash::{hash_u64, stream_seed};
-use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 use crate::samplers::{Epochs, sobol};
 

@@ -53,12 +53,12 @@ pub use stochastic::Pmj02Stochastic;
 #[cfg(feature = "std")]
 use super::Epochs;
 #[cfg(feature = "std")]
+use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+#[cfg(feature = "std")]
 use crate::error::{Error, Result};
 #[cfg(feature = "std")]
 use crate::float::unit_f32_from_u32;
 use crate::prelude::*;
-#[cfg(feature = "std")]
-use crate::registry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
 use crate::sampler::StrataGrid;
 #[cfg(feature = "std")]
 use crate::sampler::{Point2, Progression, Sampler, Seed};

@@ -22,11 +22,10 @@
 //! Stirling numbers of the second kind mod 2, which its tests check independently). The
 //! path-tracer adapter's `pmj02` is the same digital sequence, Owen-scrambled.
 
+use crate::entry::{CountRule, Entry, Family, Rates};
 use crate::float::unit_f32_from_u32;
 use crate::hash::{hash_u64, stream_seed};
 use crate::prelude::*;
-#[cfg(feature = "std")]
-use crate::registry::{CountRule, Entry, Family, Rates};
 use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 
 use super::{MAX_SEQUENCE_LEN, pmj_grids};
@@ -56,7 +55,6 @@ pub struct Pmj02Stochastic {
 const NAME: &str = "pmj02-stochastic";
 
 /// The registry entry of `pmj02-stochastic`.
-#[cfg(feature = "std")]
 pub(crate) const ENTRY: Entry = Entry {
     name: NAME,
     description: "pmj02 by stochastic generation, O(1) per sample",

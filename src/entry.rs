@@ -1,11 +1,25 @@
-//! What a registered sampler is: the facts each sampler's own file declares about itself.
+//! What a registered sampler is: the types of the facts each sampler's own file declares about
+//! itself ([`Entry`], the counts it accepts ([`CountRule`]), its [`Rates`], its [`Family`], the
+//! parameters it takes ([`ParameterSpec`]), the [`Params`] it is built from), and the count
+//! arithmetic those need (squares, powers of two, Fibonacci numbers, the `q^t` of an orthogonal
+//! array, [`MAX_FIXED_COUNT`]).
+//!
+//! A leaf of the crate: it imports no sampler and not the registry, only the error type, the
+//! sampler traits and `alloc`, so every sampler can declare its entry here without `std`, and
+//! `crate::registry` (the list of entries and the lookup by name) sits above the samplers. Its
+//! items are public as `strata::registry::*` (and `strata::samplers::MAX_FIXED_COUNT`,
+//! `strata::samplers::oa::MAX_PRIME_POWER`).
 
-use std::fmt;
+use core::fmt;
 
-use crate::analysis::Integrand;
-use crate::error::{Error, Result};
-use crate::sampler::{Sampler, SamplerNd};
-use crate::samplers::MAX_FIXED_COUNT;
+use crate::error::{Error, Result, nearest_squares};
+use crate::prelude::*;
+use crate::sampler::{Sampler, SamplerNd, Seed};
+
+/// The largest count a fixed-count sampler accepts (`2^31`: indices within a block, and the
+/// `m n` fine strata of a multi-jittered grid, stay 32-bit). Far beyond what a set built in
+/// advance is useful for; progressive samplers go further.
+pub const MAX_FIXED_COUNT: u64 = 1 << 31;
 
 /// An optional parameter a sampler may take (beyond the count and the seed).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -109,7 +123,7 @@ impl CountRule {
             CountRule::Any => n >= 1,
             CountRule::Square => n >= 1 && n.isqrt().pow(2) == n,
             CountRule::OaPower(t) => oa_root(n, *t).is_some(),
-            CountRule::Fibonacci => crate::samplers::lattice::fibonacci_numbers().any(|f| f == n),
+            CountRule::Fibonacci => fibonacci_numbers().any(|f| f == n),
             CountRule::PowerOfTwo => n.is_power_of_two(),
         }
     }
@@ -119,7 +133,7 @@ impl CountRule {
     /// constructor checks its count through its entry's rule.
     pub fn check(&self, sampler: &'static str, count: u64) -> Result<u32> {
         if let CountRule::OaPower(t) = self {
-            let q = crate::samplers::oa::check_oa_count(sampler, count, *t)?;
+            let q = check_oa_count(sampler, count, *t)?;
             return Ok(q.pow(*t));
         }
         if count == 0 || count > MAX_FIXED_COUNT {
@@ -133,7 +147,7 @@ impl CountRule {
             let allowed = match self {
                 CountRule::Square => format!(
                     "the count must be a perfect square (nearest allowed: {})",
-                    crate::error::nearest_squares(count)
+                    nearest_squares(count)
                 ),
                 other => format!(
                     "allowed counts: {other} (nearest: {})",
@@ -166,7 +180,7 @@ impl CountRule {
                 let all = self.counts_between(1, n.saturating_mul(4).max(1 << 12));
                 all.into_iter().min_by_key(|&c| c.abs_diff(n)).unwrap_or(4)
             }
-            CountRule::Fibonacci => crate::samplers::lattice::fibonacci_numbers()
+            CountRule::Fibonacci => fibonacci_numbers()
                 .min_by_key(|&f| f.abs_diff(n))
                 .unwrap_or(1),
             CountRule::PowerOfTwo => {
@@ -199,10 +213,10 @@ impl CountRule {
             }
             CountRule::OaPower(t) => (2u64..)
                 .map_while(|q| q.checked_pow(*t).filter(|&c| c <= max).map(|c| (q, c)))
-                .filter(|&(q, c)| c >= min && crate::samplers::oa::supported_symbols(q as u32))
+                .filter(|&(q, c)| c >= min && supported_symbols(q as u32))
                 .map(|(_, c)| c)
                 .collect(),
-            CountRule::Fibonacci => crate::samplers::lattice::fibonacci_numbers()
+            CountRule::Fibonacci => fibonacci_numbers()
                 .filter(|&f| f >= min && f <= max)
                 .collect(),
             CountRule::PowerOfTwo => (0..64)
@@ -225,11 +239,124 @@ impl fmt::Display for CountRule {
     }
 }
 
+// The count arithmetic of the rules, in integers (exact, and without `std`'s `powf`).
+
+/// The Fibonacci numbers that fit a fixed-count set (`F_2 = 1` to below `2^31`).
+pub(crate) fn fibonacci_numbers() -> impl Iterator<Item = u64> {
+    core::iter::successors(Some((1u64, 2u64)), |&(a, b)| Some((b, a + b)))
+        .map(|(a, _)| a)
+        .take_while(|&f| f <= MAX_FIXED_COUNT)
+}
+
+/// The largest prime power (not prime) supported as the number of symbols of an orthogonal
+/// array.
+pub const MAX_PRIME_POWER: u32 = 256;
+
+/// `(p, n)` when `q = p^n` with `p` prime, `n >= 1` (trial division up to `sqrt q`).
+pub(crate) fn prime_power(q: u32) -> Option<(u32, u32)> {
+    if q < 2 {
+        return None;
+    }
+    let p = (2u32..)
+        .take_while(|d| (*d as u64) * (*d as u64) <= q as u64)
+        .find(|&d| q.is_multiple_of(d))
+        .unwrap_or(q);
+    let (mut m, mut n) = (q, 0);
+    while m.is_multiple_of(p) {
+        m /= p;
+        n += 1;
+    }
+    (m == 1).then_some((p, n))
+}
+
+/// True when `q` is a supported number of symbols: a prime, or a prime power up to
+/// [`MAX_PRIME_POWER`].
+pub(crate) fn supported_symbols(q: u32) -> bool {
+    prime_power(q).is_some_and(|(_, n)| n == 1 || q <= MAX_PRIME_POWER)
+}
+
+/// `floor(n^(1/t))` for `t >= 1`, exactly (bisection on `r^t <= n`).
+fn root_floor(n: u64, t: u32) -> u64 {
+    if t <= 1 || n < 2 {
+        return n;
+    }
+    // r^t <= n < 2^64 gives r < 2^ceil(64/t)
+    let (mut lo, mut hi) = (1u64, 1u64 << 64u32.div_ceil(t).min(63));
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if mid.checked_pow(t).is_some_and(|p| p <= n) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
 /// `q` when `n = q^t` with a supported number of symbols `q`.
 fn oa_root(n: u64, t: u32) -> Option<u64> {
-    let q = (n as f64).powf(1.0 / t as f64).round() as u64;
-    (q >= 2 && q.checked_pow(t) == Some(n) && crate::samplers::oa::supported_symbols(q as u32))
-        .then_some(q)
+    if t == 0 {
+        return None;
+    }
+    let q = root_floor(n, t);
+    let supported = u32::try_from(q).is_ok_and(supported_symbols);
+    (q >= 2 && q.checked_pow(t) == Some(n) && supported).then_some(q)
+}
+
+/// The allowed symbol counts nearest to a requested sample count, for error messages: the
+/// supported `q` with `q^t` just below and above `count`.
+fn nearest_oa_counts(count: u64, t: u32) -> String {
+    let supported = supported_symbols;
+    let floor = root_floor(count, t);
+    let ceil = if floor.checked_pow(t) == Some(count) {
+        floor
+    } else {
+        floor + 1
+    };
+    let below = (2..=floor.max(2) as u32 + 1)
+        .rev()
+        .find(|&q| supported(q) && (q as u64).pow(t) <= count);
+    let above = (ceil.max(2) as u32..).find(|&q| supported(q) && (q as u64).pow(t) >= count);
+    match (below, above) {
+        (Some(b), Some(a)) if b != a => format!(
+            "{} ({b}^{t}) or {} ({a}^{t})",
+            (b as u64).pow(t),
+            (a as u64).pow(t)
+        ),
+        (_, Some(a)) => format!("{} ({a}^{t})", (a as u64).pow(t)),
+        _ => "none".into(),
+    }
+}
+
+/// Checks `count = q^t` for a supported `q`, returning `q` (the orthogonal arrays' check,
+/// [`CountRule::OaPower`]).
+pub(crate) fn check_oa_count(name: &'static str, count: u64, t: u32) -> Result<u32> {
+    let rule = || {
+        format!(
+            "the count must be q^{t} for a prime q, or a prime power q <= {MAX_PRIME_POWER}, at most {MAX_FIXED_COUNT}"
+        )
+    };
+    if count > MAX_FIXED_COUNT {
+        // no search for the nearest counts up there: say the rule and the largest
+        let largest = nearest_oa_counts(MAX_FIXED_COUNT, t);
+        return Err(Error::count(
+            name,
+            count,
+            format!("{} (the largest allowed are about {largest})", rule()),
+        ));
+    }
+    match oa_root(count, t) {
+        Some(q) if count >= 4 => Ok(q as u32),
+        _ => Err(Error::count(
+            name,
+            count,
+            format!(
+                "{} (nearest allowed: {})",
+                rule(),
+                nearest_oa_counts(count, t)
+            ),
+        )),
+    }
 }
 
 /// Published convergence rates: the exponent `r` in `variance ~ N^r` of the estimate of a 2D
@@ -264,17 +391,6 @@ impl Rates {
         smooth: Some(-3.0),
         higher: None,
     };
-
-    /// The rate on `integrand`, if published.
-    pub fn on(&self, integrand: Integrand) -> Option<f64> {
-        if integrand.dimensions() != 2 {
-            self.higher
-        } else if integrand.smooth() {
-            self.smooth
-        } else {
-            self.discontinuous
-        }
-    }
 
     fn cell(r: Option<f64>) -> String {
         r.map_or("-".to_string(), |r| format!("N^{r}"))
@@ -353,12 +469,6 @@ impl fmt::Debug for Entry {
 }
 
 impl Entry {
-    /// Builds the sampler, after checking that every optional parameter given is one it takes.
-    pub fn build(&self, params: &Params) -> Result<Box<dyn Sampler>> {
-        self.check_params(params)?;
-        (self.build)(params)
-    }
-
     /// The default of `parameter` (for samplers that take it).
     pub fn default_of(&self, parameter: Parameter) -> Option<f64> {
         self.parameters
@@ -372,35 +482,6 @@ impl Entry {
         self.default_of(parameter).is_some()
     }
 
-    /// The checks common to both forms: every optional parameter given is one this sampler
-    /// takes, and the count is not 0.
-    fn check_params(&self, params: &Params) -> Result<()> {
-        for (p, value) in params.given() {
-            if !self.takes(p) {
-                let takers: Vec<&str> = super::entries()
-                    .iter()
-                    .filter(|e| e.takes(p))
-                    .map(|e| e.name)
-                    .collect();
-                let allowed = format!(
-                    "{} takes no {}; samplers that do: {}",
-                    self.name,
-                    p.name(),
-                    takers.join(", ")
-                );
-                return Err(Error::parameter(self.name, p.name(), value, allowed));
-            }
-        }
-        if params.count == 0 {
-            return Err(Error::count(
-                self.name,
-                0,
-                format!("allowed counts: {}", self.counts),
-            ));
-        }
-        Ok(())
-    }
-
     /// True for the blue-noise samplers: every sampler of [`Family::BlueNoise`] and the
     /// blue-noise variants of other families (`pmjbn`, `pmj02bn`).
     pub fn is_blue_noise(&self) -> bool {
@@ -412,44 +493,7 @@ impl Entry {
         self.nd.is_some()
     }
 
-    /// Builds the D-dimensional sampler: the sampler's own for those that have one, the 2D
-    /// sampler itself for `D = 2`; otherwise an error naming the samplers that have D dims.
-    pub fn build_nd(&self, params: &Params, dims: u32) -> Result<Box<dyn SamplerNd>> {
-        if dims == 0 || dims > crate::samplers::MAX_DIMENSIONS {
-            return Err(Error::parameter(
-                self.name,
-                "dims",
-                dims,
-                format!("1 to {} dimensions", crate::samplers::MAX_DIMENSIONS),
-            ));
-        }
-        match self.nd {
-            Some(build) => {
-                self.check_params(params)?;
-                build(params, dims)
-            }
-            None if dims == 2 => Ok(Box::new(self.build(params)?)),
-            None => {
-                let takers: Vec<&str> = super::entries()
-                    .iter()
-                    .filter(|e| e.has_dimensions())
-                    .map(|e| e.name)
-                    .collect();
-                Err(Error::parameter(
-                    self.name,
-                    "dims",
-                    dims,
-                    format!(
-                        "{} has 2-dimensional points only; samplers with D dimensions: {}",
-                        self.name,
-                        takers.join(", ")
-                    ),
-                ))
-            }
-        }
-    }
-
-    /// The entry's row of the samplers table (see [`super::table`]).
+    /// The entry's row of the samplers table (`registry::table` puts them together).
     pub(crate) fn row(&self) -> String {
         let kind = if self.progressive {
             "progressive".to_string()
@@ -508,8 +552,8 @@ impl Params {
     }
 
     /// The seed, as the samplers take it.
-    pub fn sampler_seed(&self) -> crate::Seed {
-        crate::Seed(self.seed)
+    pub fn sampler_seed(&self) -> Seed {
+        Seed(self.seed)
     }
 
     /// The optional parameters that are set, with their values formatted.
@@ -531,5 +575,80 @@ impl Params {
             v.push((Parameter::Capacity, x.to_string()));
         }
         v
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn count_rules_list_allowed_counts() {
+        assert_eq!(CountRule::Square.counts_between(2, 30), vec![4, 9, 16, 25]);
+        assert_eq!(CountRule::Square.counts_between(16, 16), vec![16]);
+        assert_eq!(CountRule::Any.counts_between(0, 3), vec![1, 2, 3]);
+        assert!(CountRule::Square.counts_between(17, 24).is_empty());
+        assert_eq!(CountRule::Square.nearest(1000), 1024);
+        assert_eq!(CountRule::Square.nearest(12), 9);
+        assert_eq!(CountRule::Square.nearest(0), 1);
+        assert_eq!(CountRule::Any.nearest(7), 7);
+        assert!(CountRule::Square.check("jittered", 10).is_err());
+        assert_eq!(CountRule::Square.check("jittered", 9).unwrap(), 9);
+        let f: Vec<u64> = fibonacci_numbers().take(10).collect();
+        assert_eq!(f, [1, 2, 3, 5, 8, 13, 21, 34, 55, 89]);
+        assert_eq!(CountRule::OaPower(3).counts_between(60, 130), vec![64, 125]);
+    }
+
+    #[test]
+    fn integer_roots_are_exact() {
+        let edges = [
+            u32::MAX as u64,
+            MAX_FIXED_COUNT,
+            1 << 53,
+            (1 << 53) + 1,
+            u64::MAX - 1,
+            u64::MAX,
+        ];
+        for t in 1..=70u32 {
+            for n in (0..3000u64).chain(edges) {
+                let r = root_floor(n, t);
+                assert!(
+                    r.checked_pow(t).is_some_and(|p| p <= n),
+                    "{n}^(1/{t}) = {r}"
+                );
+                let above = r.checked_add(1).and_then(|r| r.checked_pow(t));
+                assert!(above.is_none_or(|p| p > n), "{n}^(1/{t}) = {r}");
+            }
+        }
+        for t in 2..=16u32 {
+            for q in [2u64, 3, 5, 255, 256, 65521, 4_294_967_291] {
+                if let Some(n) = q.checked_pow(t) {
+                    assert_eq!(root_floor(n, t), q);
+                    assert_eq!(root_floor(n - 1, t), q - 1);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_oa_rule_is_the_rounded_float_root_it_replaced() {
+        // the rule as it was computed before it moved here, with `powf` (tests have `std`):
+        // the same answer on every count next to a power, for every strength the arrays take
+        let float_root = |n: u64, t: u32| (n as f64).powf(1.0 / t as f64).round() as u64;
+        for t in 2..=16u32 {
+            for q in 2u64.. {
+                let Some(c) = q.checked_pow(t).filter(|&c| c <= MAX_FIXED_COUNT + 1) else {
+                    break;
+                };
+                for n in [c - 1, c, c + 1] {
+                    let q = float_root(n, t);
+                    let old = q >= 2 && q.checked_pow(t) == Some(n) && supported_symbols(q as u32);
+                    assert_eq!(oa_root(n, t).is_some(), old, "{n} = q^{t}");
+                    if old && n >= 4 {
+                        assert_eq!(check_oa_count("x", n, t).unwrap() as u64, q);
+                    }
+                }
+            }
+        }
     }
 }
