@@ -1,0 +1,248 @@
+//! The command line: the usage and help texts, the options, their parsing with one-line
+//! errors that say what is allowed, and the checks made before any work.
+
+use std::path::PathBuf;
+
+use strata::pixel::{Padding, Sequence};
+
+use crate::common::{self, CliError, cli_error, parse_int, string_value};
+use crate::outln;
+use crate::scene::SceneKind;
+
+/// The one-line usage, in the message of an unknown flag.
+const USAGE: &str = "render [--samplers a,b,..|all] [--spp N[,N,..]] [--size WxH] \
+[--scene cornell|spheres] [--reference-spp N] [--seed S] [--seeds K] [--out DIR] [--markdown FILE]";
+
+/// The text of `--help`.
+const HELP: &str = "\
+render: a small path tracer rendered with each sampler at one or more sample counts and
+compared with a converged reference.
+
+Usage:
+  cargo run --release --example render -- [options]
+
+Options:
+  --samplers a,b,..|all  samplers with a path-tracer adapter: random, jittered, pmj02, sobol,
+                         halton, lattice, zsobol, zpmj02, zjoint, and zjoint-G (groups of G
+                         dimensions) (default all; the Z-ordered ones for the image size)
+  --spp N[,N,..]         samples per pixel, one to eight counts (default 4,16,64,256; each 1
+                         to 65536; jittered needs squares)
+  --size WxH             image size (default 128x128; each side 8 to 1024: every sequence and
+                         count keeps its image until the pictures are drawn, about 1.2 GB at
+                         1024x1024 with four counts)
+  --scene NAME           cornell (default: a Cornell box, up to 8 bounces, two lights, a
+                         discrete light and lobe choice, Russian roulette, thin lens), spheres
+                         (direct lighting, seven dimensions) or cornell-direct (the Cornell box
+                         in direct lighting: the first diffuse hit's next-event estimate)
+  --padding nested|uniform  how two draws' samples meet (strata::Padding; default nested:
+                         every power-of-two prefix a net; uniform: each block of spp samples
+                         reordered per draw by a sharply 2-transitive map)
+  --reference-spp N      samples per pixel of the reference (default 16 x the largest count,
+                         at least 1024, at most 65536; never below the largest count)
+  --seed S               seed of the samplers (u64, default 1; the reference has its own)
+  --seeds K              renders per sampler and count, seeds S to S+K-1 (default 4, 1 to
+                         64): rmse and rel_rmse are over all of them (the root of the mean
+                         squared error), ms is the mean time; the pictures show seed S
+  --out DIR              output directory (default out/render)
+  --interactions         at the smallest count, also split the error (emitters masked) into
+                         its one-draw part (each draw's main effect, the other draws
+                         integrated out by 64 Sobol' points) and the interaction part (the
+                         rest), and print their RMSE, blurred RMSE and low-band share
+                         (direct-lighting scenes only: spheres, cornell-direct)
+  --markdown FILE        also write the tables into FILE, as its section
+                         'render-SCENE-COUNTS' (e.g. render-cornell-4,16,64,256)
+  -h, --help             this text
+
+Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband,
+masked_rmse,masked_blur1_rmse,masked_blur2_rmse,masked_lowband: one row per sampler and count;
+rmse over all pixels and channels of linear radiance, rel_rmse of |I - R| / (R + 0.02) on
+luminance, ms the render time on all cores; blur1_rmse, blur2_rmse and lowband describe the
+signed luminance error image: its RMSE after a Gaussian blur of sigma 1 and 2 pixels, and the
+share of its power (mean error excluded) below 1/8 cycle per pixel, about 0.05 for white
+error; the masked_ columns are rmse and those three without the pixels that see an emitter,
+directly or in a mirror, whose error is the emitter's edge), emitter-mask.png (the reference with
+those pixels in magenta), NAME.png and NAME-error.png (the largest count; the error map is the per-pixel
+relative error, colour-mapped from 0 to 0.5), NAME-SPP.png and NAME-SPP-error-spectrum.png
+(the signed error image beside its periodogram) for each count, reference.png, compare.png
+(one row per sampler), blue-noise.png (every sampler's error image and periodogram at the
+smallest count) and blue-noise-masked.png (the same without the pixels that see an emitter), convergence.png (RMSE against spp with the fitted slope per sampler) and
+pareto.png (RMSE against render time, the sequences on the Pareto front bold); prints the
+tables, the slopes and the renderer's trade: per sequence the render time to reach the RMSE
+that the median sequence reaches at each count but the smallest (power laws of RMSE and
+time against spp fitted over the counts; '*' where extrapolated).";
+
+/// The options of a run.
+pub struct Args {
+    pub samplers: Vec<String>,
+    pub spp: Vec<u32>,
+    pub size: (u32, u32),
+    pub scene: SceneKind,
+    pub padding: Padding,
+    pub reference_spp: Option<u32>,
+    pub seed: u64,
+    pub seeds: u32,
+    pub out: PathBuf,
+    pub markdown: Option<PathBuf>,
+    /// Split the error at the smallest count into one-draw and interaction parts.
+    pub interactions: bool,
+}
+
+/// The options from the command line (`None` after `--help`), checked: the reference at
+/// least the largest count, the output directory and the Markdown file writable.
+pub fn parse() -> Result<Option<Args>, CliError> {
+    use lexopt::prelude::*;
+    let mut a = Args {
+        samplers: Sequence::NAMES.iter().map(|s| s.to_string()).collect(),
+        spp: vec![4, 16, 64, 256],
+        size: (128, 128),
+        scene: SceneKind::Cornell,
+        padding: Padding::Nested,
+        reference_spp: None,
+        seed: 1,
+        seeds: 4,
+        out: PathBuf::from("out/render"),
+        markdown: None,
+        interactions: false,
+    };
+    let mut p = lexopt::Parser::from_env();
+    while let Some(arg) = p.next()? {
+        match arg {
+            Long("samplers") => samplers(&string_value("--samplers", p.value()?)?, &mut a)?,
+            Long("spp") => a.spp = spp(&string_value("--spp", p.value()?)?)?,
+            Long("reference-spp") => {
+                let v = string_value("--reference-spp", p.value()?)?;
+                a.reference_spp = Some(parse_int("--reference-spp", &v, 1, 65536)? as u32);
+            }
+            Long("scene") => a.scene = scene(&string_value("--scene", p.value()?)?)?,
+            Long("padding") => a.padding = padding(&string_value("--padding", p.value()?)?)?,
+            Long("size") => a.size = size(&string_value("--size", p.value()?)?)?,
+            Long("seeds") => {
+                let v = string_value("--seeds", p.value()?)?;
+                a.seeds = parse_int("--seeds", &v, 1, 64)? as u32;
+            }
+            Long("seed") => {
+                let v = string_value("--seed", p.value()?)?;
+                a.seed = parse_int("--seed", &v, 0, u64::MAX)?;
+            }
+            Long("out") => a.out = p.value()?.into(),
+            Long("markdown") => a.markdown = Some(p.value()?.into()),
+            Long("interactions") => a.interactions = true,
+            Short('h') | Long("help") => {
+                outln!("{HELP}")?;
+                return Ok(None);
+            }
+            other => return Err(common::unexpected(other, USAGE)),
+        }
+    }
+    check(&a)?;
+    Ok(Some(a))
+}
+
+/// `--samplers`: the names, or `all` (which keeps the list as it was).
+fn samplers(v: &str, a: &mut Args) -> Result<(), CliError> {
+    if v != "all" {
+        a.samplers = v
+            .split(',')
+            .map(|s| s.trim().to_string())
+            .filter(|s| !s.is_empty())
+            .collect();
+        if a.samplers.is_empty() {
+            return Err(cli_error("--samplers needs at least one name (or all)"));
+        }
+    }
+    Ok(())
+}
+
+/// `--spp`: the counts, sorted, each once, at most [`MAX_COUNTS`] of them.
+fn spp(v: &str) -> Result<Vec<u32>, CliError> {
+    let mut spp: Vec<u32> = v
+        .split(',')
+        .map(|s| parse_int("--spp", s, 1, 65536).map(|n| n as u32))
+        .collect::<Result<_, _>>()?;
+    spp.sort_unstable();
+    spp.dedup();
+    if spp.len() > MAX_COUNTS {
+        return Err(cli_error(format!(
+            "--spp lists {} counts; allowed: at most {MAX_COUNTS}",
+            spp.len()
+        )));
+    }
+    Ok(spp)
+}
+
+/// `--scene`: `cornell`, `spheres` or `cornell-direct`.
+fn scene(v: &str) -> Result<SceneKind, CliError> {
+    match v {
+        "cornell" => Ok(SceneKind::Cornell),
+        "spheres" => Ok(SceneKind::Spheres),
+        "cornell-direct" => Ok(SceneKind::CornellDirect),
+        other => Err(cli_error(format!(
+            "--scene {other:?} is not a scene; allowed: cornell, spheres, cornell-direct"
+        ))),
+    }
+}
+
+/// `--padding`: `nested` or `uniform`.
+fn padding(v: &str) -> Result<Padding, CliError> {
+    match v {
+        "nested" => Ok(Padding::Nested),
+        "uniform" => Ok(Padding::Uniform),
+        other => Err(cli_error(format!(
+            "--padding {other:?} is not a padding; allowed: nested, uniform"
+        ))),
+    }
+}
+
+/// `--size WxH`: each side 8 to [`MAX_SIDE`].
+fn size(v: &str) -> Result<(u32, u32), CliError> {
+    let bad = || {
+        cli_error(format!(
+            "--size {v:?} is not WxH; allowed: two whole numbers 8 to {MAX_SIDE}, e.g. 128x128"
+        ))
+    };
+    let (w, h) = v.split_once(['x', 'X']).ok_or_else(bad)?;
+    Ok((
+        parse_int("--size", w, 8, MAX_SIDE)? as u32,
+        parse_int("--size", h, 8, MAX_SIDE)? as u32,
+    ))
+}
+
+/// The checks after the flags, before any work: `--reference-spp` at least the largest count,
+/// `--interactions` only in direct lighting, the output directory writable, the Markdown file
+/// (if any) one that can be rewritten.
+fn check(a: &Args) -> Result<(), CliError> {
+    let largest = *a.spp.last().expect("at least one count");
+    if let Some(r) = a.reference_spp
+        && r < largest
+    {
+        return Err(cli_error(format!(
+            "--reference-spp {r} is below the largest --spp {largest}: the error would be \
+                 measured against a noisier image; allowed: {largest} to 65536"
+        )));
+    }
+    if a.interactions && a.scene == SceneKind::Cornell {
+        return Err(cli_error(
+            "--interactions splits the error of a direct-lighting render; allowed with --scene \
+             spheres or cornell-direct (every bounce has too many draws to integrate each out)",
+        ));
+    }
+    common::check_output_dir(&a.out)?;
+    if let Some(m) = &a.markdown {
+        common::check_markdown(m, &markdown_section(a))?;
+    }
+    Ok(())
+}
+
+/// The name of the `--markdown` section a run writes: `render-SCENE-COUNTS`.
+pub fn markdown_section(args: &Args) -> String {
+    let counts: Vec<String> = args.spp.iter().map(|n| n.to_string()).collect();
+    format!("render-{}-{}", args.scene.name(), counts.join(","))
+}
+
+/// The largest image side: every sequence at eight counts keeps its images and error images
+/// until the pictures are drawn, about 37 bytes per pixel per (sequence, count): at 1024 x 1024
+/// about 1.2 GB with the default four counts, 2.4 GB at eight.
+const MAX_SIDE: u64 = 1024;
+
+/// The most sample counts in `--spp`.
+const MAX_COUNTS: usize = 8;

@@ -1,0 +1,270 @@
+//! The path tracer: camera samples through the path-tracer adapter, bounces with next-event
+//! estimation, a lobe choice and Russian roulette, and the image of one sequence at one count.
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+use strata::pixel::{Padding, PixelSampler, Sequence, warp};
+
+use crate::scene::{Hit, Material, Scene, SceneKind, checker};
+
+/// The radiance of the sky, seen where a ray of the `spheres` scene leaves it.
+const SKY: Vec3 = Vec3::new(0.05, 0.07, 0.1);
+/// The most bounces of a path.
+pub const MAX_BOUNCES: u32 = 8;
+
+// The dimensions of a bounce, at fixed offsets from `start_bounce`, so that every draw keeps
+// its dimension whatever the path did before (a mirror bounce skips the light draws).
+pub const LOBE: u32 = 0;
+pub const LIGHT_CHOICE: u32 = 1;
+pub const LIGHT_POINT: u32 = 2; // 2-3
+const DIRECTION: u32 = 4; // 4-5
+const ROULETTE: u32 = 6;
+
+/// An orthonormal basis around `n` (Duff et al. 2017).
+fn basis(n: Vec3) -> (Vec3, Vec3) {
+    let sign = 1f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        Vec3::new(b, sign + n.y * n.y * a, -n.y),
+    )
+}
+
+/// Direct light at a diffuse point from one light chosen by `choice`, a point on it by `on`.
+fn next_event(scene: &Scene, p: Vec3, n: Vec3, time: f32, choice: f32, on: Vec2) -> Vec3 {
+    let mut c = 0.0;
+    let (mut index, mut prob) = scene.lights[scene.lights.len() - 1];
+    for &(i, pr) in &scene.lights {
+        c += pr;
+        if choice < c {
+            (index, prob) = (i, pr);
+            break;
+        }
+    }
+    let light = &scene.rects[index];
+    let Material::Light { radiance } = light.material else {
+        return Vec3::ZERO;
+    };
+    let q = light.point(on);
+    let to = q - p;
+    let d2 = to.length_squared();
+    let l = to / d2.sqrt();
+    let (cos_s, cos_l) = (n.dot(l), -light.normal().dot(l));
+    if cos_s <= 0.0 || cos_l <= 0.0 || !scene.visible(p + n * 1e-4, q, time) {
+        return Vec3::ZERO;
+    }
+    radiance * (cos_s * cos_l / d2 * light.area() / prob / std::f32::consts::PI)
+}
+
+/// What the path tracer asks of its sampler: the adapter's draw calls ([`PixelSampler`], or
+/// [`Mixed`](crate::split::Mixed) for the interaction split).
+pub trait Draws {
+    fn get_pixel_2d(&mut self) -> Vec2;
+    fn get_2d(&mut self) -> Vec2;
+    fn get_1d(&mut self) -> f32;
+    fn start_bounce(&mut self, k: u32);
+    fn dimension(&self) -> u32;
+    fn set_dimension(&mut self, dim: u32);
+}
+
+impl Draws for PixelSampler {
+    fn get_pixel_2d(&mut self) -> Vec2 {
+        PixelSampler::get_pixel_2d(self)
+    }
+    fn get_2d(&mut self) -> Vec2 {
+        PixelSampler::get_2d(self)
+    }
+    fn get_1d(&mut self) -> f32 {
+        PixelSampler::get_1d(self)
+    }
+    fn start_bounce(&mut self, k: u32) {
+        PixelSampler::start_bounce(self, k)
+    }
+    fn dimension(&self) -> u32 {
+        PixelSampler::dimension(self)
+    }
+    fn set_dimension(&mut self, dim: u32) {
+        PixelSampler::set_dimension(self, dim)
+    }
+}
+
+/// The state of a path being traced: the ray, its throughput, the radiance gathered so far,
+/// and whether the next light hit counts (not after next-event estimation counted the lights).
+struct Path {
+    origin: Vec3,
+    dir: Vec3,
+    throughput: Vec3,
+    sum: Vec3,
+    count_emission: bool,
+}
+
+/// Radiance along one camera sample.
+pub fn radiance<S: Draws>(px: u32, py: u32, size: (u32, u32), s: &mut S, scene: &Scene) -> Vec3 {
+    let film = s.get_pixel_2d();
+    let lens = s.get_2d();
+    let time = if scene.kind == SceneKind::Spheres {
+        s.get_1d()
+    } else {
+        0.0
+    };
+    let (origin, dir) = scene.camera.ray(px, py, size, film, lens);
+    let mut path = Path {
+        origin,
+        dir,
+        throughput: Vec3::ONE,
+        sum: Vec3::ZERO,
+        count_emission: true,
+    };
+    for bounce in 0..MAX_BOUNCES {
+        if !path.bounce(bounce, s, scene, time) {
+            break;
+        }
+    }
+    path.sum
+}
+
+/// Dimension `k` of the bounce whose dimensions start at `base`, as a 1D draw.
+fn draw_1d<S: Draws>(s: &mut S, base: u32, k: u32) -> f32 {
+    s.set_dimension(base + k);
+    s.get_1d()
+}
+
+/// Dimensions `k` and `k + 1` of the bounce whose dimensions start at `base`, as a 2D draw.
+fn draw_2d<S: Draws>(s: &mut S, base: u32, k: u32) -> Vec2 {
+    s.set_dimension(base + k);
+    s.get_2d()
+}
+
+impl Path {
+    /// One bounce: the next hit, its emission, a scattered ray and Russian roulette from the
+    /// third bounce; false when the path ends.
+    fn bounce<S: Draws>(&mut self, bounce: u32, s: &mut S, scene: &Scene, time: f32) -> bool {
+        let Some(hit) = scene.intersect(self.origin, self.dir, time) else {
+            if scene.kind == SceneKind::Spheres {
+                self.sum += self.throughput * SKY;
+            }
+            return false;
+        };
+        let Some(surface) = self.surface(&hit, scene) else {
+            return false;
+        };
+        s.start_bounce(bounce);
+        let base = s.dimension();
+        if !self.scatter(s, base, scene, &hit, surface, time) {
+            return false;
+        }
+        if bounce >= 2 {
+            let q = self.throughput.max_element().clamp(0.05, 0.95);
+            if draw_1d(s, base, ROULETTE) >= q {
+                return false;
+            }
+            self.throughput /= q;
+        }
+        true
+    }
+
+    /// The albedo (with the `spheres` ground's checkerboard) and mirror weight of the surface
+    /// hit; `None` at a light, whose emission is added when it counts.
+    fn surface(&mut self, hit: &Hit, scene: &Scene) -> Option<(Vec3, f32)> {
+        let (albedo, mirror) = match hit.material {
+            Material::Light { radiance } => {
+                if self.count_emission && hit.normal.dot(self.dir) < 0.0 {
+                    self.sum += self.throughput * radiance;
+                }
+                return None;
+            }
+            Material::Surface { albedo, mirror } => (albedo, mirror),
+        };
+        let albedo = if scene.kind == SceneKind::Spheres && hit.normal == Vec3::Y {
+            albedo * checker(hit.point)
+        } else {
+            albedo
+        };
+        Some((albedo, mirror))
+    }
+
+    /// The next ray from `hit`, whose surface has `(albedo, mirror)`: the mirror lobe, chosen
+    /// with its weight, or next-event estimation and a cosine-sampled direction; false when
+    /// the path ends there (direct lighting only in `spheres` and `cornell-direct`).
+    fn scatter<S: Draws>(
+        &mut self,
+        s: &mut S,
+        base: u32,
+        scene: &Scene,
+        hit: &Hit,
+        (albedo, mirror): (Vec3, f32),
+        time: f32,
+    ) -> bool {
+        // face the normal towards the incoming ray
+        let n = if hit.normal.dot(self.dir) < 0.0 {
+            hit.normal
+        } else {
+            -hit.normal
+        };
+        if mirror > 0.0 && draw_1d(s, base, LOBE) < mirror {
+            // the mirror lobe, chosen with its own weight: the weights cancel
+            self.throughput *= albedo;
+            self.dir -= 2.0 * self.dir.dot(n) * n;
+            self.origin = hit.point + n * 1e-4;
+            // `count_emission` stays as it was: lights seen in the mirror count on the camera's
+            // specular chain only; caustics (diffuse, mirror, light) are left out, in the
+            // reference too, as their variance would drown every sampler's difference
+        } else {
+            let choice = draw_1d(s, base, LIGHT_CHOICE);
+            let on = draw_2d(s, base, LIGHT_POINT);
+            self.sum +=
+                self.throughput * albedo * next_event(scene, hit.point, n, time, choice, on);
+            if scene.direct {
+                return false; // direct lighting only
+            }
+            let local = warp::cosine_hemisphere(draw_2d(s, base, DIRECTION));
+            let (t, b) = basis(n);
+            self.dir = (t * local.x + b * local.y + n * local.z).normalize();
+            self.origin = hit.point + n * 1e-4;
+            self.throughput *= albedo; // cosine sampling: f cos / pdf = albedo
+            self.count_emission = false; // next-event estimation counted the lights
+        }
+        true
+    }
+}
+
+/// Renders the image (linear radiance, row-major) with `spp` samples of `sequence`.
+pub fn render(
+    scene: &Scene,
+    sequence: Sequence,
+    spp: u32,
+    size: (u32, u32),
+    seed: u64,
+    progress: Option<&str>,
+    padding: Padding,
+) -> Result<Vec<Vec3>, strata::Error> {
+    let sampler = PixelSampler::new(sequence, spp, strata::Seed(seed))?.with_padding(padding);
+    let rows_done = std::sync::atomic::AtomicU32::new(0);
+    let rows: Vec<Vec<Vec3>> = (0..size.1)
+        .into_par_iter()
+        .map(|y| {
+            let mut s = sampler.clone();
+            let row = (0..size.0)
+                .map(|x| {
+                    let mut sum = Vec3::ZERO;
+                    for i in 0..spp {
+                        s.start_pixel_sample([x, y], i as u64, 0);
+                        sum += radiance(x, y, size, &mut s, scene);
+                    }
+                    sum / spp as f32
+                })
+                .collect();
+            if let Some(label) = progress {
+                // a line at every tenth of the rows, so a long reference shows how far it got
+                let done = rows_done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                let tenth = |k: u32| (k as u64 * 10 / size.1 as u64) as u32;
+                if tenth(done) > tenth(done - 1) {
+                    eprintln!("{label}: {}0% of the rows", tenth(done));
+                }
+            }
+            row
+        })
+        .collect();
+    Ok(rows.concat())
+}
