@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! cargo run --release --example points -- --sampler NAME -n N [--seed S] [--dims D]
-//!         [--pixel X,Y] [--radius RHO] [--iterations K] [--strength T] [--png FILE] [--list]
+//!         [--pixel X,Y] [--NAME X for a sampler parameter] [--png FILE] [--list]
 //!         [--format csv|utk|bin]
 //! ```
 //! See `docs/cli.md` (the command-line contract).
@@ -13,9 +13,10 @@ use std::io::Write;
 use std::process::ExitCode;
 
 use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_pair, string_value};
+use strata::SamplerNd;
 use strata::pixel::{PixelSampler, Sequence};
 use strata::pointsets::{self, Format};
-use strata::registry::{self, Params};
+use strata::registry::{self, Built, Params, Strictness};
 
 /// The most values (`N x D`) one run prints.
 const MAX_VALUES: u64 = 1 << 27;
@@ -26,8 +27,8 @@ const MAX_PNG_DIMS: usize = 64;
 /// Runs of at least this many values print a line on stderr before and after making them.
 const LONG_RUN_VALUES: u64 = 1 << 22;
 
-const USAGE: &str = "points --sampler NAME -n N [--seed S] [--dims D] [--pixel X,Y] [--radius RHO] \
-[--iterations K] [--strength T] [--candidates K] [--capacity C] [--resolution WxH] [--png FILE] \
+const USAGE: &str = "points --sampler NAME -n N [--seed S] [--dims D] [--pixel X,Y] \
+[--radius|--iterations|... X (a sampler parameter; see --help)] [--resolution WxH] [--png FILE] \
 [--format csv|utk|bin] [--no-header] [--list]";
 
 const HELP: &str = "\
@@ -44,12 +45,7 @@ Options:
   --pixel X,Y        the values the path-tracer adapter gives pixel (X,Y)
   --resolution WxH   the image of the Z-ordered adapter sequences zsobol and zpmj02
                      (default 256x256; the others ignore it)
-  --radius RHO       relative Poisson-disk radius, 0 < RHO < 1
-  --iterations K     Lloyd / CCVT iterations
-  --strength T       orthogonal-array strength
-  --candidates K     best-candidate count
-  --capacity C       CCVT points per site
-  --png FILE         also draw the points (with the strata grid) into FILE
+{PARAMETERS}  --png FILE         also draw the points (with the strata grid) into FILE
   --format F         csv (default), utk (UTK text: space-separated, no header) or bin (UTK
                      binary: the magic UTK!, data type 4 = f32, counts, then the values)
   --no-header        omit the CSV header line
@@ -104,7 +100,7 @@ fn parse() -> Result<Option<Args>, CliError> {
                 let v = string_value("--pixel", parser.value()?)?;
                 args.pixel = Some(parse_pair("--pixel", &v, u32::MAX as u64)?);
             }
-            Long(flag @ ("radius" | "iterations" | "strength" | "candidates" | "capacity")) => {
+            Long(flag) if common::is_sampler_param(flag) => {
                 let flag = flag.to_owned(); // the argument borrows the parser
                 common::sampler_param(&flag, &mut parser, &mut args.params)?
             }
@@ -145,7 +141,10 @@ fn parse() -> Result<Option<Args>, CliError> {
                 return Ok(None);
             }
             Short('h') | Long("help") => {
-                outln!("{HELP}")?;
+                outln!(
+                    "{}",
+                    HELP.replace("{PARAMETERS}", &common::parameter_help())
+                )?;
                 return Ok(None);
             }
             other => return Err(common::unexpected(other, USAGE)),
@@ -169,11 +168,11 @@ fn main() -> ExitCode {
         })?;
         // the adapter's sequences (with --pixel) include ones that are not registered samplers
         let entry = if args.pixel.is_some() {
-            if let Some((p, _)) = args.params.given().first() {
+            if let Some((p, _)) = args.params.given().next() {
                 return Err(cli_error(format!(
                     "--{} is a sampler parameter; with --pixel the path-tracer sequences take \
                      none (allowed with --pixel: --seed, --dims, --resolution)",
-                    p.name()
+                    p
                 )));
             }
             None
@@ -221,25 +220,33 @@ fn main() -> ExitCode {
             for (index, row) in values.chunks_exact_mut(dims).enumerate() {
                 sampler.fill_sample([px as u32, py as u32], index as u64, 0, row);
             }
-        } else if dims == 2 {
-            let mut sampler = entry.expect("no --pixel").build(&params)?;
-            let mut points = vec![glam::Vec2::ZERO; n as usize];
-            sampler.fill(&mut points);
-            for (row, p) in values.chunks_exact_mut(2).zip(&points) {
-                row[0] = p.x;
-                row[1] = p.y;
-            }
-            grids = sampler.strata(n);
         } else {
-            let mut sampler = entry
+            // one build for any --dims: a 2D sampler (with its strata grids) at 2
+            let params = params.dims(args.dims as u32);
+            match entry
                 .expect("no --pixel")
-                .build_nd(&params, args.dims as u32)?;
-            sampler.fill(&mut values);
-            // the grid of each 2D projection, row y, column x (only for the picture)
-            if args.png.is_some() {
-                projection_grids = (0..dims * dims)
-                    .map(|k| sampler.projection_strata((k % dims) as u32, (k / dims) as u32))
-                    .collect();
+                .make(&params, Strictness::Strict)?
+            {
+                Built::Two(mut sampler) => {
+                    let mut points = vec![glam::Vec2::ZERO; n as usize];
+                    strata::Sampler::fill(&mut sampler, &mut points);
+                    for (row, p) in values.chunks_exact_mut(2).zip(&points) {
+                        row[0] = p.x;
+                        row[1] = p.y;
+                    }
+                    grids = strata::Sampler::strata(&sampler, n);
+                }
+                mut sampler => {
+                    sampler.fill(&mut values);
+                    // the grid of each 2D projection, row y, column x (only for the picture)
+                    if args.png.is_some() {
+                        projection_grids = (0..dims * dims)
+                            .map(|k| {
+                                sampler.projection_strata((k % dims) as u32, (k / dims) as u32)
+                            })
+                            .collect();
+                    }
+                }
             }
         }
 

@@ -41,8 +41,7 @@ Options:
                       `points --sampler NAME -n N --seed S+r` prints
   --resolution K      frequencies |u|, |v| <= K/2 (even, default 256)
   --out DIR           output directory (default out), created when missing
-  --radius, --iterations, --strength, --candidates, --capacity   passed to the samplers that take them
-  --no-overview       skip out/overview.png
+{PARAMETERS}  --no-overview       skip out/overview.png
   --markdown FILE     also write the table into FILE, as its section 'spectrum'
                       ('blue-noise-table' with --blue-noise-table)
   --blue-noise-table  instead: the published-figures table of every blue-noise sampler (below)
@@ -136,7 +135,7 @@ fn parse() -> Result<Option<Args>, CliError> {
                 a.out = p.value()?.into();
                 a.not_for_table.push("--out".into());
             }
-            Long(flag @ ("radius" | "iterations" | "strength" | "candidates" | "capacity")) => {
+            Long(flag) if common::is_sampler_param(flag) => {
                 let flag = flag.to_owned(); // the argument borrows the parser
                 common::sampler_param(&flag, &mut p, &mut a.params)?;
                 a.not_for_table.push(format!("--{flag}"));
@@ -148,7 +147,10 @@ fn parse() -> Result<Option<Args>, CliError> {
             Long("blue-noise-table") => a.table = true,
             Long("markdown") => a.markdown = Some(p.value()?.into()),
             Short('h') | Long("help") => {
-                outln!("{HELP}")?;
+                outln!(
+                    "{}",
+                    HELP.replace("{PARAMETERS}", &common::parameter_help())
+                )?;
                 return Ok(None);
             }
             other => return Err(common::unexpected(other, USAGE)),
@@ -197,26 +199,10 @@ fn run_one(
     args: &Args,
     bar: &ProgressBar,
 ) -> Result<Outcome, CliError> {
-    let mut params = args.params.clone();
+    // the lenient build: only the parameters this sampler takes (with 'all', the others are
+    // for other samplers)
+    let mut params = args.params.kept_for(entry);
     params.count = count;
-    // Only pass the optional parameters this sampler takes (with 'all', the others are for
-    // other samplers).
-    let takes = |p| entry.takes(p);
-    if !takes(registry::Parameter::Radius) {
-        params.radius = None;
-    }
-    if !takes(registry::Parameter::Iterations) {
-        params.iterations = None;
-    }
-    if !takes(registry::Parameter::Strength) {
-        params.strength = None;
-    }
-    if !takes(registry::Parameter::Capacity) {
-        params.capacity = None;
-    }
-    if !takes(registry::Parameter::Candidates) {
-        params.candidates = None;
-    }
     let generate = |r: u32| -> Result<Vec<Vec2>, strata::Error> {
         let mut s = entry.build(&params.clone().seed(args.seed.wrapping_add(r as u64)))?;
         let mut v = vec![Vec2::ZERO; count as usize];
@@ -500,7 +486,7 @@ fn main() -> ExitCode {
                     .collect();
                 return Err(cli_error(format!(
                     "--{} is not a parameter of {}; samplers that take it: {}",
-                    p.name(),
+                    p,
                     args.sampler,
                     takers.join(", ")
                 )));

@@ -21,35 +21,6 @@ use crate::sampler::{Sampler, SamplerNd, Seed};
 /// advance is useful for; progressive samplers go further.
 pub const MAX_FIXED_COUNT: u64 = 1 << 31;
 
-/// An optional parameter a sampler may take (beyond the count and the seed).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum Parameter {
-    /// Relative Poisson-disk radius (`--radius`).
-    Radius,
-    /// Relaxation iterations (`--iterations`).
-    Iterations,
-    /// Orthogonal-array strength (`--strength`).
-    Strength,
-    /// Best-candidate count (`--candidates`).
-    Candidates,
-    /// Discrete points per CCVT site (`--capacity`).
-    Capacity,
-}
-
-impl Parameter {
-    /// The name used on the command line and in error messages.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Parameter::Radius => "radius",
-            Parameter::Iterations => "iterations",
-            Parameter::Strength => "strength",
-            Parameter::Candidates => "candidates",
-            Parameter::Capacity => "capacity",
-        }
-    }
-}
-
 /// The families of samplers, as the lecture groups them (one panel each in `tradeoff`'s plots).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[non_exhaustive]
@@ -88,16 +59,184 @@ impl Family {
     }
 }
 
-/// A parameter a sampler takes, with its default and what is allowed.
+/// The kind of value a [`ParameterSpec`] takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Kind {
+    /// A whole number (at most `u32::MAX`).
+    Whole,
+    /// A real number.
+    Real,
+}
+
+impl Kind {
+    /// `"whole number"` or `"number"`, for help texts and errors.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Kind::Whole => "whole number",
+            Kind::Real => "number",
+        }
+    }
+}
+
+/// One end of a parameter's range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Bound {
+    /// The end itself is allowed.
+    Closed(f64),
+    /// Values up to (or from) the end, the end itself excluded.
+    Open(f64),
+}
+
+impl Bound {
+    fn value(&self) -> f64 {
+        match *self {
+            Bound::Closed(v) | Bound::Open(v) => v,
+        }
+    }
+}
+
+/// A parameter a sampler takes beyond the count and the seed, declared once, in the sampler's
+/// own file: its name, kind, range, default and help line. Everything else reads it from
+/// there: [`Entry::build`] checks values against it, the example programs take a `--NAME`
+/// flag for every declared name and list them in `--help`, the Python binding checks its
+/// keyword arguments with it, and the parameter table of `docs/cli.md`
+/// ([`crate::registry::parameter_table`]) is written from it.
+///
+/// Several samplers may take a parameter of the same name (`iterations`), each with its own
+/// range and default; the kind of one name is the same everywhere (a registry test checks).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct ParameterSpec {
-    /// Which parameter.
-    pub parameter: Parameter,
+    /// The name: `--NAME` in the programs, `NAME=` in Python, and in error messages.
+    pub name: &'static str,
+    /// Whole or real.
+    pub kind: Kind,
+    /// The smallest value allowed.
+    pub min: Bound,
+    /// The largest value allowed.
+    pub max: Bound,
     /// The value used when none is given.
     pub default: f64,
-    /// What is allowed, for help texts and tables.
-    pub allowed: &'static str,
+    /// One line: what it does.
+    pub help: &'static str,
+    /// A limit the range cannot express, which the sampler checks when it is built (`""`
+    /// when there is none).
+    pub note: &'static str,
+}
+
+impl ParameterSpec {
+    /// A whole-number parameter in `min ..= max`.
+    pub const fn whole(
+        name: &'static str,
+        min: u32,
+        max: u32,
+        default: u32,
+        help: &'static str,
+    ) -> Self {
+        ParameterSpec {
+            name,
+            kind: Kind::Whole,
+            min: Bound::Closed(min as f64),
+            max: Bound::Closed(max as f64),
+            default: default as f64,
+            help,
+            note: "",
+        }
+    }
+
+    /// A real parameter between `min` and `max`.
+    pub const fn real(
+        name: &'static str,
+        min: Bound,
+        max: Bound,
+        default: f64,
+        help: &'static str,
+    ) -> Self {
+        ParameterSpec {
+            name,
+            kind: Kind::Real,
+            min,
+            max,
+            default,
+            help,
+            note: "",
+        }
+    }
+
+    /// The same with a limit the range cannot express (see [`ParameterSpec::note`]).
+    pub const fn with_note(mut self, note: &'static str) -> Self {
+        self.note = note;
+        self
+    }
+
+    /// What is allowed, in words: `"1 to 100000"`, `"0 < radius <= 0.78"`, and the note.
+    pub fn allowed(&self) -> String {
+        let (lo, hi) = (self.min.value(), self.max.value());
+        let mut s = match (self.kind, self.min, self.max) {
+            (Kind::Whole, _, _) => format!("{lo} to {hi}"),
+            (Kind::Real, Bound::Closed(_), Bound::Closed(_)) => format!("{lo} to {hi}"),
+            (Kind::Real, min, max) => {
+                let op = |b: Bound| {
+                    if matches!(b, Bound::Open(_)) {
+                        "<"
+                    } else {
+                        "<="
+                    }
+                };
+                format!("{lo} {} {} {} {hi}", op(min), self.name, op(max))
+            }
+        };
+        if !self.note.is_empty() {
+            s.push_str(", ");
+            s.push_str(self.note);
+        }
+        s
+    }
+
+    /// True when `value` is of the parameter's kind and within its range.
+    pub fn allows(&self, value: f64) -> bool {
+        let above = match self.min {
+            Bound::Closed(m) => value >= m,
+            Bound::Open(m) => value > m,
+        };
+        let below = match self.max {
+            Bound::Closed(m) => value <= m,
+            Bound::Open(m) => value < m,
+        };
+        let kind = match self.kind {
+            Kind::Whole => value == (value as i64) as f64,
+            Kind::Real => value.is_finite(),
+        };
+        above && below && kind
+    }
+
+    /// `value` if [`allows`](ParameterSpec::allows) it, else an error naming `sampler`, the
+    /// parameter, the value and what is allowed.
+    pub fn check(&self, sampler: &'static str, value: f64) -> Result<f64> {
+        if self.allows(value) {
+            Ok(value)
+        } else {
+            Err(Error::parameter(
+                sampler,
+                self.name,
+                value,
+                format!("{} {}", self.kind.name(), self.allowed()),
+            ))
+        }
+    }
+
+    /// The value `params` gives this parameter, or its default.
+    pub fn read(&self, params: &Params) -> f64 {
+        params.get(self.name).unwrap_or(self.default)
+    }
+
+    /// [`read`](ParameterSpec::read) as a whole number (saturating; the value was checked
+    /// against the range when the sampler was built through its entry).
+    pub fn read_whole(&self, params: &Params) -> u32 {
+        self.read(params) as u32
+    }
 }
 
 /// Which sample counts a sampler accepts.
@@ -420,10 +559,104 @@ impl BlueNoise {
     }
 }
 
-/// Builds a sampler from parameters.
-pub(crate) type Build = fn(&Params) -> Result<Box<dyn Sampler>>;
-/// Builds a D-dimensional sampler from parameters and `D`.
-pub(crate) type BuildNd = fn(&Params, u32) -> Result<Box<dyn SamplerNd>>;
+/// Builds a sampler from parameters (their dimension count included).
+pub(crate) type Build = fn(&Params) -> Result<Built>;
+
+/// A sampler built from its registry entry: 2D when [`Params::dims`] is 2 (the [`Sampler`]
+/// the 2D tools use, with its strata), D-dimensional otherwise. Either way it is a
+/// [`SamplerNd`], so a caller that wants points of any dimension count needs no `match`.
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum Built {
+    /// A 2D sampler.
+    Two(Box<dyn Sampler>),
+    /// A D-dimensional sampler.
+    Nd(Box<dyn SamplerNd>),
+}
+
+impl Built {
+    /// A 2D sampler, boxed.
+    pub fn two(sampler: impl Sampler + 'static) -> Built {
+        Built::Two(Box::new(sampler))
+    }
+
+    /// A D-dimensional sampler, boxed.
+    pub fn nd(sampler: impl SamplerNd + 'static) -> Built {
+        Built::Nd(Box::new(sampler))
+    }
+
+    /// The 2D sampler, or `None` for a D-dimensional one.
+    pub fn into_2d(self) -> Option<Box<dyn Sampler>> {
+        match self {
+            Built::Two(s) => Some(s),
+            Built::Nd(_) => None,
+        }
+    }
+
+    /// The sampler as a D-dimensional one (a 2D sampler has `D = 2`).
+    pub fn into_nd(self) -> Box<dyn SamplerNd> {
+        match self {
+            Built::Two(s) => Box::new(s),
+            Built::Nd(s) => s,
+        }
+    }
+}
+
+impl SamplerNd for Built {
+    fn name(&self) -> &'static str {
+        match self {
+            Built::Two(s) => Sampler::name(&**s),
+            Built::Nd(s) => s.name(),
+        }
+    }
+    fn dimensions(&self) -> u32 {
+        match self {
+            Built::Two(_) => 2,
+            Built::Nd(s) => s.dimensions(),
+        }
+    }
+    fn progression(&self) -> crate::sampler::Progression {
+        match self {
+            Built::Two(s) => Sampler::progression(&**s),
+            Built::Nd(s) => s.progression(),
+        }
+    }
+    fn next_point(&mut self, out: &mut [f32]) {
+        match self {
+            Built::Two(s) => SamplerNd::next_point(s, out),
+            Built::Nd(s) => s.next_point(out),
+        }
+    }
+    /// A 2D sampler fills through its own (batched) [`Sampler::fill`], in chunks.
+    fn fill(&mut self, out: &mut [f32]) {
+        match self {
+            Built::Two(s) => {
+                let mut buffer = [crate::sampler::Point2::ZERO; 256];
+                for chunk in out.chunks_mut(2 * buffer.len()) {
+                    let points = &mut buffer[..chunk.len() / 2];
+                    Sampler::fill(&mut **s, points);
+                    for (o, p) in chunk.chunks_exact_mut(2).zip(points.iter()) {
+                        o[0] = p.x;
+                        o[1] = p.y;
+                    }
+                }
+            }
+            Built::Nd(s) => s.fill(out),
+        }
+    }
+    fn skip(&mut self, n: u64) -> bool {
+        match self {
+            Built::Two(s) => Sampler::skip(&mut **s, n),
+            Built::Nd(s) => s.skip(n),
+        }
+    }
+    fn projection_strata(&self, x: u32, y: u32) -> Option<crate::sampler::StrataGrid> {
+        match self {
+            Built::Two(_) => None,
+            Built::Nd(s) => s.projection_strata(x, y),
+        }
+    }
+}
 
 /// A registered sampler: what it is, what it promises, and how to build it. Each sampler's
 /// file declares its own.
@@ -454,8 +687,10 @@ pub struct Entry {
     /// For blue-noise samplers (whatever their family), what their paper reports about the
     /// spacing of its sets; `None` for the samplers that are not blue noise.
     pub blue_noise: Option<BlueNoise>,
+    /// True when the sampler has points of any dimension count (its build reads
+    /// [`Params::dims`]); false for 2D-only samplers.
+    pub(crate) any_dims: bool,
     pub(crate) build: Build,
-    pub(crate) nd: Option<BuildNd>,
 }
 
 impl fmt::Debug for Entry {
@@ -469,17 +704,19 @@ impl fmt::Debug for Entry {
 }
 
 impl Entry {
-    /// The default of `parameter` (for samplers that take it).
-    pub fn default_of(&self, parameter: Parameter) -> Option<f64> {
-        self.parameters
-            .iter()
-            .find(|p| p.parameter == parameter)
-            .map(|p| p.default)
+    /// The declaration of the parameter named `name`, for samplers that take it.
+    pub fn parameter(&self, name: &str) -> Option<&'static ParameterSpec> {
+        self.parameters.iter().find(|p| p.name == name)
     }
 
-    /// True when the sampler takes `parameter`.
-    pub fn takes(&self, parameter: Parameter) -> bool {
-        self.default_of(parameter).is_some()
+    /// The default of the parameter named `name` (for samplers that take it).
+    pub fn default_of(&self, name: &str) -> Option<f64> {
+        self.parameter(name).map(|p| p.default)
+    }
+
+    /// True when the sampler takes the parameter named `name`.
+    pub fn takes(&self, name: &str) -> bool {
+        self.parameter(name).is_some()
     }
 
     /// True for the blue-noise samplers: every sampler of [`Family::BlueNoise`] and the
@@ -490,7 +727,7 @@ impl Entry {
 
     /// True when the sampler has points of more than 2 dimensions.
     pub fn has_dimensions(&self) -> bool {
-        self.nd.is_some()
+        self.any_dims
     }
 
     /// The entry's row of the samplers table (`registry::table` puts them together).
@@ -512,36 +749,42 @@ impl Entry {
     }
 }
 
-/// What a sampler is built from: the count, the seed, and optional parameters.
+/// What a sampler is built from: the count, the seed, the dimension count, and the values of
+/// the optional parameters its entry declares ([`ParameterSpec`]), by name.
+///
+/// ```
+/// use strata::registry::{self, Params};
+/// let p = Params::new(256).seed(3).with("radius", 0.7);
+/// assert_eq!(p.get("radius"), Some(0.7));
+/// let s = registry::build("poisson", &p)?; // strict: poisson takes a radius
+/// assert!(registry::build("jittered", &p).is_err()); // jittered takes none
+/// let jittered = registry::find("jittered")?;
+/// let lenient = p.kept_for(jittered); // the lenient build drops it
+/// assert!(jittered.build(&lenient).is_ok());
+/// # let _ = s;
+/// # Ok::<(), strata::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Params {
     /// Samples per set for fixed-count samplers; the intended count for progressive ones.
     pub count: u64,
     /// Seed of all randomness (default 1, as in the example programs).
     pub seed: u64,
-    /// Relative Poisson-disk radius.
-    pub radius: Option<f64>,
-    /// Relaxation iterations.
-    pub iterations: Option<u32>,
-    /// Orthogonal-array strength.
-    pub strength: Option<u32>,
-    /// Best-candidate count.
-    pub candidates: Option<u32>,
-    /// Discrete points per CCVT site.
-    pub capacity: Option<u32>,
+    /// Coordinates per point (default 2); samplers with D dimensions read it, the others
+    /// accept only 2.
+    pub dims: u32,
+    /// The parameters given, by name, in the order they were set (each name once).
+    values: Vec<(String, f64)>,
 }
 
 impl Params {
-    /// `count` samples, seed 1, no optional parameters.
+    /// `count` samples, seed 1, 2 dimensions, no optional parameters.
     pub fn new(count: u64) -> Self {
         Params {
             count,
             seed: 1,
-            radius: None,
-            iterations: None,
-            strength: None,
-            candidates: None,
-            capacity: None,
+            dims: 2,
+            values: Vec::new(),
         }
     }
 
@@ -551,30 +794,53 @@ impl Params {
         self
     }
 
+    /// The same with `dims` coordinates per point.
+    pub fn dims(mut self, dims: u32) -> Self {
+        self.dims = dims;
+        self
+    }
+
+    /// The same with the parameter `name` set to `value` (replacing an earlier value).
+    pub fn with(mut self, name: &str, value: f64) -> Self {
+        self.set(name, value);
+        self
+    }
+
+    /// Sets the parameter `name` to `value` (replacing an earlier value).
+    pub fn set(&mut self, name: &str, value: f64) {
+        match self.values.iter_mut().find(|(n, _)| n == name) {
+            Some(slot) => slot.1 = value,
+            None => self.values.push((name.to_string(), value)),
+        }
+    }
+
+    /// Removes the parameter `name`, if it was set.
+    pub fn unset(&mut self, name: &str) {
+        self.values.retain(|(n, _)| n != name);
+    }
+
+    /// The value given to the parameter `name`, if any.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.values.iter().find(|(n, _)| n == name).map(|&(_, v)| v)
+    }
+
+    /// The parameters given, by name, in the order they were first set.
+    pub fn given(&self) -> impl Iterator<Item = (&str, f64)> + '_ {
+        self.values.iter().map(|(n, v)| (n.as_str(), *v))
+    }
+
+    /// The lenient form for `entry`: the same without the parameters `entry` does not take
+    /// (what the programs do when one set of flags serves many samplers; the strict
+    /// [`Entry::build`] refuses them instead).
+    pub fn kept_for(&self, entry: &Entry) -> Params {
+        let mut p = self.clone();
+        p.values.retain(|(n, _)| entry.takes(n));
+        p
+    }
+
     /// The seed, as the samplers take it.
     pub fn sampler_seed(&self) -> Seed {
         Seed(self.seed)
-    }
-
-    /// The optional parameters that are set, with their values formatted.
-    pub fn given(&self) -> Vec<(Parameter, String)> {
-        let mut v = Vec::new();
-        if let Some(x) = self.radius {
-            v.push((Parameter::Radius, x.to_string()));
-        }
-        if let Some(x) = self.iterations {
-            v.push((Parameter::Iterations, x.to_string()));
-        }
-        if let Some(x) = self.strength {
-            v.push((Parameter::Strength, x.to_string()));
-        }
-        if let Some(x) = self.candidates {
-            v.push((Parameter::Candidates, x.to_string()));
-        }
-        if let Some(x) = self.capacity {
-            v.push((Parameter::Capacity, x.to_string()));
-        }
-        v
     }
 }
 

@@ -11,7 +11,9 @@ use strata::spectrum::relative_radius_max;
 
 fn set(name: &str, n: u64, seed: u64, rho: Option<f64>) -> Vec<Vec2> {
     let mut p = Params::new(n).seed(seed);
-    p.radius = rho;
+    if let Some(v) = rho {
+        p.set("radius", v);
+    }
     let mut s = registry::build(name, &p).unwrap();
     common::take(s.as_mut(), n as usize)
 }
@@ -58,7 +60,7 @@ fn poisson_and_bridson_keep_the_radius_and_the_count() {
 #[test]
 fn every_block_is_its_own_poisson_set() {
     let mut p = Params::new(300).seed(9);
-    p.radius = Some(0.7);
+    p.set("radius", 0.7);
     let mut s = registry::build("poisson", &p).unwrap();
     let a = common::take(s.as_mut(), 300);
     let b = common::take(s.as_mut(), 300);
@@ -245,7 +247,7 @@ fn blue_noise_sets_are_well_spaced() {
 #[test]
 fn best_candidate_is_progressive() {
     let mut p = Params::new(1);
-    p.candidates = Some(2);
+    p.set("candidates", (2) as f64);
     let mut s = registry::build("best-candidate", &p).unwrap();
     let pts = common::take(s.as_mut(), 512);
     for m in [16usize, 64, 256, 512] {
@@ -266,7 +268,7 @@ fn iteration_counts_are_checked() {
         assert!(strata::samplers::Lloyd::new(0, 10).is_err());
     }
     let mut p = Params::new(100);
-    p.iterations = Some(5);
+    p.set("iterations", (5) as f64);
     assert!(
         registry::build("poisson", &p).is_err(),
         "poisson takes no iterations"
@@ -287,7 +289,9 @@ fn spacing(
     let mut sum = [0.0; 2];
     for seed in seeds {
         let mut p = Params::new(n).seed(seed);
-        p.iterations = iterations;
+        if let Some(v) = iterations {
+            p.set("iterations", v as f64);
+        }
         let mut s = registry::build(name, &p).unwrap();
         let pts = common::take(s.as_mut(), n as usize);
         if name == "net02bn" {

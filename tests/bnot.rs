@@ -875,10 +875,10 @@ fn bad_counts_parameters_and_starts_are_errors() {
     assert!(matches!(e, Error::InvalidParameter { .. }), "{e:?}");
     assert!(e.to_string().contains("0 to 10000"), "{e}");
     let mut p = Params::new(16);
-    p.iterations = Some(u32::MAX);
+    p.set("iterations", (u32::MAX) as f64);
     assert!(registry::build("bnot", &p).is_err());
     let mut p = Params::new(16);
-    p.radius = Some(0.5);
+    p.set("radius", 0.5);
     assert!(registry::build("bnot", &p).is_err(), "bnot takes no radius");
     let b = Bnot::new(3, 10).unwrap();
     let e = b.relax(&[[0.1, 0.1], [0.5, 0.5], [0.1, 0.1]]).unwrap_err();

@@ -170,7 +170,7 @@ fn registry_errors_say_what_is_allowed() {
         assert!(e.to_string().contains("0 samples"), "{e}");
     }
     let mut p = Params::new(16);
-    p.radius = Some(0.5);
+    p.set("radius", 0.5);
     let e = registry::build("jittered", &p).expect_err("jittered takes no radius");
     assert!(e.to_string().contains("radius"), "{e}");
 }

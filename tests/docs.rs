@@ -38,6 +38,38 @@ fn the_sampler_tables_are_the_registry() {
 }
 
 #[test]
+fn the_parameter_table_in_the_cli_contract_is_the_declarations() {
+    // the section of docs/cli.md between its markers is registry::parameter_table()
+    let (begin, end) = ("<!-- begin parameters -->\n", "<!-- end parameters -->");
+    let table = registry::parameter_table();
+    let doc = read("docs/cli.md");
+    let (Some(a), Some(b)) = (doc.find(begin), doc.find(end)) else {
+        panic!("docs/cli.md lacks the parameters section markers");
+    };
+    assert!(
+        a < b,
+        "docs/cli.md: the parameters markers are out of order"
+    );
+    let inside = &doc[a + begin.len()..b];
+    if std::env::var_os("STRATA_BLESS").is_some() && inside != table {
+        let fresh = format!("{}{table}{}", &doc[..a + begin.len()], &doc[b..]);
+        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/cli.md");
+        std::fs::write(p, fresh).unwrap();
+        return;
+    }
+    assert_eq!(
+        inside, table,
+        "docs/cli.md's parameter table is stale (STRATA_BLESS=1)"
+    );
+    // every declared parameter has its rows, and every row is a declaration
+    let rows = table.lines().skip(2).count();
+    assert_eq!(rows, registry::parameters().count());
+    for name in registry::parameter_names() {
+        assert!(table.contains(&format!("| `--{name}` |")), "{name}");
+    }
+}
+
+#[test]
 fn nothing_refers_outside_the_repository() {
     for f in [
         "README.md",

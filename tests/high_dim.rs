@@ -185,7 +185,7 @@ fn bad_dimensions_counts_and_strengths_are_refused() {
     assert!(LatinHypercube::new(10, 0, strata::Seed(1)).is_err());
     assert!(LatinHypercube::new(0, 3, strata::Seed(1)).is_err());
     let mut p = Params::new(125);
-    p.strength = Some(3);
+    p.set("strength", (3) as f64);
     assert!(registry::build_nd("oa-bush", &p, 5).is_ok());
     assert!(
         registry::build_nd("oa-bose", &Params::new(100), 3)

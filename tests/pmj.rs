@@ -309,10 +309,10 @@ fn bad_input_is_refused() {
             .contains("candidates")
     );
     let mut p = strata::registry::Params::new(16);
-    p.candidates = Some(0);
+    p.set("candidates", (0) as f64);
     assert!(strata::registry::build("pmjbn", &p).is_err());
-    p.candidates = None;
-    p.iterations = Some(1001);
+    p.unset("candidates");
+    p.set("iterations", (1001) as f64);
     let e = strata::registry::build("pmj02bn", &p).unwrap_err();
     assert!(e.to_string().contains("0 to 1000"), "{e}");
     let e = Pmj::pmj02(strata::Seed(1))

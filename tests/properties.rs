@@ -98,10 +98,10 @@ proptest! {
         // minutes in a test build, so its huge counts are tested in tests/extremes.rs)
         let n = if entry.expensive && n > 300 && (n < 1 << 40 || entry.progressive) { n % 300 } else { n };
         let mut p = Params::new(n).seed(seed);
-        if set_params[0] { p.radius = Some(radius); }
-        if set_params[1] { p.iterations = Some(iterations.min(if entry.expensive { 20 } else { u32::MAX })); }
-        if set_params[2] { p.strength = Some(strength); }
-        if set_params[3] { p.candidates = Some(candidates.min(if n > 1000 { 4 } else { u32::MAX })); }
+        if set_params[0] { p.set("radius", radius); }
+        if set_params[1] { p.set("iterations", (iterations.min(if entry.expensive { 20 } else { u32::MAX })) as f64); }
+        if set_params[2] { p.set("strength", (strength) as f64); }
+        if set_params[3] { p.set("candidates", (candidates.min(if n > 1000 { 4 } else { u32::MAX })) as f64); }
         let hint = |e: &strata::Error| {
             let m = e.to_string();
             ["allowed", "must", "between", " to ", "nearest", "at most", "takes", "samplers that do", "saturated", "too small", "known"]

@@ -138,25 +138,72 @@ pub fn unexpected(arg: lexopt::Arg<'_>, usage: &str) -> CliError {
     cli_error(format!("{what}; usage: {usage}"))
 }
 
-/// The sampler parameters `points` and `spectrum` share: `--radius`, `--iterations`,
-/// `--strength`, `--candidates`, `--capacity` (the flag's name without dashes), read from `parser` into
-/// `params` with the same ranges in both programs.
+/// True when `flag` (without dashes) names a parameter some registered sampler declares
+/// (`strata::registry::parameter_names`): the programs take `--NAME VALUE` for every one.
+pub fn is_sampler_param(flag: &str) -> bool {
+    strata::registry::parameter_names().contains(&flag)
+}
+
+/// Reads the value of the sampler parameter `--flag` from `parser` into `params`, parsed by the
+/// kind its declaration gives and within the widest range any sampler declares for it (each
+/// sampler's own range is checked when it is built).
 pub fn sampler_param(
     flag: &str,
     parser: &mut lexopt::Parser,
     params: &mut strata::registry::Params,
 ) -> Result<(), CliError> {
+    use strata::registry::{self, Bound, Kind};
     let dashed = format!("--{flag}");
     let v = string_value(&dashed, parser.value()?)?;
-    match flag {
-        "radius" => params.radius = Some(parse_open_float(&dashed, &v, 0.0, 1.0)?),
-        "iterations" => params.iterations = Some(parse_int(&dashed, &v, 0, 100_000)? as u32),
-        "strength" => params.strength = Some(parse_int(&dashed, &v, 0, 64)? as u32),
-        "candidates" => params.candidates = Some(parse_int(&dashed, &v, 0, 1 << 16)? as u32),
-        "capacity" => params.capacity = Some(parse_int(&dashed, &v, 0, 1 << 16)? as u32),
-        other => return Err(cli_error(format!("--{other} is not a sampler parameter"))),
-    }
+    let specs: Vec<_> = registry::parameters()
+        .filter(|(_, p)| p.name == flag)
+        .map(|(_, p)| p)
+        .collect();
+    let Some(first) = specs.first() else {
+        return Err(cli_error(format!("--{flag} is not a sampler parameter")));
+    };
+    let end = |b: &Bound| match *b {
+        Bound::Closed(v) | Bound::Open(v) => v,
+        _ => f64::NAN,
+    };
+    let lo = specs
+        .iter()
+        .map(|p| end(&p.min))
+        .fold(f64::INFINITY, f64::min);
+    let hi = specs
+        .iter()
+        .map(|p| end(&p.max))
+        .fold(f64::NEG_INFINITY, f64::max);
+    let value = match first.kind {
+        Kind::Whole => parse_int(&dashed, &v, lo as u64, hi as u64)? as f64,
+        _ => parse_open_float(&dashed, &v, lo, hi)?,
+    };
+    params.set(first.name, value);
     Ok(())
+}
+
+/// The `--help` lines of the sampler parameters, from their declarations: a line per flag and
+/// one per sampler that takes it (its range, default and what it does).
+pub fn parameter_help() -> String {
+    use strata::registry;
+    let mut s = String::new();
+    for name in registry::parameter_names() {
+        let kind = registry::parameter_kind(name).map_or("", |k| k.name());
+        let flag = format!("--{name} X");
+        s.push_str(&format!(
+            "  {flag:<17}  a {kind}, for the samplers that take it:\n"
+        ));
+        for (e, p) in registry::parameters().filter(|(_, p)| p.name == name) {
+            s.push_str(&format!(
+                "      {}: {} ({}, default {})\n",
+                e.name,
+                p.help,
+                p.allowed(),
+                p.default
+            ));
+        }
+    }
+    s
 }
 
 /// Writes `body` into the Markdown file `path` as section `name`, between the lines

@@ -29,16 +29,16 @@ fuzz_target!(|data: &[u8]| {
     let mut p = Params::new(n).seed(word(17));
     let flags = data[25];
     if flags & 1 != 0 {
-        p.radius = Some(f64::from_bits(word(26)));
+        p.set("radius", f64::from_bits(word(26)));
     }
     if flags & 2 != 0 {
-        p.iterations = Some(data[34] as u32 * if entry.expensive { 1 } else { 40 });
+        p.set("iterations", (data[34] as u32 * if entry.expensive { 1 } else { 40 }) as f64);
     }
     if flags & 4 != 0 {
-        p.strength = Some(data[35] as u32 % 20);
+        p.set("strength", (data[35] as u32 % 20) as f64);
     }
     if flags & 8 != 0 {
-        p.candidates = Some(data[36] as u32);
+        p.set("candidates", (data[36] as u32) as f64);
     }
     let dims = data[37] as u32 % 40;
     if let Ok(mut s) = entry.build(&p) {

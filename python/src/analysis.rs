@@ -103,8 +103,7 @@ fn expected_spectrum<'py>(
 /// realization `r` seeded by `seed + r` (wrapping) as in the `spectrum` program; the sets are
 /// generated and transformed in parallel.
 #[pyfunction]
-#[pyo3(signature = (name, count, resolution, realizations, seed, radius=None, iterations=None, strength=None, candidates=None, capacity=None))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (name, count, resolution, realizations, seed, **parameters))]
 fn sampler_spectrum<'py>(
     py: Python<'py>,
     name: &str,
@@ -112,16 +111,10 @@ fn sampler_spectrum<'py>(
     resolution: u32,
     realizations: u32,
     seed: u64,
-    radius: Option<f64>,
-    iterations: Option<u32>,
-    strength: Option<u32>,
-    candidates: Option<u32>,
-    capacity: Option<u32>,
+    parameters: Option<&Bound<'py, pyo3::types::PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let entry = strata::registry::find(name).map_err(to_py_err)?;
-    let params = crate::samplers::params(
-        count, seed, radius, iterations, strength, candidates, capacity,
-    );
+    let params = crate::samplers::params(count, seed, parameters)?;
     let n = usize::try_from(count).map_err(|_| value_error("sampler_spectrum: count too large"))?;
     // checks the parameters and the count before the parallel run
     entry.build(&params).map_err(to_py_err)?;

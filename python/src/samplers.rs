@@ -3,40 +3,13 @@
 
 use std::sync::Mutex;
 
-use glam::Vec2;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use strata::registry::{self, CountRule, Entry, Params};
-use strata::{Progression, Sampler, SamplerNd};
+use strata::SamplerNd;
+use strata::registry::{self, Built, CountRule, Entry, Kind, Params, Strictness};
 
 use crate::{borrow_output, output_slice, to_py_err, value_error};
-
-/// A sampler of the registry, 2D or D-dimensional.
-#[derive(Debug)]
-enum Inner {
-    /// Built by [`Entry::build`]: what `points` uses for `--dims 2`.
-    Two(Box<dyn Sampler>),
-    /// Built by [`Entry::build_nd`]: what `points` uses for any other `--dims`.
-    Nd(Box<dyn SamplerNd>),
-}
-
-impl Inner {
-    fn progression(&self) -> Progression {
-        match self {
-            Inner::Two(s) => Sampler::progression(&**s),
-            Inner::Nd(s) => s.progression(),
-        }
-    }
-
-    /// The next `values.len() / dims` points, point-major.
-    fn fill(&mut self, values: &mut [f32]) {
-        match self {
-            Inner::Two(s) => Sampler::fill(&mut **s, bytemuck::cast_slice_mut::<f32, Vec2>(values)),
-            Inner::Nd(s) => s.fill(values),
-        }
-    }
-}
 
 /// A registered sampler built from its name, count, seed, dimensions and parameters, exactly
 /// as the `points` program builds it; `fill` writes its next points into a float32 array.
@@ -47,7 +20,7 @@ impl Inner {
 #[derive(Debug)]
 pub struct PySampler {
     /// The sampler and the number of points it has given so far.
-    inner: Mutex<(Inner, u64)>,
+    inner: Mutex<(Built, u64)>,
     entry: &'static Entry,
     params: Params,
     name: &'static str,
@@ -59,35 +32,23 @@ pub struct PySampler {
 #[pymethods]
 impl PySampler {
     /// Builds sampler `name` for `count` points per set, seeded by `seed`, with `dims`
-    /// coordinates per point and the optional parameters (each `None` for the default).
+    /// coordinates per point and the optional parameters its entry declares, by keyword
+    /// (each `None` for the default).
     #[new]
-    #[pyo3(signature = (name, count, seed, dims, radius=None, iterations=None, strength=None, candidates=None, capacity=None))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (name, count, seed, dims, **parameters))]
     fn new(
         py: Python<'_>,
         name: &str,
         count: u64,
         seed: u64,
         dims: u32,
-        radius: Option<f64>,
-        iterations: Option<u32>,
-        strength: Option<u32>,
-        candidates: Option<u32>,
-        capacity: Option<u32>,
+        parameters: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
         let entry = registry::find(name).map_err(to_py_err)?;
-        let params = params(
-            count, seed, radius, iterations, strength, candidates, capacity,
-        );
+        let params = params(count, seed, parameters)?.dims(dims);
         // some constructions do their work up front (Poisson disk, CCVT, Lloyd)
         let inner = py
-            .detach(|| {
-                if dims == 2 {
-                    entry.build(&params).map(Inner::Two)
-                } else {
-                    entry.build_nd(&params, dims).map(Inner::Nd)
-                }
-            })
+            .detach(|| entry.make(&params, Strictness::Strict))
             .map_err(to_py_err)?;
         let progressive = inner.progression().is_progressive();
         Ok(PySampler {
@@ -123,10 +84,7 @@ impl PySampler {
     fn skip(&self, n: u64) -> bool {
         let mut guard = self.inner.lock().unwrap_or_else(|e| e.into_inner());
         let (inner, drawn) = &mut *guard;
-        let skipped = match inner {
-            Inner::Nd(s) => s.skip(n),
-            Inner::Two(s) => strata::Sampler::skip(s.as_mut(), n),
-        };
+        let skipped = inner.skip(n);
         if skipped {
             *drawn += n;
         }
@@ -172,23 +130,32 @@ impl PySampler {
     }
 }
 
-/// The parameters of a sampler, as the command line's flags set them.
+/// The parameters of a sampler, as the command line's flags set them: `count`, `seed` and
+/// the keyword arguments (`None` values skipped), each a number; which sampler takes which,
+/// and their ranges, the crate checks against each sampler's declarations.
 pub(crate) fn params(
     count: u64,
     seed: u64,
-    radius: Option<f64>,
-    iterations: Option<u32>,
-    strength: Option<u32>,
-    candidates: Option<u32>,
-    capacity: Option<u32>,
-) -> Params {
+    parameters: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Params> {
     let mut p = Params::new(count).seed(seed);
-    p.radius = radius;
-    p.iterations = iterations;
-    p.strength = strength;
-    p.candidates = candidates;
-    p.capacity = capacity;
-    p
+    for (key, value) in parameters.into_iter().flat_map(|d| d.iter()) {
+        let name: String = key.extract()?;
+        if value.is_none() {
+            continue;
+        }
+        let v: f64 = value.extract().map_err(|_| {
+            pyo3::exceptions::PyTypeError::new_err(format!(
+                "{name} must be a number, not {}",
+                value
+                    .get_type()
+                    .name()
+                    .map_or("?".into(), |n| n.to_string())
+            ))
+        })?;
+        p.set(&name, v);
+    }
+    Ok(p)
 }
 
 /// Values per thread below which a fill stays on one thread.
@@ -199,8 +166,8 @@ impl PySampler {
     /// sampler can skip ahead in constant time (`SamplerNd::skip`): each thread builds its own
     /// sampler from the same parameters and skips to its share; `inner` then skips past all
     /// of them. Bit-identical to one serial fill. False (nothing done) when it cannot.
-    fn fill_in_parallel(&self, inner: &mut Inner, drawn: u64, values: &mut [f32]) -> bool {
-        let Inner::Nd(main) = inner else {
+    fn fill_in_parallel(&self, inner: &mut Built, drawn: u64, values: &mut [f32]) -> bool {
+        let Built::Nd(main) = inner else {
             return false;
         };
         let d = self.dims as usize;
@@ -212,7 +179,7 @@ impl PySampler {
         let per = points.div_ceil(threads);
         let mut forks = Vec::with_capacity(threads);
         for t in 0..threads {
-            let Ok(mut s) = self.entry.build_nd(&self.params, self.dims) else {
+            let Ok(mut s) = self.entry.make(&self.params, Strictness::Strict) else {
                 return false;
             };
             if !s.skip(drawn + (t * per) as u64) {
@@ -244,9 +211,11 @@ fn entry_dict<'py>(py: Python<'py>, e: &Entry) -> PyResult<Bound<'py, PyDict>> {
     let params = PyList::empty(py);
     for p in e.parameters {
         let pd = PyDict::new(py);
-        pd.set_item("name", p.parameter.name())?;
+        pd.set_item("name", p.name)?;
+        pd.set_item("kind", p.kind.name())?;
         pd.set_item("default", p.default)?;
-        pd.set_item("allowed", p.allowed)?;
+        pd.set_item("allowed", p.allowed())?;
+        pd.set_item("help", p.help)?;
         params.append(pd)?;
     }
     d.set_item("parameters", params)?;
@@ -258,6 +227,22 @@ fn entry_dict<'py>(py: Python<'py>, e: &Entry) -> PyResult<Bound<'py, PyDict>> {
     d.set_item("rates", rates)?;
     d.set_item("expensive", e.expensive)?;
     Ok(d)
+}
+
+/// Every sampler parameter some registered sampler declares, in the registry's order, as
+/// `(name, kind)` pairs, kind `"whole"` or `"real"` (what the Python keyword checks accept).
+#[pyfunction]
+fn parameter_kinds() -> Vec<(&'static str, &'static str)> {
+    registry::parameter_names()
+        .into_iter()
+        .map(|n| {
+            let kind = match registry::parameter_kind(n) {
+                Some(Kind::Whole) => "whole",
+                _ => "real",
+            };
+            (n, kind)
+        })
+        .collect()
 }
 
 /// Every registered sampler, in the registry's order, as a list of dicts: name, description,
@@ -318,6 +303,7 @@ fn count_error(name: &str, n: u64) -> PyResult<Option<String>> {
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySampler>()?;
     m.add_function(wrap_pyfunction!(registry_entries, m)?)?;
+    m.add_function(wrap_pyfunction!(parameter_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(allows_count, m)?)?;
     m.add_function(wrap_pyfunction!(nearest_count, m)?)?;
     m.add_function(wrap_pyfunction!(allowed_counts, m)?)?;

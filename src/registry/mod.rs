@@ -19,7 +19,7 @@
 //! ```
 
 pub use crate::entry::{
-    BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Params, Rates,
+    BlueNoise, Bound, Built, CountRule, Entry, Family, Kind, ParameterSpec, Params, Rates,
 };
 
 use crate::error::{Error, Result};
@@ -110,32 +110,106 @@ pub fn build_nd(name: &str, params: &Params, dims: u32) -> Result<Box<dyn Sample
     find(name)?.build_nd(params, dims)
 }
 
+/// What a build does with a parameter the sampler does not take.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Strictness {
+    /// Refuses it, naming the samplers that do take it ([`Entry::build`]).
+    Strict,
+    /// Drops it ([`Params::kept_for`]): what the programs do when one set of flags serves
+    /// several samplers. A name that no registered sampler takes is still refused, and so is a
+    /// value outside the range of a sampler that takes it.
+    Lenient,
+}
+
 // Building from an entry lives here, above the samplers, because its errors list the other
 // entries (the samplers that take a parameter, or have D dimensions).
 impl Entry {
-    /// Builds the sampler, after checking that every optional parameter given is one it takes.
+    /// Builds the sampler in 2D, refusing a parameter it does not take (the strict build);
+    /// `params.dims` is ignored.
     pub fn build(&self, params: &Params) -> Result<Box<dyn Sampler>> {
-        self.check_params(params)?;
-        (self.build)(params)
+        let params = params.clone().dims(2);
+        match self.make(&params, Strictness::Strict)? {
+            Built::Two(s) => Ok(s),
+            Built::Nd(_) => Err(Error::input(
+                self.name,
+                "built a D-dimensional sampler for 2 dimensions (a registry bug)",
+            )),
+        }
     }
 
-    /// The checks common to both forms: every optional parameter given is one this sampler
-    /// takes, and the count is not 0.
-    fn check_params(&self, params: &Params) -> Result<()> {
-        for (p, value) in params.given() {
-            if !self.takes(p) {
-                let takers: Vec<&str> = entries()
-                    .iter()
-                    .filter(|e| e.takes(p))
-                    .map(|e| e.name)
-                    .collect();
-                let allowed = format!(
-                    "{} takes no {}; samplers that do: {}",
+    /// Builds the sampler with `dims` coordinates per point, strictly (`params.dims` is
+    /// ignored): [`Entry::make`] with `dims`, as a [`SamplerNd`].
+    pub fn build_nd(&self, params: &Params, dims: u32) -> Result<Box<dyn SamplerNd>> {
+        let params = params.clone().dims(dims);
+        Ok(self.make(&params, Strictness::Strict)?.into_nd())
+    }
+
+    /// Builds the sampler from `params`, dimension count included: the one way every form
+    /// goes. Checks, in order, that the dimension count is one the sampler has, that every
+    /// parameter given is declared by some sampler (and, when `strictness` is
+    /// [`Strictness::Strict`], by this one), that each value this sampler takes is within its
+    /// declared range ([`ParameterSpec::check`]), and that the count is not 0; then the
+    /// sampler's own constructor checks the rest (its count rule, limits a range cannot say).
+    pub fn make(&self, params: &Params, strictness: Strictness) -> Result<Built> {
+        let dims = params.dims;
+        if dims == 0 || dims > crate::samplers::MAX_DIMENSIONS {
+            return Err(Error::parameter(
+                self.name,
+                "dims",
+                dims,
+                format!("1 to {} dimensions", crate::samplers::MAX_DIMENSIONS),
+            ));
+        }
+        if dims != 2 && !self.has_dimensions() {
+            let takers: Vec<&str> = entries()
+                .iter()
+                .filter(|e| e.has_dimensions())
+                .map(|e| e.name)
+                .collect();
+            return Err(Error::parameter(
+                self.name,
+                "dims",
+                dims,
+                format!(
+                    "{} has 2-dimensional points only; samplers with D dimensions: {}",
                     self.name,
-                    p.name(),
                     takers.join(", ")
-                );
-                return Err(Error::parameter(self.name, p.name(), value, allowed));
+                ),
+            ));
+        }
+        let mut kept = params.clone();
+        for (name, value) in params.given() {
+            match self.parameter(name) {
+                Some(spec) => {
+                    spec.check(self.name, value)?;
+                }
+                None => {
+                    let Some(known) = parameter_names().into_iter().find(|n| *n == name) else {
+                        return Err(Error::input(
+                            self.name,
+                            format!(
+                                "no sampler takes a parameter named '{name}'; parameters: {}",
+                                parameter_names().join(", ")
+                            ),
+                        ));
+                    };
+                    if strictness == Strictness::Lenient {
+                        kept.unset(name);
+                        continue;
+                    }
+                    let takers: Vec<&str> = entries()
+                        .iter()
+                        .filter(|e| e.takes(name))
+                        .map(|e| e.name)
+                        .collect();
+                    let allowed = format!(
+                        "{} takes no {known}; samplers that do: {}",
+                        self.name,
+                        takers.join(", ")
+                    );
+                    return Err(Error::parameter(self.name, known, value, allowed));
+                }
             }
         }
         if params.count == 0 {
@@ -145,45 +219,59 @@ impl Entry {
                 format!("allowed counts: {}", self.counts),
             ));
         }
-        Ok(())
+        (self.build)(&kept)
     }
+}
 
-    /// Builds the D-dimensional sampler: the sampler's own for those that have one, the 2D
-    /// sampler itself for `D = 2`; otherwise an error naming the samplers that have D dims.
-    pub fn build_nd(&self, params: &Params, dims: u32) -> Result<Box<dyn SamplerNd>> {
-        if dims == 0 || dims > crate::samplers::MAX_DIMENSIONS {
-            return Err(Error::parameter(
-                self.name,
-                "dims",
-                dims,
-                format!("1 to {} dimensions", crate::samplers::MAX_DIMENSIONS),
+/// Every parameter declaration, sampler by sampler in the order of [`entries`], with the
+/// entry that declares it.
+pub fn parameters() -> impl Iterator<Item = (&'static Entry, &'static ParameterSpec)> {
+    ENTRIES
+        .iter()
+        .flat_map(|e| e.parameters.iter().map(move |p| (e, p)))
+}
+
+/// The distinct parameter names, in the order they are first declared: the programs' flags
+/// and the Python keywords.
+pub fn parameter_names() -> Vec<&'static str> {
+    let mut names: Vec<&'static str> = Vec::new();
+    for (_, p) in parameters() {
+        if !names.contains(&p.name) {
+            names.push(p.name);
+        }
+    }
+    names
+}
+
+/// The kind of the parameter named `name` (the same for every sampler that declares it), or
+/// `None` when no sampler takes it.
+pub fn parameter_kind(name: &str) -> Option<Kind> {
+    parameters()
+        .find(|(_, p)| p.name == name)
+        .map(|(_, p)| p.kind)
+}
+
+/// The parameters table, generated from the declarations (`docs/cli.md` shows it; a test
+/// keeps it equal): parameter, sampler, kind, allowed values, default and what it does.
+pub fn parameter_table() -> String {
+    let mut t = String::from(
+        "| parameter | sampler | kind | allowed | default | what it does |\n\
+         |---|---|---|---|---|---|\n",
+    );
+    for name in parameter_names() {
+        for (e, p) in parameters().filter(|(_, p)| p.name == name) {
+            t.push_str(&format!(
+                "| `--{}` | `{}` | {} | {} | {} | {} |\n",
+                p.name,
+                e.name,
+                p.kind.name(),
+                p.allowed(),
+                p.default,
+                p.help
             ));
         }
-        match self.nd {
-            Some(build) => {
-                self.check_params(params)?;
-                build(params, dims)
-            }
-            None if dims == 2 => Ok(Box::new(self.build(params)?)),
-            None => {
-                let takers: Vec<&str> = entries()
-                    .iter()
-                    .filter(|e| e.has_dimensions())
-                    .map(|e| e.name)
-                    .collect();
-                Err(Error::parameter(
-                    self.name,
-                    "dims",
-                    dims,
-                    format!(
-                        "{} has 2-dimensional points only; samplers with D dimensions: {}",
-                        self.name,
-                        takers.join(", ")
-                    ),
-                ))
-            }
-        }
     }
+    t
 }
 
 /// The table of samplers, generated from the entries (the README and the crate docs show it;
@@ -262,6 +350,139 @@ mod tests {
             assert!(names.contains(&name), "{name} missing from {names:?}");
         }
         assert!(!names.contains(&"pmj02") && !names.contains(&"sobol"));
+    }
+
+    #[test]
+    #[cfg(feature = "std")] // the samplers with parameters need `std`
+    fn each_parameter_is_declared_consistently() {
+        // one kind per name; each default inside its own range; a help line; and the range is
+        // what `allows` enforces (its ends, and just outside them)
+        assert!(!parameter_names().is_empty());
+        for (e, p) in parameters() {
+            assert_eq!(
+                parameter_kind(p.name),
+                Some(p.kind),
+                "{}: {}",
+                e.name,
+                p.name
+            );
+            assert!(
+                p.allows(p.default),
+                "{}: {} default {}",
+                e.name,
+                p.name,
+                p.default
+            );
+            assert!(!p.help.is_empty(), "{}: {}", e.name, p.name);
+            for (bound, outward) in [(p.min, -1.0), (p.max, 1.0)] {
+                let (v, closed) = match bound {
+                    Bound::Closed(v) => (v, true),
+                    Bound::Open(v) => (v, false),
+                };
+                assert_eq!(p.allows(v), closed, "{}: {} at {v}", e.name, p.name);
+                let step = if p.kind == Kind::Whole { 1.0 } else { 1e-9 };
+                assert!(!p.allows(v + outward * step), "{}: {}", e.name, p.name);
+            }
+            assert!(!p.allows(f64::NAN) && !p.allows(f64::INFINITY));
+            if p.kind == Kind::Whole {
+                assert!(!p.allows(p.default + 0.5), "{}: {}", e.name, p.name);
+            }
+            // the sampler builds with its default given explicitly, as without it
+            let n = e.counts.nearest(64);
+            let given = Params::new(n).with(p.name, p.default);
+            if e.expensive {
+                continue; // built in their own tests
+            }
+            let mut a = e.build(&given).unwrap();
+            let mut b = e.build(&Params::new(n)).unwrap();
+            let mut va = alloc::vec![crate::sampler::Point2::ZERO; n as usize];
+            let mut vb = va.clone();
+            Sampler::fill(&mut a, &mut va);
+            Sampler::fill(&mut b, &mut vb);
+            assert_eq!(va, vb, "{}: {} given its default", e.name, p.name);
+        }
+    }
+
+    #[test]
+    #[cfg(feature = "std")] // the samplers with parameters need `std`
+    fn the_strict_build_refuses_what_the_lenient_one_drops() {
+        let jittered = find("jittered").unwrap();
+        let p = Params::new(16).seed(3).with("radius", 0.5);
+        let e = jittered.build(&p).unwrap_err().to_string();
+        assert!(
+            e.contains("takes no radius") && e.contains("poisson"),
+            "{e}"
+        );
+        let e = jittered
+            .make(&p, Strictness::Strict)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("takes no radius"), "{e}");
+        // lenient: the same points as without the parameter
+        let mut a = jittered.make(&p, Strictness::Lenient).unwrap();
+        let mut b = jittered
+            .make(&Params::new(16).seed(3), Strictness::Strict)
+            .unwrap();
+        let (mut va, mut vb) = (alloc::vec![0f32; 32], alloc::vec![0f32; 32]);
+        a.fill(&mut va);
+        b.fill(&mut vb);
+        assert_eq!(va, vb);
+        assert_eq!(p.kept_for(jittered), Params::new(16).seed(3));
+        // a name nobody declares is refused by both, with the known names
+        for s in [Strictness::Strict, Strictness::Lenient] {
+            let e = jittered
+                .make(&Params::new(16).with("radus", 0.5), s)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("'radus'") && e.contains("radius"), "{e}");
+        }
+        // a value outside the range of a sampler that takes it is refused by both, with it
+        for s in [Strictness::Strict, Strictness::Lenient] {
+            let poisson = find("poisson").unwrap();
+            let e = poisson
+                .make(&Params::new(16).with("radius", 0.9), s)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("0 < radius <= 0.78"), "{e}");
+        }
+    }
+
+    #[test]
+    fn build_and_build_nd_are_one_path() {
+        for e in entries() {
+            let n = e.counts.nearest(27);
+            if e.expensive {
+                continue;
+            }
+            for dims in [1u32, 2, 3, 5] {
+                let p = Params::new(n).seed(9);
+                let nd = e.build_nd(&p, dims);
+                let made = e.make(&p.clone().dims(dims), Strictness::Strict);
+                assert_eq!(nd.is_ok(), made.is_ok(), "{} in {dims}", e.name);
+                if dims == 2 {
+                    assert!(nd.is_ok(), "{} in 2", e.name);
+                } else if !e.has_dimensions() {
+                    assert!(nd.is_err(), "{} in {dims}", e.name);
+                }
+                let (Ok(mut nd), Ok(mut made)) = (nd, made) else {
+                    continue;
+                };
+                assert_eq!(matches!(made, Built::Two(_)), dims == 2, "{}", e.name);
+                let k = n as usize * dims as usize;
+                let (mut a, mut b) = (alloc::vec![0f32; k], alloc::vec![0f32; k]);
+                nd.fill(&mut a);
+                made.fill(&mut b);
+                assert_eq!(a, b, "{} in {dims}", e.name);
+                if dims == 2 {
+                    // and the 2D form gives the same points
+                    let mut s = e.build(&p).unwrap();
+                    let mut v = alloc::vec![crate::sampler::Point2::ZERO; n as usize];
+                    Sampler::fill(&mut s, &mut v);
+                    let flat: Vec<f32> = v.iter().flat_map(|q| [q.x, q.y]).collect();
+                    assert_eq!(flat, a, "{}", e.name);
+                }
+            }
+        }
     }
 
     #[test]

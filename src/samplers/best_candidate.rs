@@ -11,7 +11,7 @@ use rand_pcg::Pcg32;
 
 use super::Epochs;
 use super::poisson::uniform;
-use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::float::unit_f32_from_f64;
 use crate::grid::TorusGrid;
@@ -36,22 +36,24 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::BlueNoise,
     progressive: true,
     counts: CountRule::Any,
-    parameters: &[ParameterSpec {
-        parameter: Parameter::Candidates,
-        default: DEFAULT_FACTOR as f64,
-        allowed: "1 to 1024",
-    }],
+    parameters: &[ParameterSpec::whole(
+        "candidates",
+        1,
+        MAX_FACTOR,
+        DEFAULT_FACTOR,
+        "candidates per point, in units of the points placed so far (k n for the next point)",
+    )],
     promise: "farthest of `k n` candidates",
     rates: Rates::NONE,
     expensive: true,
     blue_noise: Some(BlueNoise::published(
         "none found (Mitchell 1991 could not be checked here)",
     )),
+    any_dims: false,
     build: |p| {
-        let k = p.candidates.unwrap_or(DEFAULT_FACTOR);
-        Ok(Box::new(BestCandidate::new(p.sampler_seed(), k)?))
+        let k = ENTRY.parameters[0].read_whole(p);
+        Ok(Built::two(BestCandidate::new(p.sampler_seed(), k)?))
     },
-    nd: None,
 };
 
 /// The best-candidate sequence (progressive).

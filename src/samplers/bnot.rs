@@ -48,7 +48,7 @@ use rand_pcg::Pcg32;
 
 use super::poisson::uniform;
 use super::{SetGenerator, Sets};
-use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::grid::{relative_radius_max, wrap_unit};
 use crate::hash::{mix64, stream_seed};
@@ -86,25 +86,27 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
-    parameters: &[ParameterSpec {
-        parameter: Parameter::Iterations,
-        default: DEFAULT_ITERATIONS as f64,
-        allowed: "0 to 10000",
-    }],
+    parameters: &[ParameterSpec::whole(
+        "iterations",
+        0,
+        MAX_ITERATIONS,
+        DEFAULT_ITERATIONS,
+        "the most Lloyd steps on the power diagram (a stopping rule usually ends them first)",
+    )],
     promise: "equal-area power cells (blue noise)",
     rates: Rates::NONE,
     expensive: true,
     blue_noise: Some(BlueNoise::published(
         "none found (de Goes et al. 2012 could not be checked here)",
     )),
+    any_dims: false,
     build: |p| {
-        let k = p.iterations.unwrap_or(DEFAULT_ITERATIONS);
-        Ok(Box::new(BnotSets::new(
+        let k = ENTRY.parameters[0].read_whole(p);
+        Ok(Built::two(BnotSets::new(
             Bnot::new(p.count, k)?,
             p.sampler_seed(),
         )?))
     },
-    nd: None,
 };
 
 /// BNOT sets of `count` points.

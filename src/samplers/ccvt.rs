@@ -32,7 +32,7 @@ use rand_pcg::Pcg32;
 
 use super::poisson::{below, uniform};
 use super::{SetGenerator, Sets};
-use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::grid::{TorusGrid, torus_distance_squared, wrap_unit};
 use crate::hash::stream_seed;
@@ -64,18 +64,7 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
-    parameters: &[
-        ParameterSpec {
-            parameter: Parameter::Iterations,
-            default: DEFAULT_ITERATIONS as f64,
-            allowed: "1 to 100000",
-        },
-        ParameterSpec {
-            parameter: Parameter::Capacity,
-            default: DEFAULT_CAPACITY as f64,
-            allowed: "1 to 4096, sites x capacity at most 2^26",
-        },
-    ],
+    parameters: &[ITERATIONS, CAPACITY],
     promise: "equal-capacity Voronoi cells (blue noise)",
     rates: Rates {
         discontinuous: Some(-1.5),
@@ -86,16 +75,34 @@ pub(crate) const ENTRY: Entry = Entry {
     blue_noise: Some(BlueNoise::published(
         "rho 0.764, mean NN 0.88 at N = 1024 (Balzer, Schlömer, Deussen 2009), as quoted in issue #28; not checked against the paper (this module's docs quote mean NN 0.891)",
     )),
+    any_dims: false,
     build: |p| {
-        let k = p.iterations.unwrap_or(DEFAULT_ITERATIONS);
-        let c = p.capacity.unwrap_or(DEFAULT_CAPACITY);
-        Ok(Box::new(CcvtSets::new(
+        let (k, c) = (ITERATIONS.read_whole(p), CAPACITY.read_whole(p));
+        Ok(Built::two(CcvtSets::new(
             Ccvt::with_capacity(p.count, k, c)?,
             p.sampler_seed(),
         )?))
     },
-    nd: None,
 };
+
+/// `--iterations`: the cap on the passes.
+const ITERATIONS: ParameterSpec = ParameterSpec::whole(
+    "iterations",
+    1,
+    MAX_ITERATIONS,
+    DEFAULT_ITERATIONS,
+    "the most swap passes (the optimisation stops earlier at a pass without a swap)",
+);
+
+/// `--capacity`: discrete points per site.
+const CAPACITY: ParameterSpec = ParameterSpec::whole(
+    "capacity",
+    1,
+    MAX_CAPACITY,
+    DEFAULT_CAPACITY,
+    "discrete points per site (more: closer to the continuous CCVT, slower)",
+)
+.with_note("sites x capacity at most 2^26");
 
 /// CCVT sets of `count` sites.
 #[derive(Clone, Debug)]

@@ -23,7 +23,7 @@
 //! dimension, none above base 127), so per point only the lower digits are hashed. Same values
 //! as [`scrambled_radical_inverse`], which allocates nothing.
 
-use crate::entry::{CountRule, Entry, Family, Rates};
+use crate::entry::{Built, CountRule, Entry, Family, Rates};
 use crate::error::Result;
 use crate::float::{Strata, unit_f32_from_u32};
 use crate::hash::{DivMod, Stream, hash32, mix64, stream_seed};
@@ -71,8 +71,13 @@ pub(crate) const ENTRY: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Halton::new(p.sampler_seed()))),
-    nd: Some(|p, d| Ok(Box::new(HaltonNd::new(d, p.sampler_seed())?))),
+    any_dims: true,
+    build: |p| {
+        Ok(match p.dims {
+            2 => Built::two(Halton::new(p.sampler_seed())),
+            d => Built::nd(HaltonNd::new(d, p.sampler_seed())?),
+        })
+    },
 };
 
 /// Digits are produced until the last one's weight is at most the inverse of this (the

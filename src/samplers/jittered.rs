@@ -7,7 +7,7 @@
 //! low power near DC, no peaks. The cost is a count fixed in advance, and a square one.
 
 use super::{BlockCursor, Blocks};
-use crate::entry::{CountRule, Entry, Family, Rates};
+use crate::entry::{Built, CountRule, Entry, Family, Rates};
 use crate::float::Strata;
 use crate::hash::{DivMod, hash_u64};
 use crate::prelude::*;
@@ -30,8 +30,8 @@ pub(crate) const ENTRY: Entry = Entry {
     },
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Jittered::new(p.count, p.sampler_seed())?)),
-    nd: None,
+    any_dims: false,
+    build: |p| Ok(Built::two(Jittered::new(p.count, p.sampler_seed())?)),
 };
 
 /// One uniform point per cell of an `s x s` grid (`N = s^2`), cells in row-major order.

@@ -7,7 +7,7 @@
 //! axes (low power at `u = 0` or `v = 0`) and is white elsewhere.
 
 use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
-use crate::entry::{CountRule, Entry, Family, Rates};
+use crate::entry::{Built, CountRule, Entry, Family, Rates};
 use crate::float::Strata;
 use crate::hash::{Permutation, Stream, hash_u64};
 use crate::prelude::*;
@@ -26,8 +26,8 @@ pub(crate) const NROOKS: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(NRooks::new(p.count, p.sampler_seed())?)),
-    nd: None,
+    any_dims: false,
+    build: |p| Ok(Built::two(NRooks::new(p.count, p.sampler_seed())?)),
 };
 
 /// The registry entry of `latin`.
@@ -43,8 +43,13 @@ pub(crate) const LATIN: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(LatinHypercube::new(p.count, 2, p.sampler_seed())?)),
-    nd: Some(|p, d| Ok(Box::new(LatinHypercube::new(p.count, d, p.sampler_seed())?))),
+    any_dims: true,
+    build: |p| {
+        Ok(match p.dims {
+            2 => Built::two(LatinHypercube::new(p.count, 2, p.sampler_seed())?),
+            d => Built::nd(LatinHypercube::new(p.count, d, p.sampler_seed())?),
+        })
+    },
 };
 
 /// N-rooks (2D Latin hypercube): any `N >= 1`, one point per `1/N` column and per `1/N` row.

@@ -19,7 +19,7 @@
 //! with Owen-scrambled Sobol' for rendering once padded: `render` measures it.
 
 use super::{BlockCursor, Blocks, Epochs, check_dims};
-use crate::entry::{CountRule, Entry, Family, Rates, fibonacci_numbers};
+use crate::entry::{Built, CountRule, Entry, Family, Rates, fibonacci_numbers};
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
 use crate::hash::{hash_u64, stream_seed};
@@ -57,8 +57,13 @@ pub(crate) const LATTICE: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Lattice::new(p.sampler_seed()))),
-    nd: Some(|p, d| Ok(Box::new(LatticeNd::new(d, p.sampler_seed())?))),
+    any_dims: true,
+    build: |p| {
+        Ok(match p.dims {
+            2 => Built::two(Lattice::new(p.sampler_seed())),
+            d => Built::nd(LatticeNd::new(d, p.sampler_seed())?),
+        })
+    },
 };
 
 /// The registry entry of `fibonacci`.
@@ -74,8 +79,8 @@ pub(crate) const FIBONACCI: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Fibonacci::new(p.count, p.sampler_seed())?)),
-    nd: None,
+    any_dims: false,
+    build: |p| Ok(Built::two(Fibonacci::new(p.count, p.sampler_seed())?)),
 };
 
 /// Dimensions 0 and 1 of the lattice point whose radical inverse is `r` (in 32-bit fixed point

@@ -16,7 +16,7 @@
 use spade::{DelaunayTriangulation, HasPosition, Point2 as SPoint, Triangulation};
 
 use super::{SetGenerator, Sets};
-use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::float::{unit_f64_from_u32, unit_f64_from_u64};
 use crate::grid::{relative_radius_max, wrap_unit as wrap};
@@ -49,25 +49,27 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
-    parameters: &[ParameterSpec {
-        parameter: Parameter::Iterations,
-        default: DEFAULT_ITERATIONS as f64,
-        allowed: "0 to 100000",
-    }],
+    parameters: &[ParameterSpec::whole(
+        "iterations",
+        0,
+        MAX_ITERATIONS,
+        DEFAULT_ITERATIONS,
+        "the most Lloyd steps (they stop earlier once no site moves more than the tolerance)",
+    )],
     promise: "a centroidal Voronoi tessellation (near-hexagonal), converged",
     rates: Rates::NONE,
     expensive: true,
     blue_noise: Some(BlueNoise::published(
         "not reported (Lloyd 1982 is on quantization; the method predates its use for blue noise)",
     )),
+    any_dims: false,
     build: |p| {
-        let k = p.iterations.unwrap_or(DEFAULT_ITERATIONS);
-        Ok(Box::new(LloydSets::new(
+        let k = ENTRY.parameters[0].read_whole(p);
+        Ok(Built::two(LloydSets::new(
             Lloyd::new(p.count, k)?,
             p.sampler_seed(),
         )?))
     },
-    nd: None,
 };
 
 #[derive(Clone, Copy, Debug)]

@@ -14,7 +14,7 @@
 //! Both are computed point by point from hashed permutations ([`Permutation`]), with no tables.
 
 use super::{BlockCursor, Blocks};
-use crate::entry::{CountRule, Entry, Family, Rates};
+use crate::entry::{Built, CountRule, Entry, Family, Rates};
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, Stream, hash_u64, hash32};
 use crate::prelude::*;
@@ -33,8 +33,8 @@ pub(crate) const MULTIJITTERED: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(MultiJittered::new(p.count, p.sampler_seed())?)),
-    nd: None,
+    any_dims: false,
+    build: |p| Ok(Built::two(MultiJittered::new(p.count, p.sampler_seed())?)),
 };
 
 /// The registry entry of `cmj`.
@@ -50,8 +50,8 @@ pub(crate) const CMJ: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Cmj::new(p.count, p.sampler_seed())?)),
-    nd: None,
+    any_dims: false,
+    build: |p| Ok(Built::two(Cmj::new(p.count, p.sampler_seed())?)),
 };
 
 /// The point of cell `(col, row)` of an `m x n` grid whose x lies in sub-column `sub_x` (of `n`)

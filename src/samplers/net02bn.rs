@@ -24,7 +24,7 @@
 //! (`tests/blue_noise.rs`, `docs/results.md`): larger nearest-neighbour distances and a weaker
 //! low-frequency band than `pmj02` or Sobol'.
 
-use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::grid::relative_radius_max;
 use crate::hash::{hash_u64, stream_seed};
@@ -54,11 +54,13 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::PowerOfTwo,
-    parameters: &[ParameterSpec {
-        parameter: Parameter::Iterations,
-        default: DEFAULT_SWEEPS as f64,
-        allowed: "0 to 10000",
-    }],
+    parameters: &[ParameterSpec::whole(
+        "iterations",
+        0,
+        MAX_SWEEPS,
+        DEFAULT_SWEEPS,
+        "the most sweeps of the net-preserving swaps (a stopping rule usually ends them first)",
+    )],
     promise: "a (0,m,2)-net with blue-noise spacing",
     rates: Rates {
         discontinuous: Some(-1.5),
@@ -69,14 +71,14 @@ pub(crate) const ENTRY: Entry = Entry {
     blue_noise: Some(BlueNoise::published(
         "none found (Ahmed and Wonka 2021 could not be checked here)",
     )),
+    any_dims: false,
     build: |p| {
-        let k = p.iterations.unwrap_or(DEFAULT_SWEEPS);
-        Ok(Box::new(Net02BnSets::new(
+        let k = ENTRY.parameters[0].read_whole(p);
+        Ok(Built::two(Net02BnSets::new(
             Net02Bn::new(p.count, k)?,
             p.sampler_seed(),
         )?))
     },
-    nd: None,
 };
 
 /// Blue-noise (0,m,2)-nets of `2^m` points.

@@ -25,7 +25,7 @@
 
 use super::{BlockCursor, Blocks, check_dims};
 use crate::entry::{
-    CountRule, Entry, Family, Parameter, ParameterSpec, Params, Rates, check_oa_count, prime_power,
+    Built, CountRule, Entry, Family, ParameterSpec, Params, Rates, check_oa_count, prime_power,
 };
 use crate::error::{Error, Result};
 use crate::float::Strata;
@@ -45,8 +45,13 @@ pub(crate) const BOSE: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Bose::new(p.count, 2, p.sampler_seed())?)),
-    nd: Some(|p, d| Ok(Box::new(Bose::new(p.count, d, p.sampler_seed())?))),
+    any_dims: true,
+    build: |p| {
+        Ok(match p.dims {
+            2 => Built::two(Bose::new(p.count, 2, p.sampler_seed())?),
+            d => Built::nd(Bose::new(p.count, d, p.sampler_seed())?),
+        })
+    },
 };
 
 /// The registry entry of `oa-bush`.
@@ -57,24 +62,34 @@ pub(crate) const BUSH: Entry = Entry {
     family: Family::Multidim,
     progressive: false,
     counts: CountRule::OaPower(3),
-    parameters: &[ParameterSpec {
-        parameter: Parameter::Strength,
-        default: 3.0,
-        allowed: "2 to 16",
-    }],
+    parameters: &[STRENGTH],
     promise: "every t-D projection on `q^t`, every 1D into `N`",
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(bush(p, 2)?)),
-    nd: Some(|p, d| Ok(Box::new(bush(p, d)?))),
+    any_dims: true,
+    build: |p| {
+        Ok(match p.dims {
+            2 => Built::two(bush(p, 2)?),
+            d => Built::nd(bush(p, d)?),
+        })
+    },
 };
 
 /// The Bush array the registry builds: strength from the parameters (default 3).
 fn bush(p: &Params, dims: u32) -> Result<Bush> {
-    let strength = p.strength.unwrap_or(BUSH.parameters[0].default as u32);
+    let strength = STRENGTH.read_whole(p);
     Bush::new(p.count, strength, dims, p.sampler_seed())
 }
+
+/// `--strength`: the strength of a Bush array.
+const STRENGTH: ParameterSpec = ParameterSpec::whole(
+    "strength",
+    2,
+    16,
+    3,
+    "the array's strength t: every t-dimensional projection is stratified on q^t cells",
+);
 
 pub use crate::entry::MAX_PRIME_POWER;
 

@@ -27,7 +27,7 @@ use rand::Rng;
 use rand_pcg::Pcg32;
 
 use super::{SetGenerator, Sets};
-use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::entry::{BlueNoise, Bound, Built, CountRule, Entry, Family, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::float::unit_f64_from_u64;
 use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared, wrap_unit as wrap};
@@ -36,12 +36,23 @@ use crate::hash::stream_seed;
 /// The default relative radius.
 pub const DEFAULT_RHO: f64 = 0.7;
 
-/// The radius parameter of both Poisson-disk samplers.
-const RADIUS: ParameterSpec = ParameterSpec {
-    parameter: Parameter::Radius,
-    default: DEFAULT_RHO,
-    allowed: "0 < RHO <= 0.78 (dart throwing), < 1 (Bridson)",
-};
+/// Dart throwing's radius parameter.
+const DART_RADIUS: ParameterSpec = ParameterSpec::real(
+    "radius",
+    Bound::Open(0.0),
+    Bound::Closed(MAX_DART_RHO),
+    DEFAULT_RHO,
+    "the smallest distance between two points, relative to r_max(N) (dart throwing jams near 0.77)",
+);
+
+/// Bridson's radius parameter (capped as dart throwing's: the top-up throws darts).
+const BRIDSON_RADIUS: ParameterSpec = ParameterSpec::real(
+    "radius",
+    Bound::Open(0.0),
+    Bound::Closed(MAX_DART_RHO),
+    DEFAULT_RHO,
+    "the smallest distance between two points, relative to r_max(N)",
+);
 
 /// Poisson disk: random sampling's rate (Pilleboue et al. 2015), for 2D integrands.
 const POISSON_RATES: Rates = Rates {
@@ -58,21 +69,21 @@ pub(crate) const POISSON: Entry = Entry {
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
-    parameters: &[RADIUS],
+    parameters: &[DART_RADIUS],
     promise: "exactly `N` points at least `rho r_max(N)` apart",
     rates: POISSON_RATES,
     expensive: false,
     blue_noise: Some(BlueNoise::published(
         "rho about 0.75-0.76, the largest dart throwing reaches (Lagae and Dutré 2008), as quoted in issue #28; not checked against the paper",
     )),
+    any_dims: false,
     build: |p| {
-        let rho = p.radius.unwrap_or(DEFAULT_RHO);
-        Ok(Box::new(PoissonDisk::new(
+        let rho = DART_RADIUS.read(p);
+        Ok(Built::two(PoissonDisk::new(
             DartThrowing::new(p.count, rho)?,
             p.sampler_seed(),
         )?))
     },
-    nd: None,
 };
 
 /// The registry entry of `bridson`.
@@ -83,19 +94,19 @@ pub(crate) const BRIDSON: Entry = Entry {
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
-    parameters: &[RADIUS],
+    parameters: &[BRIDSON_RADIUS],
     promise: "exactly `N` points at least `rho r_max(N)` apart",
     rates: POISSON_RATES,
     expensive: false,
     blue_noise: Some(BlueNoise::NOT_REPORTED),
+    any_dims: false,
     build: |p| {
-        let rho = p.radius.unwrap_or(DEFAULT_RHO);
-        Ok(Box::new(BridsonDisk::new(
+        let rho = BRIDSON_RADIUS.read(p);
+        Ok(Built::two(BridsonDisk::new(
             Bridson::new(p.count, rho)?,
             p.sampler_seed(),
         )?))
     },
-    nd: None,
 };
 
 /// The largest relative radius dart throwing accepts (random sequential adsorption jams near

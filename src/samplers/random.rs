@@ -6,10 +6,9 @@
 //! `N^-1` whatever the integrand: no stratification, but trivially progressive and free of
 //! correlation between dimensions.
 
-use crate::entry::{CountRule, Entry, Family, Rates};
+use crate::entry::{Built, CountRule, Entry, Family, Rates};
 use crate::float::unit_f32_from_u32;
 use crate::hash::stream_seed;
-use crate::prelude::*;
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed};
 
 /// The registry entry of `random`.
@@ -25,8 +24,13 @@ pub(crate) const ENTRY: Entry = Entry {
     rates: Rates::RANDOM,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Random::new(p.sampler_seed()))),
-    nd: Some(|p, d| Ok(Box::new(RandomNd::new(d, p.sampler_seed())?))),
+    any_dims: true,
+    build: |p| {
+        Ok(match p.dims {
+            2 => Built::two(Random::new(p.sampler_seed())),
+            d => Built::nd(RandomNd::new(d, p.sampler_seed())?),
+        })
+    },
 };
 
 /// The generator of a seed.

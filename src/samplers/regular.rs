@@ -6,7 +6,7 @@
 //! point, not as a sampler to render with.
 
 use super::{BlockCursor, Blocks};
-use crate::entry::{CountRule, Entry, Family, Rates};
+use crate::entry::{Built, CountRule, Entry, Family, Rates};
 use crate::float::Strata;
 use crate::hash::DivMod;
 use crate::prelude::*;
@@ -25,8 +25,8 @@ pub(crate) const ENTRY: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Regular::new(p.count)?)),
-    nd: None,
+    any_dims: false,
+    build: |p| Ok(Built::two(Regular::new(p.count)?)),
 };
 
 /// The `N = s^2` cell centres `((i + 1/2) / s, (j + 1/2) / s)`, in row-major order.

@@ -23,7 +23,7 @@
 use super::Epochs;
 use super::pmj::MAX_SEQUENCE_LEN;
 use crate::digital::{ByteTables, lookup, sobol_byte_tables, sobol_dimensions};
-use crate::entry::{CountRule, Entry, Family, Rates};
+use crate::entry::{Built, CountRule, Entry, Family, Rates};
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
 use crate::hash::{GOLDEN_GAMMA, Stream, hash32, mix64};
@@ -251,8 +251,13 @@ pub(crate) const ENTRY: Entry = Entry {
     rates: Rates::NETS,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Sobol::new(p.sampler_seed()))),
-    nd: Some(|p, d| Ok(Box::new(SobolNd::new(d, p.sampler_seed())?))),
+    any_dims: true,
+    build: |p| {
+        Ok(match p.dims {
+            2 => Built::two(Sobol::new(p.sampler_seed())),
+            d => Built::nd(SobolNd::new(d, p.sampler_seed())?),
+        })
+    },
 };
 
 /// The scrambled Sobol' sequence in 2D (dimensions 0 and 1: a (0,2)-sequence), progressive.

@@ -9,7 +9,7 @@
 //! hypercube sampling (of which this is a special case).
 
 use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
-use crate::entry::{CountRule, Entry, Family, Rates};
+use crate::entry::{Built, CountRule, Entry, Family, Rates};
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, hash_u64};
 use crate::prelude::*;
@@ -28,20 +28,14 @@ pub(crate) const ENTRY: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
+    any_dims: true,
     build: |p| {
-        Ok(Box::new(UncorrelatedJitter::new(
-            p.count,
-            2,
-            p.sampler_seed(),
-        )?))
+        let s = UncorrelatedJitter::new(p.count, p.dims, p.sampler_seed())?;
+        Ok(match p.dims {
+            2 => Built::two(s),
+            _ => Built::nd(s),
+        })
     },
-    nd: Some(|p, d| {
-        Ok(Box::new(UncorrelatedJitter::new(
-            p.count,
-            d,
-            p.sampler_seed(),
-        )?))
-    }),
 };
 
 /// Uncorrelated jitter in `D` dimensions: `N = s^2` (any `N` when `D = 1`).

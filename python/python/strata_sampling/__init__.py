@@ -80,7 +80,8 @@ def samplers() -> List[Dict[str, Any]]:
 
     ``name``, ``description``, ``paper``, ``progressive`` (endless sequence) or not (fixed-count
     sets), ``counts`` (the count rule in words, e.g. ``"perfect squares"``), ``dimensions``
-    (``"2"`` or ``"D"``), ``parameters`` (a list of dicts: ``name``, ``default``, ``allowed``),
+    (``"2"`` or ``"D"``), ``parameters`` (a list of dicts: ``name``, ``kind``, ``default``,
+    ``allowed``, ``help``, from each sampler's declaration),
     ``promise`` (the stratification it promises), ``rates`` (published variance exponents on
     ``discontinuous``/``smooth``/``higher``-dimensional integrands, ``None`` where unpublished),
     ``expensive`` and ``pixel_sampler`` (whether ``PixelSampler`` has it as a sequence).
@@ -116,9 +117,10 @@ def points(name: str, n: int, *, seed: int = 1, dims: int = 2, **params: Any) ->
     --dims D [--radius ...]``: a fixed-count sampler's first set of ``n`` (``n`` must be a
     count it accepts, see ``samplers()``), a progressive sampler's first ``n`` points.
 
-    ``params`` are the optional parameters some samplers take: ``radius`` (Poisson disk),
-    ``iterations`` (Lloyd, CCVT, ``net02bn``, ``pmj02bn``), ``strength`` (``oa-bush``),
-    ``candidates`` (best candidate, ``pmjbn``), ``capacity`` (CCVT).
+    ``params`` are the optional parameters some samplers take, by the names their samplers
+    declare (``samplers()`` lists each sampler's, with kind, range, default and help):
+    ``radius`` (Poisson disk), ``iterations`` (Lloyd, CCVT, ``net02bn``, ``pmj02bn``),
+    ``strength`` (``oa-bush``), ``candidates`` (best candidate, ``pmjbn``), ``capacity`` (CCVT).
 
     >>> strata_sampling.points("jittered", 16, seed=3).shape
     (16, 2)

@@ -22,11 +22,7 @@ class Sampler:
         count: int,
         seed: int,
         dims: int,
-        radius: Optional[float] = None,
-        iterations: Optional[int] = None,
-        strength: Optional[int] = None,
-        candidates: Optional[int] = None,
-        capacity: Optional[int] = None,
+        **parameters: Optional[float],
     ) -> None: ...
     def fill(self, out: npt.NDArray[np.float32]) -> None:
         """Writes the next ``out.shape[0]`` points into the C-contiguous ``(n, dims)`` array."""
@@ -81,11 +77,7 @@ def sampler_spectrum(
     resolution: int,
     realizations: int,
     seed: int,
-    radius: Optional[float] = None,
-    iterations: Optional[int] = None,
-    strength: Optional[int] = None,
-    candidates: Optional[int] = None,
-    capacity: Optional[int] = None,
+    **parameters: Optional[float],
 ) -> npt.NDArray[np.float64]: ...
 def radial(
     values: npt.NDArray[np.float64],
@@ -95,6 +87,7 @@ def radial(
 def psa(sets: List[npt.NDArray[np.float32]]) -> Dict[str, Any]: ...
 def nearest_distances(points: npt.NDArray[np.float32]) -> npt.NDArray[np.float64]: ...
 def relative_radius_max(n: int) -> float: ...
+def parameter_kinds() -> List[Tuple[str, str]]: ...
 def discrepancy(points: npt.NDArray[np.floating[Any]], method: str) -> float: ...
 def net_t_value(points: npt.NDArray[np.floating[Any]]) -> Optional[int]: ...
 def integrands() -> List[Dict[str, Any]]: ...

@@ -10,8 +10,13 @@ from typing import Any, Dict
 
 import numpy as np
 
-#: The optional sampler parameters and their Python types (see ``strata_sampling.samplers()``).
-SAMPLER_PARAMETERS = ("radius", "iterations", "strength", "candidates", "capacity")
+from . import _strata
+
+#: The optional sampler parameters and their kinds (``"whole"`` or ``"real"``), as the samplers
+#: of the crate declare them (one declaration per parameter, next to each sampler; see
+#: ``strata_sampling.samplers()`` for which sampler takes which, with ranges and defaults).
+PARAMETER_KINDS: Dict[str, str] = dict(_strata.parameter_kinds())
+SAMPLER_PARAMETERS = tuple(PARAMETER_KINDS)
 
 U32_MAX = 2**32 - 1
 U64_MAX = 2**64 - 1
@@ -57,14 +62,17 @@ def sampler_params(params: Dict[str, Any], function: str) -> Dict[str, Any]:
             )
         if value is None:
             continue
-        if key == "radius":
+        if PARAMETER_KINDS[key] == "real":
             if isinstance(value, (bool, np.bool_)) or not isinstance(
                 value, (int, float, np.integer, np.floating)
             ):
-                raise TypeError(f"radius must be a number, not {type(value).__name__}")
+                raise TypeError(f"{key} must be a number, not {type(value).__name__}")
             r = float(value)
             if not np.isfinite(r):
-                raise ValueError(f"radius = {r} is not allowed: a finite number, 0 < radius < 1")
+                raise ValueError(
+                    f"{key} = {r} is not allowed: a finite number (each sampler's range: "
+                    "strata_sampling.samplers())"
+                )
             out[key] = r
         else:
             out[key] = whole(value, key, 0, U32_MAX)

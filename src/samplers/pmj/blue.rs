@@ -41,7 +41,7 @@
 //! then computed from the flags in `O(32)`.
 
 use super::{MAX_SEQUENCE_LEN, pmj_grids};
-use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
 use crate::error::{Error, Result};
 use crate::float::unit_f32_from_u32;
 use crate::grid::relative_radius_max;
@@ -76,22 +76,24 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::Pmj,
     progressive: true,
     counts: CountRule::Any,
-    parameters: &[ParameterSpec {
-        parameter: Parameter::Iterations,
-        default: DEFAULT_SWEEPS as f64,
-        allowed: "0 to 1000",
-    }],
+    parameters: &[ParameterSpec::whole(
+        "iterations",
+        0,
+        MAX_SWEEPS,
+        DEFAULT_SWEEPS,
+        "the most sweeps over the scrambling flags (they stop earlier when a sweep keeps no flip)",
+    )],
     promise: "(0,m,2)-net at every `2^m` prefix and aligned block, blue noise up to `N`",
     rates: Rates::NETS,
     expensive: false,
     blue_noise: Some(BlueNoise::published(
         "none found (Christensen et al. 2018 could not be checked here)",
     )),
+    any_dims: false,
     build: |p| {
-        let k = p.iterations.unwrap_or(DEFAULT_SWEEPS);
-        Ok(Box::new(Pmj02Bn::new(p.sampler_seed(), p.count, k)?))
+        let k = ENTRY.parameters[0].read_whole(p);
+        Ok(Built::two(Pmj02Bn::new(p.sampler_seed(), p.count, k)?))
     },
-    nd: None,
 };
 
 /// The scrambling flags of both coordinates: explicit up to a depth, hashed below it.

@@ -53,7 +53,7 @@ pub use stochastic::Pmj02Stochastic;
 #[cfg(feature = "std")]
 use super::Epochs;
 #[cfg(feature = "std")]
-use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
+use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
 #[cfg(feature = "std")]
 use crate::error::{Error, Result};
 #[cfg(feature = "std")]
@@ -74,11 +74,13 @@ pub const MAX_CANDIDATES: u32 = 1 << 16;
 
 /// The candidates parameter of the best-candidate variants.
 #[cfg(feature = "std")]
-const CANDIDATES: ParameterSpec = ParameterSpec {
-    parameter: Parameter::Candidates,
-    default: DEFAULT_CANDIDATES as f64,
-    allowed: "1 to 65536",
-};
+const CANDIDATES: ParameterSpec = ParameterSpec::whole(
+    "candidates",
+    1,
+    MAX_CANDIDATES,
+    DEFAULT_CANDIDATES,
+    "best-candidate candidates per sample, each in a valid stratum",
+);
 
 /// The registry entry of `pmj`.
 #[cfg(feature = "std")]
@@ -94,8 +96,8 @@ pub(crate) const PMJ: Entry = Entry {
     rates: Rates::NONE,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Pmj::new(p.sampler_seed()))),
-    nd: None,
+    any_dims: false,
+    build: |p| Ok(Built::two(Pmj::new(p.sampler_seed()))),
 };
 
 /// The registry entry of `pmjbn`.
@@ -114,11 +116,11 @@ pub(crate) const PMJBN: Entry = Entry {
     blue_noise: Some(BlueNoise::published(
         "none found (Christensen et al. 2018 could not be checked here)",
     )),
+    any_dims: false,
     build: |p| {
-        let k = p.candidates.unwrap_or(DEFAULT_CANDIDATES);
-        Ok(Box::new(Pmj::pmjbn(p.sampler_seed(), k)?))
+        let k = CANDIDATES.read_whole(p);
+        Ok(Built::two(Pmj::pmjbn(p.sampler_seed(), k)?))
     },
-    nd: None,
 };
 
 /// The registry entry of `pmj02`.
@@ -135,8 +137,8 @@ pub(crate) const PMJ02: Entry = Entry {
     rates: Rates::NETS,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Pmj::pmj02(p.sampler_seed()))),
-    nd: None,
+    any_dims: false,
+    build: |p| Ok(Built::two(Pmj::pmj02(p.sampler_seed()))),
 };
 
 /// The 4-class label of sample `index`: the XOR of its base-4 digits.

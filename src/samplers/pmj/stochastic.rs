@@ -22,7 +22,7 @@
 //! Stirling numbers of the second kind mod 2, which its tests check independently). The
 //! path-tracer adapter's `pmj02` is the same digital sequence, Owen-scrambled.
 
-use crate::entry::{CountRule, Entry, Family, Rates};
+use crate::entry::{Built, CountRule, Entry, Family, Rates};
 use crate::float::unit_f32_from_u32;
 use crate::hash::{hash_u64, stream_seed};
 use crate::prelude::*;
@@ -67,8 +67,8 @@ pub(crate) const ENTRY: Entry = Entry {
     rates: Rates::NETS,
     expensive: false,
     blue_noise: None,
-    build: |p| Ok(Box::new(Pmj02Stochastic::new(p.sampler_seed()))),
-    nd: None,
+    any_dims: false,
+    build: |p| Ok(Built::two(Pmj02Stochastic::new(p.sampler_seed()))),
 };
 
 impl Pmj02Stochastic {
