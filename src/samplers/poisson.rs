@@ -94,7 +94,7 @@ pub(crate) const BRIDSON: Entry = Entry {
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
-    parameters: &[BRIDSON_RADIUS],
+    parameters: &[BRIDSON_RADIUS, ATTEMPTS],
     promise: "exactly `N` points at least `rho r_max(N)` apart",
     rates: POISSON_RATES,
     expensive: false,
@@ -102,10 +102,8 @@ pub(crate) const BRIDSON: Entry = Entry {
     any_dims: false,
     build: |p| {
         let rho = BRIDSON_RADIUS.read(p);
-        Ok(Built::two(BridsonDisk::new(
-            Bridson::new(p.count, rho)?,
-            p.sampler_seed(),
-        )?))
+        let bridson = Bridson::new(p.count, rho)?.with_attempts(ATTEMPTS.read_whole(p));
+        Ok(Built::two(BridsonDisk::new(bridson, p.sampler_seed())?))
     },
 };
 
@@ -119,8 +117,17 @@ pub const MAX_POISSON_COUNT: u64 = 1 << 22;
 /// How many times dart throwing refines its active cells before giving up.
 pub(crate) const MAX_LEVELS: u32 = 12;
 
-/// Bridson's candidates per active point.
+/// Bridson's candidates per active point (his `k`), the default of `--attempts`.
 pub(crate) const BRIDSON_CANDIDATES: u32 = 30;
+
+/// Bridson's `--attempts`: the candidates tried around an active point before it is retired.
+const ATTEMPTS: ParameterSpec = ParameterSpec::whole(
+    "attempts",
+    1,
+    1000,
+    BRIDSON_CANDIDATES,
+    "candidates tried around an active point before it is retired (Bridson's k; more: denser before the top-up)",
+);
 
 /// Slack added to the radius so that the guarantee survives rounding coordinates to `f32`
 /// (each coordinate moves by less than `2^-24`).
@@ -337,13 +344,25 @@ pub(crate) const MAX_GRID_CELLS: usize = 1 << 26;
 pub struct Bridson {
     count: u32,
     rho: f64,
+    attempts: u32,
 }
 
 impl Bridson {
     /// `count` points (1 to [`MAX_POISSON_COUNT`]) at relative radius `0 < rho <= MAX_DART_RHO`.
     pub fn new(count: u64, rho: f64) -> Result<Self> {
         let count = check(BRIDSON.name, count, rho, MAX_DART_RHO)?;
-        Ok(Bridson { count, rho })
+        Ok(Bridson {
+            count,
+            rho,
+            attempts: BRIDSON_CANDIDATES,
+        })
+    }
+
+    /// The same with `attempts` candidates around each active point (the registry's
+    /// `--attempts`, checked there against its declared range, 1 to 1000).
+    pub(crate) fn with_attempts(mut self, attempts: u32) -> Self {
+        self.attempts = attempts.max(1);
+        self
     }
 
     /// The absolute radius `rho * r_max(N)`.
@@ -360,11 +379,17 @@ pub fn bridson(r: f64, key: u64) -> Result<Vec<[f64; 2]>> {
     let mut rng = Pcg32::new(stream_seed(key, 3), stream_seed(key, 4));
     let mut grid = disk_grid(BRIDSON.name, r)?;
     let mut points = Vec::new();
-    grow_bridson(&mut points, &mut grid, r, &mut rng);
+    grow_bridson(&mut points, &mut grid, r, BRIDSON_CANDIDATES, &mut rng);
     Ok(points)
 }
 
-fn grow_bridson(points: &mut Vec<[f64; 2]>, grid: &mut DiskGrid, r: f64, rng: &mut Pcg32) {
+fn grow_bridson(
+    points: &mut Vec<[f64; 2]>,
+    grid: &mut DiskGrid,
+    r: f64,
+    attempts: u32,
+    rng: &mut Pcg32,
+) {
     let first = [uniform(rng), uniform(rng)];
     grid.insert(first);
     points.push(first);
@@ -373,7 +398,7 @@ fn grow_bridson(points: &mut Vec<[f64; 2]>, grid: &mut DiskGrid, r: f64, rng: &m
         let i = below(rng, active.len());
         let p = points[active[i]];
         let mut found = false;
-        for _ in 0..BRIDSON_CANDIDATES {
+        for _ in 0..attempts {
             // uniform over the annulus' area, by rejection from its bounding square (no trig)
             let (dx, dy) = loop {
                 let (dx, dy) = (
@@ -413,7 +438,7 @@ impl SetGenerator for Bridson {
         let mut rng = Pcg32::new(stream_seed(key, 3), stream_seed(key, 4));
         let mut grid = disk_grid(BRIDSON.name, r)?;
         let mut points = Vec::new();
-        grow_bridson(&mut points, &mut grid, r, &mut rng);
+        grow_bridson(&mut points, &mut grid, r, self.attempts, &mut rng);
         if points.len() < n {
             throw_darts(&mut points, &mut grid, n, r, &mut rng);
             if points.len() < n {
@@ -500,3 +525,51 @@ pub type PoissonDisk = Sets<DartThrowing>;
 
 /// Bridson Poisson-disk sets (fixed count).
 pub type BridsonDisk = Sets<Bridson>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn bridson_attempts_change_the_raw_set_and_keep_the_radius() {
+        // --attempts is Bridson's k: the default gives the values it always gave; fewer
+        // attempts retire active points sooner, so the grown set is smaller before the top-up,
+        // and every set keeps the radius
+        use crate::entry::Params;
+        let n = 1024;
+        let take = |p: &Params| {
+            let mut s = BRIDSON.build(p).unwrap();
+            let mut v = vec![crate::sampler::Point2::ZERO; n];
+            s.fill(&mut v);
+            v
+        };
+        let base = Params::new(n as u64).seed(4);
+        assert_eq!(take(&base), take(&base.clone().with("attempts", 30.0)));
+        let few = take(&base.clone().with("attempts", 1.0));
+        assert_ne!(few, take(&base));
+        let r = Bridson::new(n as u64, DEFAULT_RHO).unwrap().radius();
+        for (i, a) in few.iter().enumerate() {
+            for b in &few[..i] {
+                let d = (*a - *b).abs();
+                let d = d.min(glam::Vec2::ONE - d);
+                assert!(d.length() as f64 >= r * (1.0 - 1e-6), "{a} {b}");
+            }
+        }
+        let grown = |k: u32| {
+            let b = Bridson::new(n as u64, DEFAULT_RHO)
+                .unwrap()
+                .with_attempts(k);
+            let r = b.radius() + F32_SLACK;
+            let mut grid = disk_grid(BRIDSON.name, r).unwrap();
+            let mut rng = Pcg32::new(stream_seed(4, 3), stream_seed(4, 4));
+            let mut points = Vec::new();
+            grow_bridson(&mut points, &mut grid, r, k, &mut rng);
+            points.len()
+        };
+        assert!(grown(1) < grown(30), "{} {}", grown(1), grown(30));
+        let e = BRIDSON
+            .build(&base.clone().with("attempts", 0.0))
+            .unwrap_err();
+        assert!(e.to_string().contains("1 to 1000"), "{e}");
+        assert!(POISSON.build(&base.with("attempts", 5.0)).is_err());
+    }
+}
