@@ -124,6 +124,9 @@ pub struct ParameterSpec {
     /// A limit the range cannot express, which the sampler checks when it is built (`""`
     /// when there is none).
     pub note: &'static str,
+    /// An older name accepted for the same parameter (`""` when there is none): read only
+    /// when the name itself is not given.
+    pub alias: &'static str,
 }
 
 impl ParameterSpec {
@@ -143,6 +146,7 @@ impl ParameterSpec {
             default: default as f64,
             help,
             note: "",
+            alias: "",
         }
     }
 
@@ -162,6 +166,7 @@ impl ParameterSpec {
             default,
             help,
             note: "",
+            alias: "",
         }
     }
 
@@ -169,6 +174,17 @@ impl ParameterSpec {
     pub const fn with_note(mut self, note: &'static str) -> Self {
         self.note = note;
         self
+    }
+
+    /// The same, also accepting the older name `alias` (see [`ParameterSpec::alias`]).
+    pub const fn with_alias(mut self, alias: &'static str) -> Self {
+        self.alias = alias;
+        self
+    }
+
+    /// True when `name` is this parameter's name or its alias.
+    pub fn is_named(&self, name: &str) -> bool {
+        self.name == name || (!self.alias.is_empty() && self.alias == name)
     }
 
     /// What is allowed, in words: `"1 to 100000"`, `"0 < radius <= 0.78"`, and the note.
@@ -229,7 +245,14 @@ impl ParameterSpec {
 
     /// The value `params` gives this parameter, or its default.
     pub fn read(&self, params: &Params) -> f64 {
-        params.get(self.name).unwrap_or(self.default)
+        params
+            .get(self.name)
+            .or_else(|| {
+                (!self.alias.is_empty())
+                    .then(|| params.get(self.alias))
+                    .flatten()
+            })
+            .unwrap_or(self.default)
     }
 
     /// [`read`](ParameterSpec::read) as a whole number (saturating; the value was checked
@@ -706,7 +729,7 @@ impl fmt::Debug for Entry {
 impl Entry {
     /// The declaration of the parameter named `name`, for samplers that take it.
     pub fn parameter(&self, name: &str) -> Option<&'static ParameterSpec> {
-        self.parameters.iter().find(|p| p.name == name)
+        self.parameters.iter().find(|p| p.is_named(name))
     }
 
     /// The default of the parameter named `name` (for samplers that take it).

@@ -156,7 +156,7 @@ pub fn sampler_param(
     let dashed = format!("--{flag}");
     let v = string_value(&dashed, parser.value()?)?;
     let specs: Vec<_> = registry::parameters()
-        .filter(|(_, p)| p.name == flag)
+        .filter(|(_, p)| p.is_named(flag))
         .map(|(_, p)| p)
         .collect();
     let Some(first) = specs.first() else {
@@ -178,7 +178,7 @@ pub fn sampler_param(
         Kind::Whole => parse_int(&dashed, &v, lo as u64, hi as u64)? as f64,
         _ => parse_open_float(&dashed, &v, lo, hi)?,
     };
-    params.set(first.name, value);
+    params.set(flag, value);
     Ok(())
 }
 
@@ -193,9 +193,14 @@ pub fn parameter_help() -> String {
         s.push_str(&format!(
             "  {flag:<17}  a {kind}, for the samplers that take it:\n"
         ));
-        for (e, p) in registry::parameters().filter(|(_, p)| p.name == name) {
+        for (e, p) in registry::parameters().filter(|(_, p)| p.is_named(name)) {
+            let alias = if p.name == name {
+                String::new()
+            } else {
+                format!(" [an alias of its --{}]", p.name)
+            };
             s.push_str(&format!(
-                "      {}: {} ({}, default {})\n",
+                "      {}: {} ({}, default {}){alias}\n",
                 e.name,
                 p.help,
                 p.allowed(),

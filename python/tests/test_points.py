@@ -28,6 +28,9 @@ CASES = [
     ("pmj02-stochastic", 512, 8, 2, {}),
     ("poisson", 300, 5, 2, {"radius": 0.75}),
     ("bridson", 300, 6, 2, {}),
+    ("bridson", 300, 6, 2, {"attempts": 3}),
+    ("pmj02bn", 128, 3, 2, {"sweeps": 1}),
+    ("net02bn", 64, 4, 2, {"iterations": 3}),
     ("best-candidate", 200, 7, 2, {"candidates": 2}),
     ("lloyd", 64, 8, 2, {"iterations": 20}),
     ("ccvt", 64, 9, 2, {"iterations": 5, "capacity": 16}),
@@ -119,6 +122,28 @@ def test_sampler_table():
     assert ss.allowed_counts("jittered", 10, 50) == [16, 25, 36, 49]
     assert ss.allowed_counts("oa-bose", 1, 30) == [4, 9, 16, 25]
     assert ss.nearest_count("jittered", 1000) == 1024
+
+
+def test_every_declared_parameter_is_a_keyword_and_an_alias_sets_the_same_value():
+    # the keywords come from the samplers' declarations: each sampler's own parameters
+    # (the defaults given explicitly change nothing), and pmj02bn's old name for its sweeps
+    for s in ss.samplers():
+        if s["name"] in {"lloyd", "ccvt", "bnot", "net02bn", "best-candidate"}:
+            continue  # slow at their defaults; covered by CASES with small values
+        n = ss.nearest_count(s["name"], 64)
+        for p in s["parameters"]:
+            assert p["kind"] in {"whole number", "number"} and p["help"], p
+            default = int(p["default"]) if p["kind"] == "whole number" else p["default"]
+            given = ss.points(s["name"], n, seed=5, **{p["name"]: default})
+            np.testing.assert_array_equal(given, ss.points(s["name"], n, seed=5))
+    np.testing.assert_array_equal(
+        ss.points("pmj02bn", 64, iterations=0), ss.points("pmj02bn", 64, sweeps=0)
+    )
+    assert (ss.points("pmj02bn", 64, sweeps=0) != ss.points("pmj02bn", 64)).any()
+    with pytest.raises(ValueError, match="1 to 1000"):
+        ss.points("bridson", 64, attempts=0)
+    with pytest.raises(ValueError, match="takes no attempts"):
+        ss.points("jittered", 64, attempts=3)
 
 
 # --- the path-tracer adapter ----------------------------------------------------------------

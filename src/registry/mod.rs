@@ -231,13 +231,15 @@ pub fn parameters() -> impl Iterator<Item = (&'static Entry, &'static ParameterS
         .flat_map(|e| e.parameters.iter().map(move |p| (e, p)))
 }
 
-/// The distinct parameter names, in the order they are first declared: the programs' flags
-/// and the Python keywords.
+/// The distinct parameter names and aliases ([`ParameterSpec::alias`]), in the order they are
+/// first declared: the programs' flags and the Python keywords.
 pub fn parameter_names() -> Vec<&'static str> {
     let mut names: Vec<&'static str> = Vec::new();
     for (_, p) in parameters() {
-        if !names.contains(&p.name) {
-            names.push(p.name);
+        for n in [p.name, p.alias] {
+            if !n.is_empty() && !names.contains(&n) {
+                names.push(n);
+            }
         }
     }
     names
@@ -247,7 +249,7 @@ pub fn parameter_names() -> Vec<&'static str> {
 /// `None` when no sampler takes it.
 pub fn parameter_kind(name: &str) -> Option<Kind> {
     parameters()
-        .find(|(_, p)| p.name == name)
+        .find(|(_, p)| p.is_named(name))
         .map(|(_, p)| p.kind)
 }
 
@@ -260,8 +262,13 @@ pub fn parameter_table() -> String {
     );
     for name in parameter_names() {
         for (e, p) in parameters().filter(|(_, p)| p.name == name) {
+            let alias = if p.alias.is_empty() {
+                String::new()
+            } else {
+                format!(" (also `--{}`)", p.alias)
+            };
             t.push_str(&format!(
-                "| `--{}` | `{}` | {} | {} | {} | {} |\n",
+                "| `--{}`{alias} | `{}` | {} | {} | {} | {} |\n",
                 p.name,
                 e.name,
                 p.kind.name(),
@@ -445,6 +452,43 @@ mod tests {
                 .to_string();
             assert!(e.contains("0 < radius <= 0.78"), "{e}");
         }
+    }
+
+    #[test]
+    #[cfg(feature = "std")] // pmj02bn needs `std`
+    fn an_alias_reaches_the_parameter_when_its_name_is_not_given() {
+        // pmj02bn's `sweeps` was `iterations`: the old name still sets it, the new one wins
+        let pmj02bn = find("pmj02bn").unwrap();
+        assert!(pmj02bn.takes("sweeps") && pmj02bn.takes("iterations"));
+        assert!(parameter_names().contains(&"sweeps"));
+        assert_eq!(parameter_kind("sweeps"), Some(Kind::Whole));
+        let take = |p: &Params| {
+            let mut s = pmj02bn.make(p, Strictness::Strict).unwrap();
+            let mut v = alloc::vec![0f32; 512];
+            s.fill(&mut v);
+            v
+        };
+        let p = Params::new(256).seed(2);
+        let zero = take(&p.clone().with("sweeps", 0.0));
+        assert_ne!(zero, take(&p), "0 sweeps is a plain Owen scrambling");
+        assert_eq!(zero, take(&p.clone().with("iterations", 0.0)));
+        assert_eq!(
+            take(&p),
+            take(&p.clone().with("iterations", 0.0).with("sweeps", 2.0))
+        );
+        // the lenient build keeps an alias for a sampler that takes it
+        assert_eq!(
+            p.clone()
+                .with("iterations", 0.0)
+                .kept_for(pmj02bn)
+                .get("iterations"),
+            Some(0.0)
+        );
+        let e = pmj02bn
+            .make(&p.with("iterations", 1001.0), Strictness::Strict)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("0 to 1000"), "{e}");
     }
 
     #[test]

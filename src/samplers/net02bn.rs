@@ -17,7 +17,7 @@
 //! energy `sum exp(-d^2 / (2 sigma^2))` over toroidal distances, `sigma = SIGMA r_max(N)`,
 //! greedily: sweeps visit every box of every shape in a random order and keep a swap that
 //! lowers the energy, until a sweep keeps less than [`STOP_FRACTION`] of the points' swaps or
-//! after `--iterations` sweeps.
+//! after `--sweeps` sweeps (`--iterations`, its older name, is an alias).
 //!
 //! Guaranteed: every set is a (0,m,2)-net in base 2 (each of the `m + 1` families of
 //! elementary intervals of area `1/N` holds exactly one point per interval; tested). Measured
@@ -49,18 +49,19 @@ pub const MAX_LOG2_COUNT: u32 = 20;
 /// The registry entry of `net02bn`.
 pub(crate) const ENTRY: Entry = Entry {
     name: "net02bn",
-    description: "a (0,m,2)-net of N = 2^m points made blue by net-preserving swaps in the boxes of area 2/N (--iterations K caps the sweeps, default 64)",
+    description: "a (0,m,2)-net of N = 2^m points made blue by net-preserving swaps in the boxes of area 2/N (--sweeps K caps them, default 64)",
     paper: "Ahmed, Wonka 2021",
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::PowerOfTwo,
     parameters: &[ParameterSpec::whole(
-        "iterations",
+        "sweeps",
         0,
         MAX_SWEEPS,
         DEFAULT_SWEEPS,
         "the most sweeps of the net-preserving swaps (a stopping rule usually ends them first)",
-    )],
+    )
+    .with_alias("iterations")],
     promise: "a (0,m,2)-net with blue-noise spacing",
     rates: Rates {
         discontinuous: Some(-1.5),
@@ -117,7 +118,7 @@ impl Net02Bn {
         if sweeps > MAX_SWEEPS {
             return Err(Error::parameter(
                 ENTRY.name,
-                "iterations",
+                "sweeps",
                 sweeps,
                 format!("0 to {MAX_SWEEPS} sweeps"),
             ));

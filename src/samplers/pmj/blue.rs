@@ -17,7 +17,7 @@
 //! * coordinate descent: each flag at depths `1 ..= m` (depth 0 is a half-period translation,
 //!   which does not change toroidal distances), coarse to fine, in x and in y, is flipped when
 //!   that lowers the objective, exactly (the moved points' energies are recomputed against a
-//!   neighbour grid of every prefix); sweeps repeat until none keeps a flip or `--iterations`
+//!   neighbour grid of every prefix); sweeps repeat until none keeps a flip or `--sweeps`
 //!   sweeps have run (default 2);
 //! * each prefix's grid has the elementary intervals `2^-ceil(k/2) x 2^-floor(k/2)` as cells:
 //!   since the prefix is a (0,k,2)-net under every scrambling, every cell holds exactly one
@@ -71,18 +71,19 @@ pub const MAX_OPTIMIZED_LOG2: u32 = 16;
 /// The registry entry of `pmj02bn`.
 pub(crate) const ENTRY: Entry = Entry {
     name: "pmj02bn",
-    description: "a (0,2)-sequence whose Owen-scrambling flags are chosen for blue noise at every power-of-two prefix up to N (--iterations K caps the sweeps, default 2)",
+    description: "a (0,2)-sequence whose Owen-scrambling flags are chosen for blue noise at every power-of-two prefix up to N (--sweeps K caps them, default 2)",
     paper: "Christensen et al. 2018; Doignies et al. 2024",
     family: Family::Pmj,
     progressive: true,
     counts: CountRule::Any,
     parameters: &[ParameterSpec::whole(
-        "iterations",
+        "sweeps",
         0,
         MAX_SWEEPS,
         DEFAULT_SWEEPS,
         "the most sweeps over the scrambling flags (they stop earlier when a sweep keeps no flip)",
-    )],
+    )
+    .with_alias("iterations")],
     promise: "(0,m,2)-net at every `2^m` prefix and aligned block, blue noise up to `N`",
     rates: Rates::NETS,
     expensive: false,
@@ -181,7 +182,7 @@ impl Pmj02Bn {
         if sweeps > MAX_SWEEPS {
             return Err(Error::parameter(
                 ENTRY.name,
-                "iterations",
+                "sweeps",
                 sweeps,
                 format!("0 to {MAX_SWEEPS} sweeps"),
             ));
