@@ -93,30 +93,53 @@ pub fn torus_distance_squared(a: [f64; 2], b: [f64; 2]) -> f64 {
     d(a[0], b[0]).powi(2) + d(a[1], b[1]).powi(2)
 }
 
-/// An example binary, built with the profile of the running tests (`cargo test` has built it
-/// already, and the build is then a no-op; a filtered run such as `cargo test --test cli`
-/// builds it here, so that a stale binary from an earlier build is never the one tested).
+/// The example program `name`, built by Cargo for this test's profile (once per test binary),
+/// at the path Cargo reports for it: the `executable` of its `compiler-artifact` message in
+/// `cargo build --message-format=json` (Cargo sets `CARGO_BIN_EXE_*` for `[[bin]]` targets
+/// only, not for examples). `None` when the build fails or reports no executable.
 pub fn example_bin(name: &str) -> Option<std::path::PathBuf> {
     use std::collections::HashMap;
     use std::sync::{Mutex, OnceLock};
-    static BUILT: OnceLock<Mutex<HashMap<String, bool>>> = OnceLock::new();
-    let exe = std::env::current_exe().ok()?;
-    let dir = exe.parent()?.parent()?; // target/<profile>/deps -> target/<profile>
-    let bin = dir
-        .join("examples")
-        .join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+    static BUILT: OnceLock<Mutex<HashMap<String, Option<std::path::PathBuf>>>> = OnceLock::new();
     let mut built = BUILT.get_or_init(Default::default).lock().ok()?;
     if !built.contains_key(name) {
+        let exe = std::env::current_exe().ok()?;
+        let profile_dir = exe.parent()?.parent()?; // target/<profile>/deps -> target/<profile>
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
         let mut cmd = std::process::Command::new(cargo);
-        cmd.args(["build", "--quiet", "--example", name]);
-        if dir.file_name()? == "release" {
+        cmd.args([
+            "build",
+            "--quiet",
+            "--message-format=json",
+            "--example",
+            name,
+        ]);
+        if profile_dir.file_name()? == "release" {
             cmd.arg("--release");
         } else {
             cmd.args(["--profile", "test"]);
         }
-        let ok = cmd.status().map(|s| s.success()).unwrap_or(false);
-        built.insert(name.to_string(), ok);
+        cmd.stderr(std::process::Stdio::inherit());
+        let path = cmd
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .and_then(|o| artifact_executable(&String::from_utf8_lossy(&o.stdout), name));
+        built.insert(name.to_string(), path);
     }
-    (built[name] && bin.exists()).then_some(bin)
+    built[name].clone().filter(|p| p.exists())
+}
+
+/// The `executable` path of example `name` in Cargo's JSON messages (one object per line).
+fn artifact_executable(messages: &str, name: &str) -> Option<std::path::PathBuf> {
+    let target = format!("\"kind\":[\"example\"],\"crate_types\":[\"bin\"],\"name\":\"{name}\"");
+    let line = messages
+        .lines()
+        .find(|l| l.contains("\"reason\":\"compiler-artifact\"") && l.contains(&target))?;
+    let key = "\"executable\":\"";
+    let start = line.find(key)? + key.len();
+    let end = start + line[start..].find('"')?;
+    Some(std::path::PathBuf::from(
+        line[start..end].replace("\\\\", "\\"),
+    ))
 }
