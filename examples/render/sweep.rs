@@ -126,8 +126,7 @@ fn measure(
     emitters: &Emitters,
 ) -> Result<Row, CliError> {
     let size = args.size;
-    let (mut mse, mut rel, mut ms, mut first) = (0.0f64, 0.0f64, 0.0f64, None);
-    let (mut blur1, mut blur2, mut lowband, mut errors) = (0.0, 0.0, 0.0, None);
+    let (mut sums, mut ms, mut first, mut errors) = (Sums::default(), 0.0f64, None, None);
     let mut m = MaskedSums {
         masked: Masked::default(),
         errors: None,
@@ -146,13 +145,9 @@ fn measure(
             args.padding,
         )?;
         ms += start.elapsed().as_secs_f64() * 1e3 / args.seeds as f64;
-        let n = image.len() as f64 * args.seeds as f64;
-        let (image_mse, image_rel) = squared_errors(&image, reference, n);
-        mse += image_mse;
-        rel += image_rel;
         let lum = luminance_errors(&image, reference);
         let e = spectrum::error_image(&lum, size.0, size.1)?;
-        let seeds = args.seeds as f64;
+        sums.add(&image, reference, &e, args.seeds);
         if emitters.kept > 0 {
             let s = Seed {
                 seq,
@@ -163,9 +158,6 @@ fn measure(
             };
             masked(args, scene, reference, emitters, &s, &mut m)?;
         }
-        blur1 += e.blur1_rmse.powi(2) / seeds;
-        blur2 += e.blur2_rmse.powi(2) / seeds;
-        lowband += e.lowband / seeds;
         errors.get_or_insert(e);
         first.get_or_insert(image);
     }
@@ -177,18 +169,43 @@ fn measure(
         name: name.to_string(),
         spp,
         image,
-        rmse: mse.sqrt(),
-        rel_rmse: rel.sqrt(),
+        rmse: sums.mse.sqrt(),
+        rel_rmse: sums.rel.sqrt(),
         ms,
-        blur1: blur1.sqrt(),
-        blur2: blur2.sqrt(),
-        lowband,
+        blur1: sums.blur1.sqrt(),
+        blur2: sums.blur2.sqrt(),
+        lowband: sums.lowband,
         errors,
         error_pixels: e,
         masked: m.masked.finish(),
         masked_errors: m.errors,
         split: m.split.map(|parts| parts.map(|p| p.finish())),
     })
+}
+
+/// The unmasked figures of a row, summed over its seeds: mean squared (and relative squared)
+/// error, the squared RMSE after each blur and the low-band share, each a mean over the seeds.
+#[derive(Default)]
+struct Sums {
+    mse: f64,
+    rel: f64,
+    blur1: f64,
+    blur2: f64,
+    lowband: f64,
+}
+
+impl Sums {
+    /// Adds one seed's image (of `seeds`), with its error image's measures `e`.
+    fn add(&mut self, image: &[Vec3], reference: &[Vec3], e: &spectrum::ErrorImage, seeds: u32) {
+        let n = image.len() as f64 * seeds as f64;
+        let (image_mse, image_rel) = squared_errors(image, reference, n);
+        self.mse += image_mse;
+        self.rel += image_rel;
+        let seeds = seeds as f64;
+        self.blur1 += e.blur1_rmse.powi(2) / seeds;
+        self.blur2 += e.blur2_rmse.powi(2) / seeds;
+        self.lowband += e.lowband / seeds;
+    }
 }
 
 /// One seed's render of a row: its sequence and count, its seed, the image and its
