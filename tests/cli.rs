@@ -355,6 +355,40 @@ fn render_sweeps_counts_and_refuses_bad_input() {
 }
 
 #[test]
+fn render_takes_the_last_samplers_flag_even_when_it_is_all() {
+    // docs/cli.md: the last flag wins; `--samplers X --samplers all` renders every sequence
+    let dir = std::env::temp_dir().join(format!("strata-render-all-{}", std::process::id()));
+    let (code, _, err) = run_example(
+        "render",
+        &[
+            "--samplers",
+            "sobol",
+            "--samplers",
+            "all",
+            "--spp",
+            "1",
+            "--size",
+            "8x8",
+            "--reference-spp",
+            "4",
+            "--seeds",
+            "1",
+            "--out",
+            dir.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(dir.join("render.csv")).unwrap();
+    let names: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|r| r.split(',').next().unwrap())
+        .collect();
+    assert_eq!(names, strata::pixel::Sequence::NAMES, "{csv}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn render_splits_the_error_into_one_draw_and_interaction_parts() {
     let dir = std::env::temp_dir().join(format!("strata-render-split-{}", std::process::id()));
     let (code, out, err) = run_example(

@@ -92,7 +92,7 @@ pub struct Args {
 pub fn parse() -> Result<Option<Args>, CliError> {
     use lexopt::prelude::*;
     let mut a = Args {
-        samplers: Sequence::NAMES.iter().map(|s| s.to_string()).collect(),
+        samplers: every_sequence(),
         spp: vec![4, 16, 64, 256],
         size: (128, 128),
         scene: SceneKind::Cornell,
@@ -138,9 +138,16 @@ pub fn parse() -> Result<Option<Args>, CliError> {
     Ok(Some(a))
 }
 
-/// `--samplers`: the names, or `all` (which keeps the list as it was).
+/// Every adapter sequence: the default of `--samplers`, and `--samplers all`.
+fn every_sequence() -> Vec<String> {
+    Sequence::NAMES.iter().map(|s| s.to_string()).collect()
+}
+
+/// `--samplers`: the names, or `all` (the last `--samplers` wins, `all` too).
 fn samplers(v: &str, a: &mut Args) -> Result<(), CliError> {
-    if v != "all" {
+    if v == "all" {
+        a.samplers = every_sequence();
+    } else {
         a.samplers = v
             .split(',')
             .map(|s| s.trim().to_string())
