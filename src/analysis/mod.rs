@@ -12,6 +12,8 @@
 #[cfg(feature = "spectrum")]
 pub mod discrepancy;
 #[cfg(feature = "spectrum")]
+mod fit;
+#[cfg(feature = "spectrum")]
 pub mod fourier;
 mod integrands;
 #[cfg(feature = "spectrum")]
