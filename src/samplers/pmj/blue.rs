@@ -251,24 +251,33 @@ impl Sampler for Pmj02Bn {
 /// The cells are the elementary intervals `2^-tx x 2^-ty` with `tx + ty = k` and `tx` the
 /// larger: every prefix `2^k` of the sequence is a (0,k,2)-net under every Owen scrambling, so
 /// each cell holds exactly one point, before and after any flip. The grid is therefore a flat
-/// array of positions, and a flip only overwrites the cells of the moved points.
+/// array of coordinates, and a flip only overwrites the cells of the moved points.
+///
+/// The grid is stored by columns: each column is its `2^ty` cells' x coordinates followed by
+/// copies of the first [`WRAP`] (wrapped), then the same for y. The cells of one column that
+/// the kernel of a point reaches are then one run of [`LANES`] values of each coordinate (the
+/// kernel's diameter is under `LANES - 1` cell heights), and a point's neighbours are the runs
+/// of the 3 to 6 columns that the kernel reaches.
 struct Prefix {
-    len: usize,
     tx: u32,
     ty: u32,
-    /// The position of the point in each cell, row-major, each row of `2^tx` cells padded with
-    /// [`PAD`] cells of wrapped columns on both sides (so `stride = 2^tx + 2 PAD`).
-    slots: Vec<[u32; 2]>,
+    /// The columns, `2 * stride` values each.
+    cells: Vec<u32>,
+    /// `2^ty + WRAP`: the offset of a column's y coordinates from its x coordinates.
     stride: usize,
-    /// Whether the rows are wide enough to scan `2 PAD + 1` padded columns without repeats.
-    fast: bool,
-    /// The columns (then rows) to scan around a point's cell, relative and wrapped.
-    span_x: Vec<u32>,
-    span_y: Vec<u32>,
+    /// The kernel's reach in units of `2^-32`, rounded up (so that every pair it misses is
+    /// beyond the cutoff).
+    reach: u32,
     /// `1 / cutoff^2` in units of `2^-64` (squared fixed-point distances).
     inv_cutoff2: f32,
     weight: f64,
 }
+
+/// The cells of a column read at once: a point's kernel reaches at most this many.
+const LANES: usize = 4;
+
+/// The cells copied after each column (its first ones, wrapped).
+const WRAP: usize = LANES - 1;
 
 impl Prefix {
     fn new(k: u32, pos: &[[u32; 2]]) -> Self {
@@ -276,28 +285,19 @@ impl Prefix {
         let cutoff = CUTOFF * SIGMA * relative_radius_max(len);
         let tx = k.div_ceil(2);
         let ty = k - tx;
-        // the offsets that reach `cutoff` (each cell at most once on a small grid)
-        let span = |t: u32| -> Vec<u32> {
-            let res = 1u32 << t;
-            let reach = (cutoff * f64::from(res)).ceil() as u32;
-            if 2 * reach + 1 >= res {
-                (0..res).collect()
-            } else {
-                (0..=2 * reach).map(|d| (d + res - reach) % res).collect()
-            }
-        };
-        let stride = (1usize << tx) + 2 * PAD;
-        let span_x = span(tx);
-        let fast = span_x.len() <= 2 * PAD + 1 && 1usize << tx > 2 * PAD + 1;
+        let reach = (cutoff * 4_294_967_296.0).ceil() as u32 + 1;
+        // a column's run of LANES cells covers the kernel's diameter, and the columns it
+        // reaches are distinct (cell sizes in units of 2^-32)
+        let (h, w) = (1u64 << (32 - ty), 1u64 << (32 - tx));
+        assert!(ty >= 2 && 2 * u64::from(reach) < (LANES as u64 - 1) * h);
+        assert!(2 * u64::from(reach) / w + 2 <= 1 << tx);
+        let stride = (1usize << ty) + WRAP;
         let mut p = Prefix {
-            len,
             tx,
             ty,
-            slots: vec![[0, 0]; stride << ty],
+            cells: vec![0; (2 * stride) << tx],
             stride,
-            fast,
-            span_x,
-            span_y: span(ty),
+            reach,
             inv_cutoff2: (1.0 / (cutoff * cutoff * FIXED2)) as f32,
             weight: 1.0 / len as f64,
         };
@@ -307,28 +307,124 @@ impl Prefix {
         p
     }
 
-    /// Writes `q` into its cell (and the cell's padding copy, if any).
+    /// Writes `q` into its cell (and the cell's copy, if any).
     fn put(&mut self, q: [u32; 2]) {
-        let (x, y) = self.cell_xy(q);
-        let (x, row) = (x as usize, y as usize * self.stride);
-        let res = 1usize << self.tx;
-        self.slots[row + x + PAD] = q;
-        if x < PAD {
-            self.slots[row + x + PAD + res] = q;
-        } else if x + PAD >= res {
-            self.slots[row + x + PAD - res] = q;
+        // (tx >= ty >= 2: the shifts are defined)
+        let (cx, cy) = (
+            (q[0] >> (32 - self.tx)) as usize,
+            (q[1] >> (32 - self.ty)) as usize,
+        );
+        let at = 2 * cx * self.stride + cy;
+        self.cells[at] = q[0];
+        self.cells[at + self.stride] = q[1];
+        if cy < WRAP {
+            let at = at + (1 << self.ty);
+            self.cells[at] = q[0];
+            self.cells[at + self.stride] = q[1];
         }
     }
 
-    fn cell_xy(&self, q: [u32; 2]) -> (u32, u32) {
-        // (a shift by 32 is not defined for u32: tx, ty < 32, and ty = 0 is one row)
-        let f = |v: u32, t: u32| if t == 0 { 0 } else { v >> (32 - t) };
-        (f(q[0], self.tx), f(q[1], self.ty))
+    /// The kernel summed over the points near `q` (`q` itself included), halved for those
+    /// whose coordinate `AX` agrees with `q`'s on the bits of `mask` (the node of `q`).
+    ///
+    /// Evaluated in `f32` lanes and summed in a fixed order, in SSE2 or portably with the
+    /// same operations: the same value on every platform.
+    #[inline]
+    fn point_energy<const AX: usize>(&self, q: [u32; 2], mask: u32) -> f32 {
+        let last = (1u32 << self.tx) - 1;
+        let x0 = q[0].wrapping_sub(self.reach) >> (32 - self.tx);
+        let x1 = q[0].wrapping_add(self.reach) >> (32 - self.tx);
+        let columns = (x1.wrapping_sub(x0) & last) + 1;
+        let y0 = (q[1].wrapping_sub(self.reach) >> (32 - self.ty)) as usize;
+        let kernel = Kernel {
+            q,
+            node: q[AX] & mask,
+            mask,
+            inv_cutoff2: self.inv_cutoff2,
+        };
+        let mut acc = [0f32; LANES];
+        for c in 0..columns {
+            let start = 2 * ((x0 + c) & last) as usize * self.stride + y0;
+            let run = &self.cells[start..start + self.stride + LANES];
+            let (xs, ys) = (&run[..LANES], &run[self.stride..]);
+            kernel.add::<AX>(xs, ys, &mut acc);
+        }
+        (acc[0] + acc[1]) + (acc[2] + acc[3])
     }
 }
 
-/// The columns of padding on each side of a grid row: the kernel reaches at most two cells.
-const PAD: usize = 2;
+/// One point's kernel, evaluated against runs of [`LANES`] cells.
+struct Kernel {
+    q: [u32; 2],
+    /// The bits of `mask` of the point's coordinate `AX` (its node).
+    node: u32,
+    mask: u32,
+    inv_cutoff2: f32,
+}
+
+impl Kernel {
+    /// Adds the kernel of each cell of a run (coordinates `xs`, `ys`, of which the first
+    /// `LANES` are read) to its lane of `acc`, halved inside the node.
+    #[cfg(not(all(target_arch = "x86_64", not(strata_portable))))]
+    #[inline(always)]
+    fn add<const AX: usize>(&self, xs: &[u32], ys: &[u32], acc: &mut [f32; LANES]) {
+        for j in 0..LANES {
+            // a wrapping difference read as signed is the shorter way round
+            let dx = self.q[0].wrapping_sub(xs[j]) as i32 as f32;
+            let dy = self.q[1].wrapping_sub(ys[j]) as i32 as f32;
+            let t = 1.0 - (dx * dx + dy * dy) * self.inv_cutoff2;
+            let t = if t > 0.0 { t } else { 0.0 };
+            let t2 = t * t;
+            let same = if AX == 0 { xs[j] } else { ys[j] };
+            let w = if same & self.mask == self.node {
+                0.5
+            } else {
+                1.0
+            };
+            acc[j] += w * (t2 * t2);
+        }
+    }
+
+    /// [`add`](Kernel::add) in SSE2 (part of the x86-64 baseline): the same operations in
+    /// the same order, one lane per cell.
+    #[cfg(all(target_arch = "x86_64", not(strata_portable)))]
+    #[inline(always)]
+    fn add<const AX: usize>(&self, xs: &[u32], ys: &[u32], acc: &mut [f32; LANES]) {
+        use core::arch::x86_64::*;
+        assert!(xs.len() >= LANES && ys.len() >= LANES);
+        // SAFETY: SSE2 is part of the x86-64 baseline, so every intrinsic is available; the
+        // loads read the first LANES values of `xs` and `ys` (checked above), the store
+        // writes `acc`.
+        unsafe {
+            let one = _mm_set1_ps(1.0);
+            let (xv, yv) = (
+                _mm_loadu_si128(xs.as_ptr().cast()),
+                _mm_loadu_si128(ys.as_ptr().cast()),
+            );
+            let dx = _mm_cvtepi32_ps(_mm_sub_epi32(_mm_set1_epi32(self.q[0] as i32), xv));
+            let dy = _mm_cvtepi32_ps(_mm_sub_epi32(_mm_set1_epi32(self.q[1] as i32), yv));
+            let d2 = _mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy));
+            // max(t, 0) is t where t > 0, else 0, as the portable code
+            let t = _mm_max_ps(
+                _mm_sub_ps(one, _mm_mul_ps(d2, _mm_set1_ps(self.inv_cutoff2))),
+                _mm_setzero_ps(),
+            );
+            let t2 = _mm_mul_ps(t, t);
+            let same = if AX == 0 { xv } else { yv };
+            let inside = _mm_cmpeq_epi32(
+                _mm_and_si128(same, _mm_set1_epi32(self.mask as i32)),
+                _mm_set1_epi32(self.node as i32),
+            );
+            // 1 - 0.5 inside the node, 1 - 0 outside (both exact)
+            let w = _mm_sub_ps(one, _mm_and_ps(_mm_castsi128_ps(inside), _mm_set1_ps(0.5)));
+            let sum = _mm_add_ps(
+                _mm_loadu_ps(acc.as_ptr()),
+                _mm_mul_ps(w, _mm_mul_ps(t2, t2)),
+            );
+            _mm_storeu_ps(acc.as_mut_ptr(), sum);
+        }
+    }
+}
 
 /// `2^64`: a squared distance in units of `2^-64` over this is the distance in the unit torus.
 const FIXED2: f64 = 18_446_744_073_709_551_616.0;
@@ -340,6 +436,12 @@ fn torus_d2_fixed(a: [u32; 2], b: [u32; 2]) -> u64 {
     let d = |u: u32, v: u32| u64::from((u.wrapping_sub(v) as i32).unsigned_abs());
     let (dx, dy) = (d(a[0], b[0]), d(a[1], b[1]));
     dx * dx + dy * dy
+}
+
+/// The index in `prefixes` (prefix `2^k` at `k - FIRST_PREFIX_LOG2`) of the smallest prefix
+/// that holds point `i`.
+fn first_prefix(i: usize) -> usize {
+    ((usize::BITS - i.leading_zeros()) as usize).saturating_sub(FIRST_PREFIX_LOG2 as usize)
 }
 
 /// Coordinate descent on the flags of the first `2^m` points (see the module docs).
@@ -368,7 +470,8 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Flags {
         o.sort_unstable_by_key(|&i| base[i as usize][ax]);
         o
     });
-    let mut prefixes: Vec<Prefix> = (FIRST_PREFIX_LOG2.min(m)..=m)
+    // (m >= FIRST_PREFIX_LOG2)
+    let mut prefixes: Vec<Prefix> = (FIRST_PREFIX_LOG2..=m)
         .map(|k| Prefix::new(k, &pos))
         .collect();
     for _ in 0..sweeps {
@@ -378,9 +481,9 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Flags {
             for (ax, by_ax) in order.iter().enumerate() {
                 for u in 0..1u32 << l {
                     let s = &by_ax[u as usize * per..(u as usize + 1) * per];
-                    let before = energy(s, &pos, ax, l, &prefixes);
+                    let before = energy(s, &pos, ax, l, &prefixes, f64::INFINITY);
                     flip(s, ax, l, &mut pos, &mut prefixes);
-                    let after = energy(s, &pos, ax, l, &prefixes);
+                    let after = energy(s, &pos, ax, l, &prefixes, before);
                     if after < before {
                         flags.flip(ax, l, u);
                         kept += 1;
@@ -398,52 +501,40 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Flags {
 }
 
 /// The objective's part that involves the points `s` of one node of depth `l` in coordinate
-/// `ax` (each pair inside `s` once).
+/// `ax` (each pair inside `s` once), or a partial sum over `bound` once it is over (the terms
+/// are not negative, so the whole is over too).
 ///
 /// A point `q` is in the node of `i` when the first `l` digits of their coordinates `ax` agree
-/// (the flags above depth `l` map the nodes of depth `l` one to one), and is `i` itself when
-/// they are at distance 0 (the points of a (0,2)-sequence have distinct coordinates).
-fn energy(s: &[u32], pos: &[[u32; 2]], ax: usize, l: u32, prefixes: &[Prefix]) -> f64 {
-    let mut total = 0.0;
-    // the first `l` digits of coordinate `ax`
+/// (the flags above depth `l` map the nodes of depth `l` one to one); the pair of `i` with
+/// itself adds a constant.
+fn energy(s: &[u32], pos: &[[u32; 2]], ax: usize, l: u32, prefixes: &[Prefix], bound: f64) -> f64 {
+    if ax == 0 {
+        energy_in::<0>(s, pos, l, prefixes, bound)
+    } else {
+        energy_in::<1>(s, pos, l, prefixes, bound)
+    }
+}
+
+/// [`energy`] for coordinate `AX`.
+fn energy_in<const AX: usize>(
+    s: &[u32],
+    pos: &[[u32; 2]],
+    l: u32,
+    prefixes: &[Prefix],
+    bound: f64,
+) -> f64 {
+    // the first `l` digits of coordinate `AX`
     let mask = !(u32::MAX >> l);
-    let node_mask = if ax == 0 { [mask, 0] } else { [0, mask] };
-    for p in prefixes {
-        let mut outer = 0.0;
-        let my = (1u32 << p.ty) - 1;
-        let res_x = 1u32 << p.tx;
-        for &i in s {
-            let i = i as usize;
-            if i >= p.len {
-                continue;
-            }
-            let pi = pos[i];
-            let (cx, cy) = p.cell_xy(pi);
-            // each pair's kernel, halved inside the node (the point itself adds a constant)
-            let pair = |q: [u32; 2]| {
-                let d = |a: u32, b: u32| (a.wrapping_sub(b) as i32) as f32;
-                let (dx, dy) = (d(pi[0], q[0]), d(pi[1], q[1]));
-                let t = (1.0 - (dx * dx + dy * dy) * p.inv_cutoff2).max(0.0);
-                let t2 = t * t;
-                let same = ((pi[0] ^ q[0]) & node_mask[0]) | ((pi[1] ^ q[1]) & node_mask[1]);
-                let w = if same == 0 { 0.5 } else { 1.0 };
-                w * t2 * t2
-            };
-            for &dy in &p.span_y {
-                let row = ((cy + dy) & my) as usize * p.stride;
-                if p.fast {
-                    let start = row + cx as usize;
-                    let c = &p.slots[start..start + 2 * PAD + 1];
-                    outer +=
-                        f64::from(pair(c[0]) + pair(c[1]) + pair(c[2]) + pair(c[3]) + pair(c[4]));
-                } else {
-                    for &dx in &p.span_x {
-                        outer += f64::from(pair(p.slots[row + PAD + ((cx + dx) % res_x) as usize]));
-                    }
-                }
-            }
+    let mut total = 0.0;
+    for &i in s {
+        let i = i as usize;
+        let q = pos[i];
+        for p in &prefixes[first_prefix(i)..] {
+            total += p.weight * f64::from(p.point_energy::<AX>(q, mask));
         }
-        total += p.weight * outer;
+        if total > bound {
+            break;
+        }
     }
     total
 }
@@ -458,7 +549,7 @@ fn flip(s: &[u32], ax: usize, l: u32, pos: &mut [[u32; 2]], prefixes: &mut [Pref
         let i = i as usize;
         pos[i][ax] ^= 0x8000_0000 >> l;
         let q = pos[i];
-        for p in prefixes.iter_mut().filter(|p| i < p.len) {
+        for p in &mut prefixes[first_prefix(i)..] {
             p.put(q);
         }
     }
