@@ -17,28 +17,36 @@
 //! * coordinate descent: each flag at depths `1 ..= m` (depth 0 is a half-period translation,
 //!   which does not change toroidal distances), coarse to fine, in x and in y, is flipped when
 //!   that lowers the objective, exactly (the moved points' energies are recomputed against a
-//!   neighbour grid of every prefix); sweeps repeat until none keeps a flip or `--iterations`
-//!   sweeps have run (default 2);
+//!   neighbour grid of every prefix, the energy after the flip only until it exceeds the energy
+//!   before); sweeps repeat until none keeps a flip or `--iterations` sweeps have run (default
+//!   2), the second and later ones over depths `m/2 ..= m` only (the coarse flags keep their
+//!   first choice: revisiting them changed the spacing by under 0.002, 64 seeds);
 //! * each prefix's grid has the elementary intervals `2^-ceil(k/2) x 2^-floor(k/2)` as cells:
 //!   since the prefix is a (0,k,2)-net under every scrambling, every cell holds exactly one
-//!   point, so the grid is a flat array of positions (padded by two wrapped columns per row),
-//!   a point's neighbours are the 5 x 5 (or 5 x 3) cells around it, and a flip's update is
-//!   writing the moved points into their new cells;
-//! * deeper flags (finer than the optimised count) stay random, so the sequence continues past
-//!   `2^m` as an Owen-scrambled (0,2)-sequence.
+//!   point, so the grid is a flat array of positions, and a flip's update is writing the moved
+//!   points into their new cells. It is stored by columns (padded with wrapped copies), so the
+//!   cells a point's kernel reaches are runs of 4 consecutive cells in 3 to 6 consecutive
+//!   columns, evaluated in four `f32` lanes (SSE2 on x86-64; the same operations in the same
+//!   order elsewhere and under `--cfg strata_portable`, so the same bits);
+//! * deeper flags (finer than the optimised count) are random, flipped by the crate's nested
+//!   hash ([`owen_scramble`]), so the sequence continues past `2^m` as an Owen-scrambled
+//!   (0,2)-sequence.
 //!
 //! Ahmed and Wonka (2021) note that (0,2)-sequences are much less optimisable than nets, since
 //! a coarse choice serves every later prefix. Choosing flags across all prefixes at once is what
-//! makes it work: with 32 seeds, mean nearest-neighbour distances over `r_max` are 0.754, 0.728,
-//! 0.708, 0.703 and 0.702 at 64, 256, 1024, 4096 and 16384 points, 1.16-1.24x those of `pmj02`
+//! makes it work: with 32 seeds, mean nearest-neighbour distances over `r_max` are 0.759, 0.728,
+//! 0.710, 0.703 and 0.700 at 64, 256, 1024, 4096 and 16384 points, 1.16-1.25x those of `pmj02`
 //! (0.61), where best candidate inside the single valid stratum left by `pmj02` reached
-//! 0.99-1.06x; the `pmj` crate's best-candidate pmj02bn (99 retries) reaches 0.60 at 4096.
+//! 0.99-1.06x; the `pmj` crate's best-candidate pmj02bn (99 retries) reaches 0.60 at 4096
+//! (`tools/pmj-peer`, `TABLE=1` and 30 timed rounds).
 //!
 //! Guaranteed: the (0,2)-sequence property above (tested on every prefix and aligned block).
 //! Cost: the optimisation, once per sequence, is `O(N log N)` for the intended count `N`
-//! (4096 points: 0.70 G instructions, 4.1x the `pmj` crate's best candidate, and 4.3x its
-//! time in interleaved runs, about 40 ms on a quiet core; `tools/pmj-peer`); counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`); each sample is
-//! then computed from the flags in `O(32)`.
+//! (4096 points, set and points: 0.146 G instructions under callgrind, 0.85x the 0.173 G of
+//! the `pmj` crate's best candidate; in interleaved runs about its time, median per-round
+//! ratio 1.00-1.03 over 30 rounds on a noisy 2-core machine, about 12 ms each;
+//! `tools/pmj-peer`); counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`; each
+//! sample is then computed from the flags in `O(m)` and one hash.
 
 use super::{MAX_SEQUENCE_LEN, pmj_grids};
 use crate::entry::{BlueNoise, CountRule, Entry, Family, Parameter, ParameterSpec, Rates};
