@@ -19,8 +19,9 @@
 //!   that lowers the objective, exactly (the moved points' energies are recomputed against a
 //!   neighbour grid of every prefix, the energy after the flip only until it exceeds the energy
 //!   before); sweeps repeat until none keeps a flip or `--iterations` sweeps have run (default
-//!   2), the second and later ones over depths `m/2 ..= m` only (the coarse flags keep their
-//!   first choice: revisiting them changed the spacing by under 0.002, 64 seeds);
+//!   2), the second and later ones over the depths past `m/2` only (the coarse flags keep
+//!   their first choice: revisiting depths below `m/2` changed the spacing by under 0.002,
+//!   and depth `m/2` gained about 0.005 at 4096 points for about 5% more time; 64 seeds);
 //! * each prefix's grid has the elementary intervals `2^-ceil(k/2) x 2^-floor(k/2)` as cells:
 //!   since the prefix is a (0,k,2)-net under every scrambling, every cell holds exactly one
 //!   point, so the grid is a flat array of positions, and a flip's update is writing the moved
@@ -34,17 +35,17 @@
 //!
 //! Ahmed and Wonka (2021) note that (0,2)-sequences are much less optimisable than nets, since
 //! a coarse choice serves every later prefix. Choosing flags across all prefixes at once is what
-//! makes it work: with 32 seeds, mean nearest-neighbour distances over `r_max` are 0.759, 0.728,
-//! 0.710, 0.703 and 0.700 at 64, 256, 1024, 4096 and 16384 points, 1.16-1.25x those of `pmj02`
+//! makes it work: with 32 seeds, mean nearest-neighbour distances over `r_max` are 0.756, 0.728,
+//! 0.705, 0.697 and 0.693 at 64, 256, 1024, 4096 and 16384 points, 1.15-1.25x those of `pmj02`
 //! (0.61), where best candidate inside the single valid stratum left by `pmj02` reached
 //! 0.99-1.06x; the `pmj` crate's best-candidate pmj02bn (99 retries) reaches 0.60 at 4096
 //! (`tools/pmj-peer`, `TABLE=1` and 30 timed rounds).
 //!
 //! Guaranteed: the (0,2)-sequence property above (tested on every prefix and aligned block).
 //! Cost: the optimisation, once per sequence, is `O(N log N)` for the intended count `N`
-//! (4096 points, set and points: 0.146 G instructions under callgrind, 0.85x the 0.173 G of
+//! (4096 points, set and points: 0.139 G instructions under callgrind, 0.80x the 0.173 G of
 //! the `pmj` crate's best candidate; in interleaved runs about its time, median per-round
-//! ratio 1.00-1.03 over 30 rounds on a noisy 2-core machine, about 12 ms each;
+//! ratio 0.95-0.98 in three runs of 30 rounds on a noisy 2-core machine, about 12 ms each;
 //! `tools/pmj-peer`); counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`; each
 //! sample is then computed from the flags in `O(m)` and one hash.
 
@@ -533,9 +534,10 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Flags {
         .collect();
     for sweep in 0..sweeps {
         let mut kept = 0usize;
-        // the later sweeps revisit the finer half of the depths only (the coarse flags, chosen
-        // first, keep their choice: the spacing is unchanged without them, 64 seeds)
-        let first = if sweep == 0 { 1 } else { (m / 2).max(1) };
+        // the later sweeps revisit the depths past m/2 only (the coarse flags keep their first
+        // choice: revisiting depth m/2 too gained 0.005 in spacing at 4096, 64 seeds, for 5%
+        // more time)
+        let first = if sweep == 0 { 1 } else { m / 2 + 1 };
         for l in first..depth {
             let per = n >> l;
             for (ax, by_ax) in order.iter().enumerate() {
