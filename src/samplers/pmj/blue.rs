@@ -17,28 +17,37 @@
 //! * coordinate descent: each flag at depths `1 ..= m` (depth 0 is a half-period translation,
 //!   which does not change toroidal distances), coarse to fine, in x and in y, is flipped when
 //!   that lowers the objective, exactly (the moved points' energies are recomputed against a
-//!   neighbour grid of every prefix); sweeps repeat until none keeps a flip or `--sweeps`
-//!   sweeps have run (default 2);
+//!   neighbour grid of every prefix, the energy after the flip only until it exceeds the energy
+//!   before); sweeps repeat until none keeps a flip or `--sweeps` sweeps have run (default
+//!   2), the second and later ones over the depths past `m/2` only (the coarse flags keep
+//!   their first choice: revisiting depths below `m/2` changed the spacing by under 0.002,
+//!   and depth `m/2` gained about 0.005 at 4096 points for about 5% more time; 64 seeds);
 //! * each prefix's grid has the elementary intervals `2^-ceil(k/2) x 2^-floor(k/2)` as cells:
 //!   since the prefix is a (0,k,2)-net under every scrambling, every cell holds exactly one
-//!   point, so the grid is a flat array of positions (padded by two wrapped columns per row),
-//!   a point's neighbours are the 5 x 5 (or 5 x 3) cells around it, and a flip's update is
-//!   writing the moved points into their new cells;
-//! * deeper flags (finer than the optimised count) stay random, so the sequence continues past
-//!   `2^m` as an Owen-scrambled (0,2)-sequence.
+//!   point, so the grid is a flat array of positions, and a flip's update is writing the moved
+//!   points into their new cells. It is stored by columns (padded with wrapped copies), so the
+//!   cells a point's kernel reaches are runs of 4 consecutive cells in 3 to 6 consecutive
+//!   columns, evaluated in four `f32` lanes (SSE2 on x86-64; the same operations in the same
+//!   order elsewhere and under `--cfg strata_portable`, so the same bits);
+//! * deeper flags (finer than the optimised count) are random, flipped by the crate's nested
+//!   hash ([`owen_scramble`]), so the sequence continues past `2^m` as an Owen-scrambled
+//!   (0,2)-sequence.
 //!
 //! Ahmed and Wonka (2021) note that (0,2)-sequences are much less optimisable than nets, since
 //! a coarse choice serves every later prefix. Choosing flags across all prefixes at once is what
-//! makes it work: with 32 seeds, mean nearest-neighbour distances over `r_max` are 0.754, 0.728,
-//! 0.708, 0.703 and 0.702 at 64, 256, 1024, 4096 and 16384 points, 1.16-1.24x those of `pmj02`
+//! makes it work: with 32 seeds, mean nearest-neighbour distances over `r_max` are 0.756, 0.728,
+//! 0.705, 0.697 and 0.693 at 64, 256, 1024, 4096 and 16384 points, 1.15-1.25x those of `pmj02`
 //! (0.61), where best candidate inside the single valid stratum left by `pmj02` reached
-//! 0.99-1.06x; the `pmj` crate's best-candidate pmj02bn (99 retries) reaches 0.60 at 4096.
+//! 0.99-1.06x; the `pmj` crate's best-candidate pmj02bn (99 retries) reaches 0.60 at 4096
+//! (`tools/pmj-peer`, `TABLE=1` and 30 timed rounds).
 //!
 //! Guaranteed: the (0,2)-sequence property above (tested on every prefix and aligned block).
 //! Cost: the optimisation, once per sequence, is `O(N log N)` for the intended count `N`
-//! (4096 points: 0.70 G instructions, 4.1x the `pmj` crate's best candidate, and 4.3x its
-//! time in interleaved runs, about 40 ms on a quiet core; `tools/pmj-peer`); counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`); each sample is
-//! then computed from the flags in `O(32)`.
+//! (4096 points, set and points: 0.139 G instructions under callgrind, 0.80x the 0.173 G of
+//! the `pmj` crate's best candidate; in interleaved runs about its time, median per-round
+//! ratio 0.95-0.98 in three runs of 30 rounds on a noisy 2-core machine, about 12 ms each;
+//! `tools/pmj-peer`); counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`; each
+//! sample is then computed from the flags in `O(m)` and one hash.
 
 use super::{MAX_SEQUENCE_LEN, pmj_grids};
 use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
@@ -48,6 +57,7 @@ use crate::grid::relative_radius_max;
 use crate::hash::{hash_u64, stream_seed};
 use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 use crate::samplers::{Epochs, sobol};
+use crate::scramble::owen_scramble;
 
 /// The kernel width relative to `r_max` of each prefix.
 pub(crate) const SIGMA: f64 = 0.4;
@@ -97,13 +107,16 @@ pub(crate) const ENTRY: Entry = Entry {
     },
 };
 
-/// The scrambling flags of both coordinates: explicit up to a depth, hashed below it.
+/// The scrambling flags of both coordinates: explicit up to a depth, hashed below it (the
+/// crate's nested hash, [`owen_scramble`], whose flip of each digit is a function of the digits
+/// above it: an Owen scrambling there too).
 #[derive(Clone, Debug)]
 struct Flags {
     /// Depths `0 .. depth` are stored, node `u` of depth `l` at bit `2^l - 1 + u`.
     depth: u32,
     bits: [Vec<u64>; 2],
-    keys: [u64; 2],
+    /// The seeds of the hashed flags below `depth`.
+    deep: [u32; 2],
 }
 
 impl Flags {
@@ -122,7 +135,8 @@ impl Flags {
                 }
             }
         }
-        Flags { depth, bits, keys }
+        let deep = [0x0b12, 0x0b13].map(|k| stream_seed(key, k) as u32);
+        Flags { depth, bits, deep }
     }
 
     fn hashed(key: u64, l: u32, node: u32) -> bool {
@@ -136,16 +150,12 @@ impl Flags {
 
     /// Coordinate `ax` of a point of the plain sequence, scrambled.
     fn scramble(&self, ax: usize, v: u32) -> u32 {
-        let mut out = v;
-        for l in 0..32u32 {
+        // digits depth + 1 .. 32 flipped by the nested hash (depth <= 17)
+        let mut out = v ^ ((owen_scramble(v, self.deep[ax]) ^ v) & (u32::MAX >> self.depth));
+        for l in 0..self.depth {
             let node = if l == 0 { 0 } else { v >> (32 - l) };
-            let f = if l < self.depth {
-                let i = (1usize << l) - 1 + node as usize;
-                self.bits[ax][i >> 6] >> (i & 63) & 1 == 1
-            } else {
-                Self::hashed(self.keys[ax], l, node)
-            };
-            if f {
+            let i = (1usize << l) - 1 + node as usize;
+            if self.bits[ax][i >> 6] >> (i & 63) & 1 == 1 {
                 out ^= 0x8000_0000 >> l;
             }
         }
@@ -254,24 +264,41 @@ impl Sampler for Pmj02Bn {
 /// The cells are the elementary intervals `2^-tx x 2^-ty` with `tx + ty = k` and `tx` the
 /// larger: every prefix `2^k` of the sequence is a (0,k,2)-net under every Owen scrambling, so
 /// each cell holds exactly one point, before and after any flip. The grid is therefore a flat
-/// array of positions, and a flip only overwrites the cells of the moved points.
+/// array of coordinates, and a flip only overwrites the cells of the moved points.
+///
+/// The grid is stored by columns: each column is its `2^ty` cells' x coordinates followed by
+/// copies of the first [`WRAP_CELLS`] (wrapped), then the same for y; the `2^tx` columns are
+/// followed by copies of the first [`WRAP_COLUMNS`]. The cells that the kernel of a point
+/// reaches are then one run of [`LANES`] values of each coordinate in each of 3 to 6
+/// consecutive columns (the kernel's diameter is under `LANES - 1` cell heights and
+/// `WRAP_COLUMNS` cell widths).
 struct Prefix {
-    len: usize,
     tx: u32,
-    ty: u32,
-    /// The position of the point in each cell, row-major, each row of `2^tx` cells padded with
-    /// [`PAD`] cells of wrapped columns on both sides (so `stride = 2^tx + 2 PAD`).
-    slots: Vec<[u32; 2]>,
+    /// `32 - tx` and `32 - ty`: a coordinate's cell is its top `tx` (`ty`) bits.
+    shift: [u32; 2],
+    /// `2^tx - 1`.
+    last: u32,
+    /// The columns, `2 * stride` values each.
+    cells: Vec<u32>,
+    /// `2^ty + WRAP_CELLS`: the offset of a column's y coordinates from its x coordinates.
     stride: usize,
-    /// Whether the rows are wide enough to scan `2 PAD + 1` padded columns without repeats.
-    fast: bool,
-    /// The columns (then rows) to scan around a point's cell, relative and wrapped.
-    span_x: Vec<u32>,
-    span_y: Vec<u32>,
+    /// The kernel's reach in units of `2^-32`, rounded up (so that every pair it misses is
+    /// beyond the cutoff).
+    reach: u32,
     /// `1 / cutoff^2` in units of `2^-64` (squared fixed-point distances).
     inv_cutoff2: f32,
-    weight: f64,
+    /// `2^-k` (energy per point; exact in `f32`).
+    weight: f32,
 }
+
+/// The cells of a column read at once: a point's kernel reaches at most this many.
+const LANES: usize = 4;
+
+/// The cells copied after each column (its first ones, wrapped).
+const WRAP_CELLS: usize = LANES - 1;
+
+/// The columns copied after the grid: a point's kernel reaches at most one more.
+const WRAP_COLUMNS: usize = 5;
 
 impl Prefix {
     fn new(k: u32, pos: &[[u32; 2]]) -> Self {
@@ -279,30 +306,23 @@ impl Prefix {
         let cutoff = CUTOFF * SIGMA * relative_radius_max(len);
         let tx = k.div_ceil(2);
         let ty = k - tx;
-        // the offsets that reach `cutoff` (each cell at most once on a small grid)
-        let span = |t: u32| -> Vec<u32> {
-            let res = 1u32 << t;
-            let reach = (cutoff * f64::from(res)).ceil() as u32;
-            if 2 * reach + 1 >= res {
-                (0..res).collect()
-            } else {
-                (0..=2 * reach).map(|d| (d + res - reach) % res).collect()
-            }
-        };
-        let stride = (1usize << tx) + 2 * PAD;
-        let span_x = span(tx);
-        let fast = span_x.len() <= 2 * PAD + 1 && 1usize << tx > 2 * PAD + 1;
+        let reach = (cutoff * 4_294_967_296.0).ceil() as u32 + 1;
+        // a column's run of LANES cells covers the kernel's diameter, and the columns it
+        // reaches are distinct and at most WRAP_COLUMNS + 1 (cell sizes in units of 2^-32)
+        let (h, w) = (1u64 << (32 - ty), 1u64 << (32 - tx));
+        let columns = 2 * u64::from(reach) / w + 2;
+        assert!(ty >= 2 && 2 * u64::from(reach) < (LANES as u64 - 1) * h);
+        assert!(columns <= 1 << tx && columns <= WRAP_COLUMNS as u64 + 1);
+        let stride = (1usize << ty) + WRAP_CELLS;
         let mut p = Prefix {
-            len,
             tx,
-            ty,
-            slots: vec![[0, 0]; stride << ty],
+            shift: [32 - tx, 32 - ty],
+            last: (1 << tx) - 1,
+            cells: vec![0; 2 * stride * ((1 << tx) + WRAP_COLUMNS)],
             stride,
-            fast,
-            span_x,
-            span_y: span(ty),
+            reach,
             inv_cutoff2: (1.0 / (cutoff * cutoff * FIXED2)) as f32,
-            weight: 1.0 / len as f64,
+            weight: 1.0 / len as f32,
         };
         for q in &pos[..len] {
             p.put(*q);
@@ -310,28 +330,157 @@ impl Prefix {
         p
     }
 
-    /// Writes `q` into its cell (and the cell's padding copy, if any).
+    /// Writes `q` into its cell (and the cell's copies, if any).
+    #[inline(always)]
     fn put(&mut self, q: [u32; 2]) {
-        let (x, y) = self.cell_xy(q);
-        let (x, row) = (x as usize, y as usize * self.stride);
-        let res = 1usize << self.tx;
-        self.slots[row + x + PAD] = q;
-        if x < PAD {
-            self.slots[row + x + PAD + res] = q;
-        } else if x + PAD >= res {
-            self.slots[row + x + PAD - res] = q;
+        // (tx >= ty >= 2: the shifts are defined)
+        let (cx, cy) = (
+            (q[0] >> self.shift[0]) as usize,
+            (q[1] >> self.shift[1]) as usize,
+        );
+        let stride = self.stride;
+        let column = 2 * stride;
+        let copies = 1 + usize::from(cx < WRAP_COLUMNS);
+        let mut at = cx * column + cy;
+        // cx < 2^tx, cy < 2^ty = stride - WRAP_CELLS, and a copy is of a column
+        // cx < WRAP_COLUMNS: every index is below column (2^tx + WRAP_COLUMNS) = cells.len()
+        debug_assert!(self.cells.len() == column * ((1 << self.tx) + WRAP_COLUMNS));
+        debug_assert!(cy + WRAP_CELLS < stride);
+        for _ in 0..copies {
+            self.cells[at] = q[0];
+            self.cells[at + stride] = q[1];
+            if cy < WRAP_CELLS {
+                let wrapped = at + stride - WRAP_CELLS;
+                self.cells[wrapped] = q[0];
+                self.cells[wrapped + stride] = q[1];
+            }
+            at += column << self.tx;
         }
     }
 
-    fn cell_xy(&self, q: [u32; 2]) -> (u32, u32) {
-        // (a shift by 32 is not defined for u32: tx, ty < 32, and ty = 0 is one row)
-        let f = |v: u32, t: u32| if t == 0 { 0 } else { v >> (32 - t) };
-        (f(q[0], self.tx), f(q[1], self.ty))
+    /// Adds `2^-k` times the kernel summed over the points near `q` (`q` itself included),
+    /// halved for those whose coordinate `AX` agrees with `q`'s on the bits of `mask` (the
+    /// node of `q`), to the lanes `acc`.
+    #[inline]
+    fn add_energy<const AX: usize>(&self, q: [u32; 2], mask: u32, acc: &mut [f32; LANES]) {
+        let x0 = q[0].wrapping_sub(self.reach) >> self.shift[0];
+        let x1 = q[0].wrapping_add(self.reach) >> self.shift[0];
+        let columns = (x1.wrapping_sub(x0) & self.last) as usize + 1;
+        let y0 = (q[1].wrapping_sub(self.reach) >> self.shift[1]) as usize;
+        let kernel = Kernel {
+            q,
+            node: q[AX] & mask,
+            mask,
+            inv_cutoff2: self.inv_cutoff2,
+        };
+        let column = 2 * self.stride;
+        let start = x0 as usize * column + y0;
+        // the runs of the columns (of the copies past the last)
+        let runs = &self.cells[start..start + (columns - 1) * column + self.stride + LANES];
+        kernel.add::<AX>(runs, columns, self.stride, self.weight, acc);
     }
 }
 
-/// The columns of padding on each side of a grid row: the kernel reaches at most two cells.
-const PAD: usize = 2;
+/// One point's kernel, evaluated against runs of [`LANES`] cells.
+struct Kernel {
+    q: [u32; 2],
+    /// The bits of `mask` of the point's coordinate `AX` (its node).
+    node: u32,
+    mask: u32,
+    inv_cutoff2: f32,
+}
+
+impl Kernel {
+    /// Adds `weight` times the kernel of the cells of `columns` runs, halved inside the
+    /// node, to the lanes `acc`: run `c` is the `LANES` x coordinates at `runs[2 c stride..]`
+    /// and the y coordinates `stride` later.
+    ///
+    /// Evaluated in `f32` lanes, one per cell of a run, in a fixed order.
+    #[cfg(not(all(target_arch = "x86_64", not(strata_portable))))]
+    #[inline(always)]
+    fn add<const AX: usize>(
+        &self,
+        runs: &[u32],
+        columns: usize,
+        stride: usize,
+        weight: f32,
+        acc: &mut [f32; LANES],
+    ) {
+        let mut sum = [0f32; LANES];
+        for c in 0..columns {
+            let xs = &runs[2 * c * stride..][..LANES];
+            let ys = &runs[2 * c * stride + stride..][..LANES];
+            for j in 0..LANES {
+                // a wrapping difference read as signed is the shorter way round
+                let dx = self.q[0].wrapping_sub(xs[j]) as i32 as f32;
+                let dy = self.q[1].wrapping_sub(ys[j]) as i32 as f32;
+                let t = 1.0 - (dx * dx + dy * dy) * self.inv_cutoff2;
+                let t = if t > 0.0 { t } else { 0.0 };
+                let t2 = t * t;
+                let same = if AX == 0 { xs[j] } else { ys[j] };
+                let w = if same & self.mask == self.node {
+                    0.5
+                } else {
+                    1.0
+                };
+                sum[j] += w * (t2 * t2);
+            }
+        }
+        for j in 0..LANES {
+            acc[j] += sum[j] * weight;
+        }
+    }
+
+    /// [`add`](Kernel::add) in SSE2 (part of the x86-64 baseline): the same operations in
+    /// the same order, so the same values.
+    #[cfg(all(target_arch = "x86_64", not(strata_portable)))]
+    #[inline(always)]
+    fn add<const AX: usize>(
+        &self,
+        runs: &[u32],
+        columns: usize,
+        stride: usize,
+        weight: f32,
+        acc: &mut [f32; LANES],
+    ) {
+        use core::arch::x86_64::*;
+        assert!(columns >= 1 && runs.len() >= 2 * (columns - 1) * stride + stride + LANES);
+        // SAFETY: SSE2 is part of the x86-64 baseline, so every intrinsic is available; the
+        // loads read LANES values at 2 c stride and at 2 c stride + stride, c < columns,
+        // inside `runs` (checked above), and `acc`, which the store writes.
+        unsafe {
+            let qx = _mm_set1_epi32(self.q[0] as i32);
+            let qy = _mm_set1_epi32(self.q[1] as i32);
+            let inv = _mm_set1_ps(self.inv_cutoff2);
+            let mask = _mm_set1_epi32(self.mask as i32);
+            let node = _mm_set1_epi32(self.node as i32);
+            let (one, half) = (_mm_set1_ps(1.0), _mm_set1_ps(0.5));
+            let mut sum = _mm_setzero_ps();
+            let mut at = runs.as_ptr();
+            for _ in 0..columns {
+                let xv = _mm_loadu_si128(at.cast());
+                let yv = _mm_loadu_si128(at.add(stride).cast());
+                at = at.wrapping_add(2 * stride);
+                let dx = _mm_cvtepi32_ps(_mm_sub_epi32(qx, xv));
+                let dy = _mm_cvtepi32_ps(_mm_sub_epi32(qy, yv));
+                let d2 = _mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy));
+                // max(t, 0) is t where t > 0, else 0, as the portable code
+                let t = _mm_max_ps(_mm_sub_ps(one, _mm_mul_ps(d2, inv)), _mm_setzero_ps());
+                let t2 = _mm_mul_ps(t, t);
+                let same = if AX == 0 { xv } else { yv };
+                let inside = _mm_cmpeq_epi32(_mm_and_si128(same, mask), node);
+                // 1 - 0.5 inside the node, 1 - 0 outside (both exact)
+                let w = _mm_sub_ps(one, _mm_and_ps(_mm_castsi128_ps(inside), half));
+                sum = _mm_add_ps(sum, _mm_mul_ps(w, _mm_mul_ps(t2, t2)));
+            }
+            let total = _mm_add_ps(
+                _mm_loadu_ps(acc.as_ptr()),
+                _mm_mul_ps(sum, _mm_set1_ps(weight)),
+            );
+            _mm_storeu_ps(acc.as_mut_ptr(), total);
+        }
+    }
+}
 
 /// `2^64`: a squared distance in units of `2^-64` over this is the distance in the unit torus.
 const FIXED2: f64 = 18_446_744_073_709_551_616.0;
@@ -343,6 +492,12 @@ fn torus_d2_fixed(a: [u32; 2], b: [u32; 2]) -> u64 {
     let d = |u: u32, v: u32| u64::from((u.wrapping_sub(v) as i32).unsigned_abs());
     let (dx, dy) = (d(a[0], b[0]), d(a[1], b[1]));
     dx * dx + dy * dy
+}
+
+/// The index in `prefixes` (prefix `2^k` at `k - FIRST_PREFIX_LOG2`) of the smallest prefix
+/// that holds point `i`.
+fn first_prefix(i: usize) -> usize {
+    ((usize::BITS - i.leading_zeros()) as usize).saturating_sub(FIRST_PREFIX_LOG2 as usize)
 }
 
 /// Coordinate descent on the flags of the first `2^m` points (see the module docs).
@@ -371,19 +526,24 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Flags {
         o.sort_unstable_by_key(|&i| base[i as usize][ax]);
         o
     });
-    let mut prefixes: Vec<Prefix> = (FIRST_PREFIX_LOG2.min(m)..=m)
+    // (m >= FIRST_PREFIX_LOG2)
+    let mut prefixes: Vec<Prefix> = (FIRST_PREFIX_LOG2..=m)
         .map(|k| Prefix::new(k, &pos))
         .collect();
-    for _ in 0..sweeps {
+    for sweep in 0..sweeps {
         let mut kept = 0usize;
-        for l in 1..depth {
+        // the later sweeps revisit the depths past m/2 only (the coarse flags keep their first
+        // choice: revisiting depth m/2 too gained 0.005 in spacing at 4096, 64 seeds, for 5%
+        // more time)
+        let first = if sweep == 0 { 1 } else { m / 2 + 1 };
+        for l in first..depth {
             let per = n >> l;
             for (ax, by_ax) in order.iter().enumerate() {
                 for u in 0..1u32 << l {
                     let s = &by_ax[u as usize * per..(u as usize + 1) * per];
-                    let before = energy(s, &pos, ax, l, &prefixes);
+                    let before = energy(s, &pos, ax, l, &prefixes, f64::INFINITY);
                     flip(s, ax, l, &mut pos, &mut prefixes);
-                    let after = energy(s, &pos, ax, l, &prefixes);
+                    let after = energy(s, &pos, ax, l, &prefixes, before);
                     if after < before {
                         flags.flip(ax, l, u);
                         kept += 1;
@@ -401,52 +561,42 @@ fn optimize(key: u64, m: u32, sweeps: u32) -> Flags {
 }
 
 /// The objective's part that involves the points `s` of one node of depth `l` in coordinate
-/// `ax` (each pair inside `s` once).
+/// `ax` (each pair inside `s` once), or a partial sum over `bound` once it is over (the terms
+/// are not negative, so the whole is over too).
 ///
 /// A point `q` is in the node of `i` when the first `l` digits of their coordinates `ax` agree
-/// (the flags above depth `l` map the nodes of depth `l` one to one), and is `i` itself when
-/// they are at distance 0 (the points of a (0,2)-sequence have distinct coordinates).
-fn energy(s: &[u32], pos: &[[u32; 2]], ax: usize, l: u32, prefixes: &[Prefix]) -> f64 {
-    let mut total = 0.0;
-    // the first `l` digits of coordinate `ax`
+/// (the flags above depth `l` map the nodes of depth `l` one to one); the pair of `i` with
+/// itself adds a constant.
+fn energy(s: &[u32], pos: &[[u32; 2]], ax: usize, l: u32, prefixes: &[Prefix], bound: f64) -> f64 {
+    if ax == 0 {
+        energy_in::<0>(s, pos, l, prefixes, bound)
+    } else {
+        energy_in::<1>(s, pos, l, prefixes, bound)
+    }
+}
+
+/// [`energy`] for coordinate `AX`.
+fn energy_in<const AX: usize>(
+    s: &[u32],
+    pos: &[[u32; 2]],
+    l: u32,
+    prefixes: &[Prefix],
+    bound: f64,
+) -> f64 {
+    // the first `l` digits of coordinate `AX`
     let mask = !(u32::MAX >> l);
-    let node_mask = if ax == 0 { [mask, 0] } else { [0, mask] };
-    for p in prefixes {
-        let mut outer = 0.0;
-        let my = (1u32 << p.ty) - 1;
-        let res_x = 1u32 << p.tx;
-        for &i in s {
-            let i = i as usize;
-            if i >= p.len {
-                continue;
-            }
-            let pi = pos[i];
-            let (cx, cy) = p.cell_xy(pi);
-            // each pair's kernel, halved inside the node (the point itself adds a constant)
-            let pair = |q: [u32; 2]| {
-                let d = |a: u32, b: u32| (a.wrapping_sub(b) as i32) as f32;
-                let (dx, dy) = (d(pi[0], q[0]), d(pi[1], q[1]));
-                let t = (1.0 - (dx * dx + dy * dy) * p.inv_cutoff2).max(0.0);
-                let t2 = t * t;
-                let same = ((pi[0] ^ q[0]) & node_mask[0]) | ((pi[1] ^ q[1]) & node_mask[1]);
-                let w = if same == 0 { 0.5 } else { 1.0 };
-                w * t2 * t2
-            };
-            for &dy in &p.span_y {
-                let row = ((cy + dy) & my) as usize * p.stride;
-                if p.fast {
-                    let start = row + cx as usize;
-                    let c = &p.slots[start..start + 2 * PAD + 1];
-                    outer +=
-                        f64::from(pair(c[0]) + pair(c[1]) + pair(c[2]) + pair(c[3]) + pair(c[4]));
-                } else {
-                    for &dx in &p.span_x {
-                        outer += f64::from(pair(p.slots[row + PAD + ((cx + dx) % res_x) as usize]));
-                    }
-                }
-            }
+    let mut total = 0.0;
+    for &i in s {
+        let i = i as usize;
+        let q = pos[i];
+        let mut acc = [0f32; LANES];
+        for p in &prefixes[first_prefix(i)..] {
+            p.add_energy::<AX>(q, mask, &mut acc);
         }
-        total += p.weight * outer;
+        total += f64::from((acc[0] + acc[1]) + (acc[2] + acc[3]));
+        if total > bound {
+            break;
+        }
     }
     total
 }
@@ -461,7 +611,7 @@ fn flip(s: &[u32], ax: usize, l: u32, pos: &mut [[u32; 2]], prefixes: &mut [Pref
         let i = i as usize;
         pos[i][ax] ^= 0x8000_0000 >> l;
         let q = pos[i];
-        for p in prefixes.iter_mut().filter(|p| i < p.len) {
+        for p in &mut prefixes[first_prefix(i)..] {
             p.put(q);
         }
     }
