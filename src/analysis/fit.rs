@@ -90,7 +90,7 @@ fn fit_line(points: &[(f64, f64)]) -> Option<(f64, f64)> {
     Some((my - b * mx, b))
 }
 
-/// The largest count [`time_to_error`] considers (beyond it a target counts as out of reach).
+/// The largest count [`time_to_error`](super::study::time_to_error) considers (beyond it a target counts as out of reach).
 pub const MAX_PROJECTED_COUNT: f64 = 1e12;
 
 /// The count at which the power law fitted to `(count, error)` pairs (log-log least squares)
