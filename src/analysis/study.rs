@@ -351,110 +351,169 @@ pub fn run(
     progress: &(dyn Fn(&str, u64) + Sync),
 ) -> Result<(Vec<Row>, Vec<Slope>)> {
     check(config)?;
-    let mut rows = Vec::new();
-    // the estimates behind each row, for the bootstrap
-    let mut estimates_of: Vec<Vec<f64>> = Vec::new();
-    let mut powers: Vec<(Integrand, u32, Vec<f64>)> = Vec::new();
+    let mut acc = Measured::default();
     for entry in &config.samplers {
-        let integrands: Vec<Integrand> = config
-            .integrands
+        study_sampler(config, entry, &mut acc, progress)?;
+    }
+    let slopes = fit_slopes(config, &acc);
+    Ok((acc.rows, slopes))
+}
+
+/// What a study has measured so far: its rows, the estimates behind each row (for the
+/// bootstrap), and the integrands' power spectra computed so far (by resolution).
+#[derive(Default)]
+struct Measured {
+    rows: Vec<Row>,
+    estimates_of: Vec<Vec<f64>>,
+    powers: Vec<(Integrand, u32, Vec<f64>)>,
+}
+
+/// One sampler at every count: the set times first (largest count first: it decides the
+/// number of seeds), then the estimates.
+fn study_sampler(
+    config: &Config,
+    entry: &'static Entry,
+    acc: &mut Measured,
+    progress: &(dyn Fn(&str, u64) + Sync),
+) -> Result<()> {
+    let integrands: Vec<Integrand> = config
+        .integrands
+        .iter()
+        .copied()
+        .filter(|f| f.dimensions() == 2 || entry.has_dimensions())
+        .collect();
+    if integrands.is_empty() {
+        return Ok(());
+    }
+    let wanted = integrands.iter().map(|f| f.dimensions()).max().unwrap_or(2);
+    let counts = counts_for(entry.counts, config.min_n, config.max_n);
+    let dims_at = |n: u64| {
+        if wanted > 2 && entry.build_nd(&Params::new(n), wanted).is_err() {
+            2
+        } else {
+            wanted
+        }
+    };
+    let mut timings = Vec::with_capacity(counts.len());
+    for &n in counts.iter().rev() {
+        timings.push(time_sets(entry, n, dims_at(n))?);
+    }
+    timings.reverse();
+    let seeds = config
+        .seeds
+        .for_cost(timings.last().map_or(0.0, |t| t.median));
+    for (&n, timing) in counts.iter().zip(&timings) {
+        let dims = dims_at(n);
+        let at = Count {
+            entry,
+            n,
+            dims,
+            seeds,
+            timing,
+        };
+        let integrands: Vec<Integrand> = integrands
             .iter()
             .copied()
-            .filter(|f| f.dimensions() == 2 || entry.has_dimensions())
+            .filter(|f| f.dimensions() <= dims)
             .collect();
-        if integrands.is_empty() {
-            continue;
-        }
-        let wanted = integrands.iter().map(|f| f.dimensions()).max().unwrap_or(2);
-        let counts = counts_for(entry.counts, config.min_n, config.max_n);
-        let dims_at = |n: u64| {
-            if wanted > 2 && entry.build_nd(&Params::new(n), wanted).is_err() {
-                2
-            } else {
-                wanted
-            }
-        };
-        // time every count first (largest first: it decides the number of seeds)
-        let mut timings = Vec::with_capacity(counts.len());
-        for &n in counts.iter().rev() {
-            timings.push(time_sets(entry, n, dims_at(n))?);
-        }
-        timings.reverse();
-        let seeds = config
-            .seeds
-            .for_cost(timings.last().map_or(0.0, |t| t.median));
-        for (&n, timing) in counts.iter().zip(&timings) {
-            let dims = dims_at(n);
-            let integrands: Vec<Integrand> = integrands
-                .iter()
-                .copied()
-                .filter(|f| f.dimensions() <= dims)
-                .collect();
-            let sets: Vec<Vec<f32>> = (0..u64::from(seeds))
-                .into_par_iter()
-                .map(|s| realization(entry, n, s, dims))
-                .collect::<Result<_>>()?;
-            let spectrum = if config.predict && integrands.iter().any(|f| f.dimensions() == 2) {
-                // the prediction averages at most 32 realizations: the spectrum converges
-                // much faster than the slopes need seeds
-                let k = ((4.0 * (n as f64).sqrt()) as u32 / 2 * 2).clamp(32, 256);
-                let spectrum = expected_spectrum(seeds.min(32), k, |r| {
-                    Ok(sets[r as usize]
-                        .chunks_exact(dims as usize)
-                        .map(|c| Point2::new(c[0], c[1]))
-                        .collect())
-                })?;
-                Some((k, spectrum))
-            } else {
-                None
-            };
-            for &f in &integrands {
-                let estimates: Vec<f64> = sets
-                    .par_iter()
-                    .map(|v| {
-                        v.chunks_exact(dims as usize)
-                            .map(|p| f.eval(p))
-                            .sum::<f64>()
-                            / n as f64
-                    })
-                    .collect();
-                let k = estimates.len() as f64;
-                let mean = estimates.iter().sum::<f64>() / k;
-                let exact = f.exact();
-                let rmse = (estimates.iter().map(|e| (e - exact).powi(2)).sum::<f64>() / k).sqrt();
-                let predicted = match (&spectrum, f.dimensions()) {
-                    (Some((res, spec)), 2) => {
-                        let power = match powers.iter().find(|p| p.0 == f && p.1 == *res) {
-                            Some(p) => &p.2,
-                            None => {
-                                powers.push((f, *res, integrand_power(f, *res)));
-                                &powers.last().expect("pushed").2
-                            }
-                        };
-                        Some(predicted_variance(f, power, spec, n as usize))
-                    }
-                    _ => None,
-                };
-                rows.push(Row {
-                    sampler: entry.name,
-                    integrand: f,
-                    n,
-                    seeds,
-                    mean,
-                    variance: variance(estimates.iter().copied()),
-                    rmse,
-                    ns_per_sample: timing.median / n as f64,
-                    set_ns: timing.median,
-                    set_ns_min: timing.min,
-                    set_ns_max: timing.max,
-                    one_time_ns: timing.one_time,
-                    predicted_variance: predicted,
-                });
-                estimates_of.push(estimates);
-            }
-            progress(entry.name, n);
-        }
+        study_count(config, &at, &integrands, acc)?;
+        progress(entry.name, n);
     }
+    Ok(())
+}
+
+/// A sampler at one count: its dimensions there, the seeds and the set times.
+struct Count<'a> {
+    entry: &'static Entry,
+    n: u64,
+    dims: u32,
+    seeds: u32,
+    timing: &'a Timing,
+}
+
+/// The sets of one count, the spectrum predicting their variance (if asked), and a row per
+/// integrand.
+fn study_count(
+    config: &Config,
+    at: &Count<'_>,
+    integrands: &[Integrand],
+    acc: &mut Measured,
+) -> Result<()> {
+    let (n, dims, seeds) = (at.n, at.dims, at.seeds);
+    let sets: Vec<Vec<f32>> = (0..u64::from(seeds))
+        .into_par_iter()
+        .map(|s| realization(at.entry, n, s, dims))
+        .collect::<Result<_>>()?;
+    let spectrum = if config.predict && integrands.iter().any(|f| f.dimensions() == 2) {
+        // the prediction averages at most 32 realizations: the spectrum converges
+        // much faster than the slopes need seeds
+        let k = ((4.0 * (n as f64).sqrt()) as u32 / 2 * 2).clamp(32, 256);
+        let spectrum = expected_spectrum(seeds.min(32), k, |r| {
+            Ok(sets[r as usize]
+                .chunks_exact(dims as usize)
+                .map(|c| Point2::new(c[0], c[1]))
+                .collect())
+        })?;
+        Some((k, spectrum))
+    } else {
+        None
+    };
+    for &f in integrands {
+        let estimates: Vec<f64> = sets
+            .par_iter()
+            .map(|v| {
+                v.chunks_exact(dims as usize)
+                    .map(|p| f.eval(p))
+                    .sum::<f64>()
+                    / n as f64
+            })
+            .collect();
+        let predicted = match (&spectrum, f.dimensions()) {
+            (Some((res, spec)), 2) => {
+                let power = match acc.powers.iter().find(|p| p.0 == f && p.1 == *res) {
+                    Some(p) => &p.2,
+                    None => {
+                        acc.powers.push((f, *res, integrand_power(f, *res)));
+                        &acc.powers.last().expect("pushed").2
+                    }
+                };
+                Some(predicted_variance(f, power, spec, n as usize))
+            }
+            _ => None,
+        };
+        acc.rows.push(row(at, f, &estimates, predicted));
+        acc.estimates_of.push(estimates);
+    }
+    Ok(())
+}
+
+/// The row of one integrand at one count, from its estimates.
+fn row(at: &Count<'_>, f: Integrand, estimates: &[f64], predicted: Option<f64>) -> Row {
+    let k = estimates.len() as f64;
+    let mean = estimates.iter().sum::<f64>() / k;
+    let exact = f.exact();
+    let rmse = (estimates.iter().map(|e| (e - exact).powi(2)).sum::<f64>() / k).sqrt();
+    let timing = at.timing;
+    Row {
+        sampler: at.entry.name,
+        integrand: f,
+        n: at.n,
+        seeds: at.seeds,
+        mean,
+        variance: variance(estimates.iter().copied()),
+        rmse,
+        ns_per_sample: timing.median / at.n as f64,
+        set_ns: timing.median,
+        set_ns_min: timing.min,
+        set_ns_max: timing.max,
+        one_time_ns: timing.one_time,
+        predicted_variance: predicted,
+    }
+}
+
+/// The slope of each (sampler, integrand), with its bootstrap interval.
+fn fit_slopes(config: &Config, acc: &Measured) -> Vec<Slope> {
+    let rows = &acc.rows;
     let mut slopes = Vec::new();
     for entry in &config.samplers {
         for &f in &config.integrands {
@@ -470,7 +529,7 @@ pub fn run(
                 .collect();
             let series: Vec<(f64, &[f64])> = idx
                 .iter()
-                .map(|&i| (rows[i].n as f64, estimates_of[i].as_slice()))
+                .map(|&i| (rows[i].n as f64, acc.estimates_of[i].as_slice()))
                 .collect();
             slopes.push(Slope {
                 sampler: entry.name,
@@ -481,7 +540,7 @@ pub fn run(
             });
         }
     }
-    Ok((rows, slopes))
+    slopes
 }
 
 /// For each integrand, target (RMSE relative to the integral) and sampler: the smallest
