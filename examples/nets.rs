@@ -1,7 +1,8 @@
-//! `nets`: the stratification of the jointly Z-ordered sequence's groups, counted exactly.
+//! `nets`: the stratification of the jointly Z-ordered sequences' groups, counted exactly.
 //!
 //! ```text
-//! cargo run --release --example nets -- [--group G] [--max-m M] [--markdown FILE]
+//! cargo run --release --example nets -- [--sequence zjoint|zquad] [--group G] [--max-m M]
+//!     [--markdown FILE]
 //! ```
 
 mod common;
@@ -11,28 +12,35 @@ use std::process::ExitCode;
 use common::{CliError, cli_error, parse_int, string_value};
 use strata::samplers::sobol;
 
-const USAGE: &str = "nets [--group G] [--max-m M] [--markdown FILE]";
+const USAGE: &str = "nets [--sequence zjoint|zquad] [--group G] [--max-m M] [--markdown FILE]";
 
 const HELP: &str = "\
-nets: the t-values of the projections that `zjoint` draws read, from the Sobol' generator
-matrices (exact, by the rank criterion of digital nets). A pixel's 2^m samples of a zjoint
-group are an aligned block of 2^m points of the multi-dimensional Sobol' sequence, nested-
-shuffled and Owen-scrambled, which keeps every elementary interval: each pair of the group's
-dimensions is a (t, m, 2)-net and each set of four a (t, m, 4)-net with the t printed here
-(t = 0 is the best possible; an independent pair, as two draws of zsobol are, has no such
-guarantee). Prints, for m = 2, 4, ..., M (2^m points, 4^(m/2) for even m), the t-value of
-every pair of dimensions of one group, and the largest and the mean t over every set of four.
+nets: the t-values of the projections that `zjoint` or `zquad` draws read, from the generator
+matrices (exact, by the rank criterion of digital nets). A pixel's 2^m samples of a group
+are an aligned block of 2^m points of the multi-dimensional sequence (Sobol' for zjoint, the
+base-4 Faure sequence in binary form for zquad), nested-shuffled and Owen-scrambled, which
+keeps every elementary interval: each pair of the group's dimensions is a (t, m, 2)-net and
+each set of four a (t, m, 4)-net with the t printed here (t = 0 is the best possible; an
+independent pair, as two draws of zsobol are, has no such guarantee). Prints, for m = 2, 4,
+..., M (2^m points, 4^(m/2) for even m), the t-value of every pair of dimensions of one group,
+the largest and the mean t over every set of four, and the t of dimensions 0-3 as a base-4
+net of 4^(m/2) points.
 
 Usage:
   cargo run --release --example nets -- [options]
 
 Options:
-  --group G        dimensions of a group: a power of two from 2 to 16 (default 8, zjoint's)
+  --sequence S     zjoint (default) or zquad (groups of 4, and the fifth matrix its 2D draws
+                   at a group's last dimension read)
+  --group G        zjoint's dimensions of a group: a power of two from 2 to 16 (default 8)
   --max-m M        the largest m, an even number from 2 to 24 (default 16)
-  --markdown FILE  also write the tables into FILE, as its section 'nets-zjoint-G'
+  --markdown FILE  also write the tables into FILE, as its section 'nets-zjoint-G' or
+                   'nets-zquad'
   -h, --help       this text";
 
 struct Args {
+    /// The sampler whose matrices are read: `sobol` (zjoint) or `faure4` (zquad).
+    sampler: &'static str,
     group: u32,
     max_m: u32,
     markdown: Option<std::path::PathBuf>,
@@ -41,13 +49,27 @@ struct Args {
 fn parse() -> Result<Option<Args>, CliError> {
     use lexopt::prelude::*;
     let mut args = Args {
+        sampler: "sobol",
         group: 8,
         max_m: 16,
         markdown: None,
     };
     let mut parser = lexopt::Parser::from_env();
+    let mut group_given = false;
     while let Some(arg) = parser.next()? {
         match arg {
+            Long("sequence") => {
+                let v = string_value("--sequence", parser.value()?)?;
+                args.sampler = match v.as_str() {
+                    "zjoint" => "sobol",
+                    "zquad" => "faure4",
+                    other => {
+                        return Err(cli_error(format!(
+                            "--sequence {other}: zjoint or zquad is needed"
+                        )));
+                    }
+                };
+            }
             Long("group") => {
                 let v = string_value("--group", parser.value()?)?;
                 let g = parse_int("--group", &v, 2, 16)? as u32;
@@ -57,6 +79,7 @@ fn parse() -> Result<Option<Args>, CliError> {
                     )));
                 }
                 args.group = g;
+                group_given = true;
             }
             Long("max-m") => {
                 let v = string_value("--max-m", parser.value()?)?;
@@ -76,14 +99,27 @@ fn parse() -> Result<Option<Args>, CliError> {
             other => return Err(common::unexpected(other, USAGE)),
         }
     }
+    if args.sampler == "faure4" {
+        if group_given && args.group != 4 {
+            return Err(cli_error(format!(
+                "--group {}: zquad's groups have 4 dimensions",
+                args.group
+            )));
+        }
+        args.group = 4;
+    }
     if let Some(m) = &args.markdown {
-        common::check_markdown(m, &section(args.group))?;
+        common::check_markdown(m, &section(&args))?;
     }
     Ok(Some(args))
 }
 
-fn section(group: u32) -> String {
-    format!("nets-zjoint-{group}")
+fn section(args: &Args) -> String {
+    if args.sampler == "faure4" {
+        String::from("nets-zquad")
+    } else {
+        format!("nets-zjoint-{}", args.group)
+    }
 }
 
 /// Every `k`-subset of `0..n`, in lexicographic order.
@@ -117,50 +153,71 @@ fn tables(args: &Args) -> Result<String, CliError> {
             "---|".repeat(ms.len())
         )
     };
-    let mut text = format!(
-        "t-values of the projections of one `zjoint` group of {} dimensions (Sobol' \
-         dimensions 0 to {}: the draw at dimension `d` of a group reads `d` and `d + 1`) \
-         as base-2 nets of `2^m` points; 0 is a perfect net, `m` no stratification at all. \
-         The first draw's pair (0, 1) is a (0, 2)-sequence; an independent pair of draws \
-         (any two of `zsobol`, or of two groups) has no t-value guarantee.\n\n",
-        args.group,
-        args.group - 1
-    );
+    let t_of =
+        |dims: &[u32], m: u32, base: u32| sobol::projection_t_value_of(args.sampler, dims, m, base);
+    let quad = args.sampler == "faure4";
+    // zquad: the four dimensions and the fifth matrix a 2D draw at dimension 3 pairs with
+    let dims = if quad { 5 } else { args.group };
+    let mut text = if quad {
+        String::from(
+            "t-values of the projections of one `zquad` group (dimensions 0-3: Faure's \
+             (0,4)-sequence in base 4, binary form; dimension 4: the fifth matrix, Sobol' \
+             dimension 4, read only by a 2D draw at the group's last dimension) as base-2 \
+             nets of `2^m` points; 0 is a perfect net, `m` no stratification at all. The \
+             draws at dimensions 0 and 2 read the pairs (0, 1) and (2, 3), both \
+             (0, 2)-sequences; an independent pair of draws has no t-value guarantee.\n\n",
+        )
+    } else {
+        format!(
+            "t-values of the projections of one `zjoint` group of {} dimensions (Sobol' \
+             dimensions 0 to {}: the draw at dimension `d` of a group reads `d` and `d + 1`) \
+             as base-2 nets of `2^m` points; 0 is a perfect net, `m` no stratification at \
+             all. The first draw's pair (0, 1) is a (0, 2)-sequence; an independent pair of \
+             draws (any two of `zsobol`, or of two groups) has no t-value guarantee.\n\n",
+            args.group,
+            args.group - 1
+        )
+    };
     text += "Every pair of dimensions:\n\n";
     text += &header("dimensions");
-    for pair in subsets(args.group, 2) {
+    for pair in subsets(dims, 2) {
         let row: Vec<String> = ms
             .iter()
-            .map(|&m| sobol::projection_t_value(&pair, m).map(|t| t.to_string()))
+            .map(|&m| t_of(&pair, m, 2).map(|t| t.to_string()))
             .collect::<Result<_, _>>()?;
         text += &format!("| {}, {} | {} |\n", pair[0], pair[1], row.join(" | "));
     }
     if args.group >= 4 {
-        let quads = subsets(args.group, 4);
+        let quads = subsets(dims, 4);
         text += &format!(
             "\nEvery set of four dimensions ({} sets): the largest t, the mean t, and the \
-             first draw pair with the second, dimensions 0-3:\n\n",
+             first draw pair with the second, dimensions 0-3; then dimensions 0-3 as a \
+             base-4 net of `4^(m/2)` points (boxes of sides `4^-a`; 0 for a (0,4)-sequence \
+             in base 4):\n\n",
             quads.len()
         );
         text += &header("sets of four");
         let mut worst = Vec::new();
         let mut mean = Vec::new();
         let mut first = Vec::new();
+        let mut base4 = Vec::new();
         for &m in &ms {
             let ts: Vec<u32> = quads
                 .iter()
-                .map(|q| sobol::projection_t_value(q, m))
+                .map(|q| t_of(q, m, 2))
                 .collect::<Result<_, _>>()?;
             worst.push(ts.iter().max().copied().unwrap_or(0).to_string());
             mean.push(format!(
                 "{:.2}",
                 ts.iter().sum::<u32>() as f64 / ts.len() as f64
             ));
-            first.push(sobol::projection_t_value(&[0, 1, 2, 3], m)?.to_string());
+            first.push(t_of(&[0, 1, 2, 3], m, 2)?.to_string());
+            base4.push(t_of(&[0, 1, 2, 3], m / 2, 4)?.to_string());
         }
         text += &format!("| largest | {} |\n", worst.join(" | "));
         text += &format!("| mean | {} |\n", mean.join(" | "));
         text += &format!("| 0, 1, 2, 3 | {} |\n", first.join(" | "));
+        text += &format!("| 0, 1, 2, 3 in base 4 | {} |\n", base4.join(" | "));
     }
     Ok(text)
 }
@@ -173,7 +230,7 @@ fn main() -> ExitCode {
         let text = tables(&args)?;
         outln!("{text}")?;
         if let Some(m) = &args.markdown {
-            common::write_markdown_section(m, &section(args.group), &text)?;
+            common::write_markdown_section(m, &section(&args), &text)?;
         }
         Ok(())
     })

@@ -43,8 +43,8 @@ Options:
   --seed S           seed of everything (u64, default 1); same arguments, same bytes
   --dims D           dimensions per sample (default 2)
   --pixel X,Y        the values the path-tracer adapter gives pixel (X,Y)
-  --resolution WxH   the image of the Z-ordered adapter sequences zsobol and zpmj02
-                     (default 256x256; the others ignore it)
+  --resolution WxH   the image of the Z-ordered adapter sequences zsobol, zpmj02, zquad and
+                     zjoint (default 256x256; the others ignore it)
 {PARAMETERS}  --png FILE         also draw the points (with the strata grid) into FILE
   --format F         csv (default), utk (UTK text: space-separated, no header) or bin (UTK
                      binary: the magic UTK!, data type 4 = f32, counts, then the values)

@@ -225,6 +225,84 @@ impl PairTables {
     }
 }
 
+/// Product in GF(4) = GF(2)[w] / (w^2 + w + 1), elements as 2-bit integers (bit 0 the
+/// coefficient of 1, bit 1 that of `w`).
+const fn gf4_mul(a: u32, b: u32) -> u32 {
+    // (a0 + a1 w)(b0 + b1 w) = a0 b0 + (a0 b1 + a1 b0) w + a1 b1 (w + 1)
+    let (a0, a1, b0, b1) = (a & 1, a >> 1, b & 1, b >> 1);
+    let one = (a0 & b0) ^ (a1 & b1);
+    let w = (a0 & b1) ^ (a1 & b0) ^ (a1 & b1);
+    one | (w << 1)
+}
+
+/// The binary generator matrices of the first four dimensions of Faure's (0,4)-sequence in base
+/// 4, then a fifth (Sobol' dimension 4): see [`FAURE4`].
+///
+/// Base-4 dimension `j` has the generator matrix `C_j[r][c] = binom(c, r) a_j^(c - r)` over
+/// GF(4) with `a_j = j` (0, 1, `w`, `w^2`; `0^0 = 1`): Faure, "Discrépance de suites associées à
+/// un système de numération (en dimension s)", Acta Arith. 41 (1982). Index digit `c` of base 4
+/// is index bits `2c` (the coefficient of 1) and `2c + 1` (of `w`); output digit `r` of base 4
+/// is the element `x_r` mapped by a per-dimension `L_j` of GL(2, GF(2)), its two bits the binary
+/// digits `2r` (high) and `2r + 1` (low). `L_j` maps the bits `(x0, x1)` of `x_r` to the low
+/// and high bits: `(x1, x0)` in dimensions 0 and 2, `(x0, x0 + x1)` in dimensions 1 and 3.
+/// These are the choices that make dimensions 0-1 and 2-3 binary (0,2)-sequences too (a
+/// digit-wise bijection keeps every base-4 t-value).
+pub(crate) const fn faure4_matrices() -> [Matrix; 5] {
+    let mut out = [[0u32; 32]; 5];
+    let mut j = 0;
+    while j < 4 {
+        let a = j as u32;
+        let mut c = 0; // index digit
+        while c < 16 {
+            let mut r = 0; // output digit
+            while r <= c {
+                // binom(c, r) mod 2, times a^(c - r)
+                if (c & r) == r {
+                    let mut e = 1u32;
+                    let mut k = 0;
+                    while k < c - r {
+                        e = gf4_mul(e, a);
+                        k += 1;
+                    }
+                    // index bit 2c is the element 1, bit 2c + 1 the element w
+                    let mut h = 0;
+                    while h < 2 {
+                        let x = gf4_mul(e, 1 << h);
+                        let (x0, x1) = (x & 1, x >> 1);
+                        let (lo, hi) = if j % 2 == 0 { (x1, x0) } else { (x0, x0 ^ x1) };
+                        out[j][2 * c + h] |= (hi << (31 - 2 * r)) | (lo << (30 - 2 * r));
+                        h += 1;
+                    }
+                }
+                r += 1;
+            }
+            c += 1;
+        }
+        j += 1;
+    }
+    // Sobol' dimension 4 (Joe-Kuo: degree 3, a = 2, m = 1, 1, 1), the Joe-Kuo dimension with
+    // the smallest worst t-value against the four (5, over m = 1..32)
+    out[4] = direction_matrix(3, 2, &[1, 1, 1]);
+    out
+}
+
+/// The binary form of Faure's (0,4)-sequence in base 4 (see [`faure4_matrices`]), byte
+/// tables: dimensions 0-3, every aligned block of `4^k` points a (0,k,4)-net in base 4, and
+/// dimensions 0-1 and 2-3 binary (0,2)-sequences (dimension 0 is van der Corput), the other
+/// pairs of the four `t <= 1` at `4^k` points (`t <= 2` at the odd powers of two); dimension
+/// 4, Sobol' dimension 4, is the partner of a 2D draw at dimension 3 (`t` up to 5 against each
+/// of the four). What `zquad` reads.
+pub(crate) static FAURE4: [ByteTables; 5] = {
+    let m = faure4_matrices();
+    [
+        byte_tables(&m[0]),
+        byte_tables(&m[1]),
+        byte_tables(&m[2]),
+        byte_tables(&m[3]),
+        byte_tables(&m[4]),
+    ]
+};
+
 /// Sobol' dimensions 0-1, interleaved byte tables (built at compile time: no lazy
 /// initialisation on the draw path).
 pub(crate) static SOBOL01: PairTables = PairTables::new(&sobol01_matrices());
@@ -291,24 +369,31 @@ const fn substitute(mut w: u32) -> u32 {
 /// The matrix of a Sobol' dimension with primitive polynomial of degree `s`, inner
 /// coefficients `a` (bit `s - 1 - l` is `a_l`) and initial direction integers `m` (odd, `m_k <
 /// 2^k`), by the recurrence `V_k = V_{k-s} ^ (V_{k-s} >> s) ^ sum_{l=1}^{s-1} a_l V_{k-l}`.
-#[cfg(any(test, feature = "joe-kuo"))]
-pub(crate) fn direction_matrix(s: usize, a: u32, m: &[u32]) -> Matrix {
+pub(crate) const fn direction_matrix(s: usize, a: u32, m: &[u32]) -> Matrix {
     let mut v = [0u32; 33]; // 1-based
-    for k in 1..=32 {
+    let mut k = 1;
+    while k <= 32 {
         if k <= s {
             v[k] = m[k - 1] << (32 - k);
         } else {
             let mut x = v[k - s] ^ (v[k - s] >> s);
-            for l in 1..s {
+            let mut l = 1;
+            while l < s {
                 if (a >> (s - 1 - l)) & 1 == 1 {
                     x ^= v[k - l];
                 }
+                l += 1;
             }
             v[k] = x;
         }
+        k += 1;
     }
     let mut out = [0u32; 32];
-    out.copy_from_slice(&v[1..]);
+    let mut c = 0;
+    while c < 32 {
+        out[c] = v[c + 1];
+        c += 1;
+    }
     out
 }
 
@@ -379,11 +464,22 @@ pub(crate) fn sobol_dimensions() -> u32 {
 /// the rows of those digits (over the first `m` index bits) are linearly independent; the same
 /// for every aligned block of `2^m` points, and under any Owen scramble or nested index shuffle.
 /// (Niederreiter 1992, Theorem 4.28; a digital net's t-value is its matrices' rank property.)
-#[cfg(feature = "std")]
+#[cfg(all(test, feature = "std"))]
 pub(crate) fn digital_t_value(matrices: &[Matrix], m: u32) -> u32 {
-    // row r (digit 2^-(r+1)) of matrix j over index bits 0..m, as an m-bit word
+    digital_t_value_in(matrices, m, 1)
+}
+
+/// The t-value of the first `b^m` points of a digital sequence in base `b = 2^bits` (`bits` 1
+/// or 2, `bits * m <= 32`) whose binary generator matrices are `matrices`, as a base-`b` `(t, m,
+/// s)`-net: a base-4 digit is two binary digits, so a base-4 elementary interval of depth `d`
+/// is a binary one of depth `2d`, and the rank criterion is the binary one over the first
+/// `bits * m` index bits with the depths taken in steps of `bits` rows.
+#[cfg(feature = "std")]
+pub(crate) fn digital_t_value_in(matrices: &[Matrix], m: u32, bits: u32) -> u32 {
+    let index_bits = (m * bits) as usize;
+    // row r (digit 2^-(r+1)) of matrix j over index bits 0..m bits, as a word
     let row = |j: usize, r: usize| -> u32 {
-        (0..m as usize).fold(0u32, |w, i| w | ((matrices[j][i] >> (31 - r)) & 1) << i)
+        (0..index_bits).fold(0u32, |w, i| w | ((matrices[j][i] >> (31 - r)) & 1) << i)
     };
     let independent = |rows: &[u32]| -> bool {
         // Gaussian elimination over GF(2): each row must keep a pivot (leading bit) of its own
@@ -406,11 +502,12 @@ pub(crate) fn digital_t_value(matrices: &[Matrix], m: u32) -> u32 {
     fn compositions(
         s: usize,
         rho: u32,
+        max: u32,
         parts: &mut Vec<u32>,
         f: &mut dyn FnMut(&[u32]) -> bool,
     ) -> bool {
         if parts.len() + 1 == s {
-            if rho > 32 {
+            if rho > max {
                 return true;
             }
             parts.push(rho);
@@ -418,9 +515,9 @@ pub(crate) fn digital_t_value(matrices: &[Matrix], m: u32) -> u32 {
             parts.pop();
             return ok;
         }
-        for d in 0..=rho.min(32) {
+        for d in 0..=rho.min(max) {
             parts.push(d);
-            let ok = compositions(s, rho - d, parts, f);
+            let ok = compositions(s, rho - d, max, parts, f);
             parts.pop();
             if !ok {
                 return false;
@@ -431,13 +528,19 @@ pub(crate) fn digital_t_value(matrices: &[Matrix], m: u32) -> u32 {
     let mut strength = 0;
     let mut rows = Vec::new();
     for rho in 1..=m {
-        let ok = compositions(s, rho, &mut Vec::new(), &mut |parts: &[u32]| {
-            rows.clear();
-            for (j, &d) in parts.iter().enumerate() {
-                rows.extend((0..d as usize).map(|r| row(j, r)));
-            }
-            independent(&rows)
-        });
+        let ok = compositions(
+            s,
+            rho,
+            32 / bits,
+            &mut Vec::new(),
+            &mut |parts: &[u32]| {
+                rows.clear();
+                for (j, &d) in parts.iter().enumerate() {
+                    rows.extend((0..(d * bits) as usize).map(|r| row(j, r)));
+                }
+                independent(&rows)
+            },
+        );
         if !ok {
             break;
         }
@@ -609,5 +712,101 @@ mod tests {
         );
         let m0 = sobol_matrix(0).unwrap();
         assert_eq!(digital_t_value(&[m0, m0], 8), 7);
+    }
+
+    /// The base-4 t-value of points counted in base-4 elementary boxes: the smallest `t` for
+    /// which every box of volume `4^(t - k)` holds `4^t` of the `4^k` points.
+    #[cfg(feature = "std")]
+    fn counted_base4_t(matrices: &[Matrix], k: u32) -> u32 {
+        let n = 1u32 << (2 * k);
+        let pts: Vec<Vec<u32>> = (0..n)
+            .map(|i| matrices.iter().map(|m| apply(m, i)).collect())
+            .collect();
+        let s = matrices.len();
+        (0..=k)
+            .find(|&t| {
+                let rho = k - t;
+                // every split of rho base-4 digits over the s coordinates
+                let mut parts = vec![0u32; s];
+                let mut ok = true;
+                loop {
+                    if parts.iter().sum::<u32>() == rho {
+                        let mut counts = std::collections::HashMap::new();
+                        for p in &pts {
+                            let cell: Vec<u32> = p
+                                .iter()
+                                .zip(&parts)
+                                .map(|(&v, &d)| if d == 0 { 0 } else { v >> (32 - 2 * d) })
+                                .collect();
+                            *counts.entry(cell).or_insert(0u32) += 1;
+                        }
+                        ok &= counts.len() as u64 == 1u64 << (2 * rho)
+                            && counts.values().all(|&c| c == 1 << (2 * t));
+                    }
+                    // next tuple of digits 0..=rho
+                    let mut q = 0;
+                    while q < s && parts[q] == rho {
+                        parts[q] = 0;
+                        q += 1;
+                    }
+                    if q == s {
+                        break;
+                    }
+                    parts[q] += 1;
+                }
+                ok
+            })
+            .unwrap()
+    }
+
+    #[cfg(feature = "std")]
+    #[test]
+    fn faure4_is_a_base4_zero_four_sequence_with_binary_zero_two_pairs() {
+        let m = faure4_matrices();
+        // the rank criterion against the points counted in base-4 boxes, t = 0 and t > 0
+        for set in [&[0usize, 1, 2, 3][..], &[0, 1, 4], &[1, 2, 3, 4], &[0, 2]] {
+            let ms: Vec<Matrix> = set.iter().map(|&j| m[j]).collect();
+            for k in 1..=4 {
+                assert_eq!(
+                    digital_t_value_in(&ms, k, 2),
+                    counted_base4_t(&ms, k),
+                    "dims {set:?} at 4^{k}"
+                );
+            }
+        }
+        // dimensions 0-3: every aligned block of 4^k points a (0,k,4)-net in base 4
+        for k in 1..=16 {
+            assert_eq!(digital_t_value_in(&m[..4], k, 2), 0, "4^{k}");
+        }
+        // dimension 0 is van der Corput; 0-1 and 2-3 binary (0,2)-sequences, the other pairs
+        // of the four t <= 1 at 4^k points and t <= 2 at the odd powers of two
+        assert_eq!(m[0], sobol01_matrices()[0]);
+        for mm in 1..=32 {
+            for (a, b) in [(0, 1), (2, 3)] {
+                assert_eq!(
+                    digital_t_value(&[m[a], m[b]], mm),
+                    0,
+                    "dims {a},{b} at 2^{mm}"
+                );
+            }
+            for (a, b) in [(0, 2), (0, 3), (1, 2), (1, 3)] {
+                let t = digital_t_value(&[m[a], m[b]], mm);
+                assert!(t <= 1 + mm % 2, "dims {a},{b} at 2^{mm}: t = {t}");
+            }
+            for a in 0..4 {
+                assert!(
+                    digital_t_value(&[m[a], m[4]], mm) <= 5,
+                    "dims {a},4 at 2^{mm}"
+                );
+            }
+        }
+        // a repeated base-4 dimension is as bad as it gets: the counting sees it
+        assert_eq!(digital_t_value_in(&[m[1], m[1]], 4, 2), 3);
+    }
+
+    #[cfg(feature = "joe-kuo")]
+    #[test]
+    fn the_fifth_faure4_matrix_is_sobol_dimension_four() {
+        assert_eq!(faure4_matrices()[4], sobol_matrix(4).unwrap());
     }
 }

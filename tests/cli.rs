@@ -538,17 +538,33 @@ fn nets_tabulates_every_pair_of_a_group_and_refuses_bad_groups() {
         .lines()
         .filter(|l| l.starts_with("| ") && l.chars().nth(2).is_some_and(|c| c.is_ascii_digit()))
         .collect();
-    assert_eq!(pairs.len(), 6 + 1, "{out}"); // and the row of the set 0, 1, 2, 3
+    // and the rows of the set 0, 1, 2, 3 in base 2 and in base 4 (Sobol' 0-3: t = 1 at 4^2)
+    assert_eq!(pairs.len(), 6 + 2, "{out}");
     assert!(out.contains("| 0, 1 | 0 | 0 |"), "{out}");
-    for bad in [
-        ["--group", "3"],
-        ["--group", "32"],
-        ["--max-m", "5"],
-        ["--max-m", "0"],
+    assert!(out.contains("| 0, 1, 2, 3 in base 4 | 0 | 1 |"), "{out}");
+    // zquad: the ten pairs of its four dimensions and the fifth matrix; 0-1 and 2-3 nets,
+    // and 0-3 a (0,4)-sequence in base 4
+    let (code, out, err) = run_example("nets", &["--sequence", "zquad", "--max-m", "8"]);
+    assert_eq!(code, 0, "{err}");
+    for row in [
+        "| 0, 1 | 0 | 0 | 0 | 0 |",
+        "| 2, 3 | 0 | 0 | 0 | 0 |",
+        "| 0, 1, 2, 3 in base 4 | 0 | 0 | 0 | 0 |",
+        "| 3, 4 |",
     ] {
-        let (code, _, err) = run_example("nets", &bad);
+        assert!(out.contains(row), "{row}: {out}");
+    }
+    for bad in [
+        &["--group", "3"][..],
+        &["--group", "32"],
+        &["--max-m", "5"],
+        &["--max-m", "0"],
+        &["--sequence", "zsobol"],
+        &["--sequence", "zquad", "--group", "8"],
+    ] {
+        let (code, _, err) = run_example("nets", bad);
         assert_eq!(code, 2, "{bad:?}: {err}");
-        assert!(err.contains(bad[0]), "{bad:?}: {err}");
+        assert!(err.contains(bad[bad.len() - 2]), "{bad:?}: {err}");
     }
 }
 

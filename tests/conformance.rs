@@ -85,6 +85,14 @@ fn zjoint_passes() {
 }
 
 #[test]
+fn zquad_passes() {
+    // groups of four draws reading the base-4 (0,4)-sequence: the same properties as zjoint
+    let r = run("zquad");
+    assert_passes(&r, "zquad");
+    assert!(r.row("stratification", "per draw").unwrap().cases > 0);
+}
+
+#[test]
 fn halton_passes() {
     let r = run("halton");
     assert_passes(&r, "halton");
@@ -383,7 +391,7 @@ fn the_shipped_shuffle_pairs_draws_as_chance_does_on_a_small_study() {
 fn the_pair_test_passes_every_sequence_and_fails_one_plain_round() {
     let study = PairStudy::default();
     for name in [
-        "sobol", "pmj02", "lattice", "zsobol", "zpmj02", "zjoint", "random",
+        "sobol", "pmj02", "lattice", "zsobol", "zpmj02", "zquad", "zjoint", "random",
     ] {
         let source = SequenceSource::new(Sequence::by_name(name).unwrap(), 4096).unwrap();
         let r = study.run(&source).unwrap();

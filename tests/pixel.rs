@@ -680,6 +680,80 @@ fn zjoint_stratifies_the_draws_of_a_group_jointly() {
     }
 }
 
+/// The base-4 t-value of `4^k` points of `s` dimensions (values in `[0, 1)`), counted: the
+/// smallest `t` for which every base-4 elementary box of volume `4^(t - k)` holds `4^t` points.
+fn base4_t_value(points: &[Vec<f32>], k: u32) -> u32 {
+    let s = points[0].len();
+    (0..=k)
+        .find(|&t| {
+            let rho = k - t;
+            let mut parts = vec![0u32; s];
+            loop {
+                if parts.iter().sum::<u32>() == rho {
+                    let mut counts = std::collections::HashMap::new();
+                    for p in points {
+                        let cell: Vec<u32> = p
+                            .iter()
+                            .zip(&parts)
+                            .map(|(&v, &d)| (v as f64 * 4f64.powi(d as i32)) as u32)
+                            .collect();
+                        *counts.entry(cell).or_insert(0u32) += 1;
+                    }
+                    if counts.len() as u64 != 1u64 << (2 * rho)
+                        || counts.values().any(|&c| c != 1 << (2 * t))
+                    {
+                        return false;
+                    }
+                }
+                let mut q = 0;
+                while q < s && parts[q] == rho {
+                    parts[q] = 0;
+                    q += 1;
+                }
+                if q == s {
+                    return true;
+                }
+                parts[q] += 1;
+            }
+        })
+        .unwrap()
+}
+
+#[test]
+fn zquad_makes_each_group_of_four_dimensions_a_base4_net_per_pixel() {
+    // a pixel's 4^k samples of one group's four dimensions (draws at 0 and 2, their two
+    // coordinates each) are an aligned block of the base-4 (0,4)-sequence under Owen
+    // scrambling: a (0,k,4)-net in base 4 in every pixel, at every prefix 4^k of its block,
+    // inside the image and outside it; zsobol's independent draws are not, nor are four
+    // dimensions from two groups of zquad
+    let quad = Sequence::zquad(8, 8).unwrap();
+    let zsobol = Sequence::zsobol(8, 8).unwrap();
+    let draws = |seq: &Sequence, pixel: [u32; 2], n: u64, dims: [u32; 2]| -> Vec<Vec<f32>> {
+        let s = PixelSampler::new(seq.clone(), 256, strata::Seed(23)).unwrap();
+        (0..n)
+            .map(|i| {
+                let (p, q) = (
+                    s.sample_2d(pixel, i, dims[0]),
+                    s.sample_2d(pixel, i, dims[1]),
+                );
+                vec![p.x, p.y, q.x, q.y]
+            })
+            .collect()
+    };
+    for pixel in [[0u32, 0], [3, 5], [7, 7], [9, 2]] {
+        for k in 1..=4u32 {
+            let n = 1u64 << (2 * k);
+            for group in [0u32, 4, 16] {
+                let t = base4_t_value(&draws(&quad, pixel, n, [group, group + 2]), k);
+                assert_eq!(t, 0, "zquad {pixel:?} 4^{k} group at {group}");
+            }
+        }
+        // 256 samples: independent draws, or draws of two groups, are far from a (0,4,4)-net
+        assert!(base4_t_value(&draws(&zsobol, pixel, 256, [0, 2]), 4) >= 2);
+        assert!(base4_t_value(&draws(&quad, pixel, 256, [2, 4]), 4) >= 2);
+    }
+}
+
 #[test]
 fn a_filled_pixel_sample_is_the_stateless_draws() {
     // `fill_sample` is the row layout of `points --pixel`, the Python binding and the

@@ -23,8 +23,8 @@ Usage:
 
 Options:
   --samplers a,b,..|all  samplers with a path-tracer adapter: random, jittered, pmj02, sobol,
-                         halton, lattice, zsobol, zpmj02, zjoint, and zjoint-G (groups of G
-                         dimensions) (default all; the Z-ordered ones for the image size)
+                         halton, lattice, zsobol, zpmj02, zquad, zjoint, and zjoint-G (groups
+                         of G dimensions) (default all; the Z-ordered ones for the image size)
   --spp N[,N,..]         samples per pixel, one to eight counts (default 4,16,64,256; each 1
                          to 65536; jittered needs squares)
   --size WxH             image size (default 128x128; each side 8 to 1024: every sequence and

@@ -57,6 +57,7 @@ fn the_gpu_computes_the_cpu_bits() {
         Sequence::zjoint(64, 48, 8).unwrap(),
         Sequence::zjoint(64, 64, 2).unwrap(),
         Sequence::zjoint(48, 64, 512).unwrap(),
+        Sequence::zquad(64, 48).unwrap(),
     ];
     let grid = COUNT / 2;
     for (k, sequence) in sequences.into_iter().enumerate() {

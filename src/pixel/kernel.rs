@@ -287,8 +287,8 @@ pub(crate) fn digital<P: Pair>(table: &PairTables, k: &DrawKeys, index: SampleIn
     owen_scramble_lanes(p, P::new(k.v)).reverse_bits()
 }
 
-/// `zjoint`: dimensions `o` and `o + 1` (`o = dim - group`) of the multi-dimensional Sobol'
-/// sequence of `tables` at the index of the draw's group, shuffled once for the whole group
+/// `zjoint`, `zquad`: dimensions `o` and `o + 1` (`o = dim - group`) of the multi-dimensional
+/// digital sequence of `tables` (Sobol', or the base-4 Faure sequence) at the index of the draw's group, shuffled once for the whole group
 /// (under the keys of its first dimension `group`), each coordinate Owen-scrambled under the
 /// draw's own value keys; values in natural bit order. With `group == dim` this is
 /// [`digital`] over Sobol' dimensions 0 and 1.

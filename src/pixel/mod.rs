@@ -30,7 +30,8 @@
 //! (`shaders/strata_zjoint.wgsl`, included after [`WGSL`]), which reads the generator columns
 //! from a storage buffer `strata_joint` that the including shader declares and fills with
 //! [`Sequence::gpu_joint_table`]; the GPU test compares `2^22` draws of it too, at groups of
-//! 2, 8 and 512.
+//! 2, 8 and 512, and of `zquad`, which is the same shader with its own table (the base-4
+//! Faure matrices).
 //!
 //! # Guarantees
 //!
@@ -41,14 +42,18 @@
 //!   and so are those of different pixels and seeds; [`crate::conformance`] tests it per pixel
 //!   and per pair of dimensions. The one exception is by design: `zjoint`'s draws of one
 //!   *group* of dimensions are distinct dimensions of one multi-dimensional Sobol' sequence,
-//!   stratified jointly rather than independent (its groups are independent of each other).
+//!   stratified jointly rather than independent (its groups are independent of each other),
+//!   and so are `zquad`'s groups of four, over the base-4 Faure sequence.
 //!   A scene that never asks for lens or time dimensions never computes them.
 //! * **Stratified draws.** Per pixel and draw: `pmj02` and `sobol` are (0,m,2)-nets at every
 //!   power-of-two prefix; `lattice` has one point per `1/n` in each coordinate at every power of
 //!   two `n`; `zsobol` and `zpmj02` are nets at every power of two up to the samples per pixel
 //!   (rounded up to a power of two); `zjoint` has one point per `1/n` in each coordinate of
 //!   every draw at those counts, the first draw of each group is a net, and the pairs of draws
-//!   of a group are `(t, m, 2)`-nets with the t-values of their Sobol' dimensions; `jittered`
+//!   of a group are `(t, m, 2)`-nets with the t-values of their Sobol' dimensions; `zquad` as
+//!   `zjoint`, and each group's four dimensions a (0,k,4)-net in base 4 at every `4^k` up to
+//!   the samples per pixel, its draws at the group's first and third dimension (0,m,2)-nets;
+//!   `jittered`
 //!   has one point per cell of `s x s` in each block of `spp`; `halton` one per cell of `2^a x 3^b` in each block of `M = 2^a 3^b >= spp` samples. How
 //!   each sequence is randomized is in [`sequence`](self#sequences).
 //! * **Limits.** Sample indices are `u64`; at `2^32` and beyond, a draw uses the index modulo
@@ -185,7 +190,7 @@ use kernel::{PixelKeys, ZPixel};
 /// [module docs](self#on-a-gpu)).
 pub const WGSL: &str = include_str!("../../shaders/strata.wgsl");
 
-/// The WGSL draws of `zjoint` (`shaders/strata_zjoint.wgsl`): `strata_joint_draw` and
+/// The WGSL draws of `zjoint` and `zquad` (`shaders/strata_zjoint.wgsl`): `strata_joint_draw` and
 /// `strata_joint_get_2d`, with the arguments of [`WGSL`]'s `strata_draw` and `strata_get_2d`.
 /// Include it after [`WGSL`], and declare the storage buffer it reads, at a binding of your
 /// choice, filled with [`Sequence::gpu_joint_table`]:
@@ -270,7 +275,7 @@ pub struct GpuParameters {
     /// The image of a Z-ordered sequence (`[0, 0]` for the others).
     pub resolution: [u32; 2],
     /// The sequence: 0 `random`, 1 `sobol`, 2 `pmj02`, 3 `lattice`, 4 `zsobol`, 5 `zpmj02`, 6
-    /// `zjoint` ([`WGSL_ZJOINT`]).
+    /// `zjoint` and `zquad` ([`WGSL_ZJOINT`], with the sequence's own table).
     pub sequence: u32,
     /// `log2` of the samples per pixel rounded up to a power of two (the Z-ordered sequences'
     /// block of each pixel).

@@ -29,6 +29,13 @@
 //!   which keeps every aligned `2^k x 2^k` tile of pixels on consecutive blocks and each
 //!   pixel's block a (0,m,2)-net per draw. Only the image's digits are permuted, so a pixel's
 //!   place depends on the image's size (its `ceil(log2(max side))`), not on its position alone.
+//! * `zquad`: as `zjoint` in groups of four dimensions, whose draws read the binary form of
+//!   Faure's base-4 (0,4)-sequence (Faure, Acta Arith. 41, 1982; [`crate::digital`] builds
+//!   its 2x2-block generator matrices): a pixel's first `4^k` samples of a group's four
+//!   dimensions are a (0,k,4)-net in base 4, and its draws at the group's first and third
+//!   dimension are (0,2)-sequences, as `zsobol`'s draws are. The property the SZ sequences of
+//!   Ahmed, Pharr, Ostromoukhov and Huang (TOG 2025) are built for, by a construction of our
+//!   own (their paper was not available to us).
 //! * `halton`: scrambled Halton in bases 2 and 3 for every draw, padded as Kollig and Keller
 //!   ("Efficient Multidimensional Sampling", Eurographics 2002) pad 2D sets: the index is
 //!   permuted at random inside aligned blocks of `M = 2^a 3^b` samples (the smallest such
@@ -41,7 +48,7 @@
 //! * `random`: hashed independent uniform values.
 //!
 //! `halton` and `jittered` divide by the block size and hash with 64-bit arithmetic: they run on
-//! the CPU only. The other seven are the [kernel](super::kernel)'s, 32-bit throughout.
+//! the CPU only. The other eight are the [kernel](super::kernel)'s, 32-bit throughout.
 
 use super::SampleIndex;
 use super::kernel::{self, DrawKeys, PixelKeys};
@@ -139,6 +146,7 @@ pub(crate) enum Kind {
     Lattice,
     ZSobol,
     ZPmj02,
+    ZQuad,
     ZJoint,
 }
 
@@ -152,18 +160,22 @@ impl Kind {
             Kind::Lattice => 3,
             Kind::ZSobol => 4,
             Kind::ZPmj02 => 5,
-            Kind::ZJoint => 6,
+            // the same shader as zjoint: the table says which matrices
+            Kind::ZJoint | Kind::ZQuad => 6,
             Kind::Jittered | Kind::Halton => return None,
         })
     }
 
     /// Whether pixels read blocks of one global sequence (Z order).
     pub(crate) fn z_ordered(self) -> bool {
-        matches!(self, Kind::ZSobol | Kind::ZPmj02 | Kind::ZJoint)
+        matches!(
+            self,
+            Kind::ZSobol | Kind::ZPmj02 | Kind::ZQuad | Kind::ZJoint
+        )
     }
 
     /// Every kind, in the order of [`Sequence::NAMES`] (`zjoint` last, whatever the features).
-    const ALL: [Kind; 9] = [
+    const ALL: [Kind; 10] = [
         Kind::Random,
         Kind::Jittered,
         Kind::Pmj02,
@@ -172,6 +184,7 @@ impl Kind {
         Kind::Lattice,
         Kind::ZSobol,
         Kind::ZPmj02,
+        Kind::ZQuad,
         Kind::ZJoint,
     ];
 
@@ -236,6 +249,14 @@ impl Kind {
                 "as `pmj02` per pixel; pixels along a scrambled Z curve",
                 "Ahmed, Wonka 2020",
             ],
+            Kind::ZQuad => [
+                "zquad",
+                "[`Sequence::zquad`]`(width, height)`",
+                "rounded up to a power of two: each pixel's block",
+                "the Z order shared by a group of 4 draws, which read the dimensions of a base-4 \
+                 (0,4)-sequence: jointly a (0,k,4)-net at `4^k`",
+                "Ahmed, Wonka 2020; Faure 1982",
+            ],
             Kind::ZJoint => [
                 "zjoint",
                 "[`Sequence::zjoint`]`(width, height, group)`, `zjoint-G` by name (feature \
@@ -259,10 +280,11 @@ pub struct Sequence {
     /// The digital sequence a `sobol`, `pmj02`, `zsobol` or `zpmj02` reads (one branch on the
     /// draw path instead of a dispatch on the kind).
     digital: Option<&'static PairTables>,
-    /// The dimensions of a group of `zjoint` (a power of two, at least 2), whose draws share
-    /// one index; 1 for the other sequences (every draw its own group).
+    /// The dimensions of a group of `zjoint` (a power of two, at least 2) or `zquad` (4),
+    /// whose draws share one index; 1 for the other sequences (every draw its own group).
     group: u32,
-    /// The Sobol' dimensions `zjoint` reads (empty for the others).
+    /// The byte tables `zjoint` (Sobol') and `zquad` (Faure, base 4) read (empty for the
+    /// others).
     joint: &'static [ByteTables],
 }
 
@@ -416,16 +438,35 @@ impl Sequence {
         Ok(s)
     }
 
+    /// Jointly Z-ordered over a base-4 (0,4)-sequence, for an image of `width x height` pixels
+    /// (see [`Sequence::zsobol`]): [`Sequence::zjoint`] in groups of 4 dimensions, whose draws
+    /// read the binary form of Faure's (0,4)-sequence in base 4 (Faure, "Discrépance de suites
+    /// associées à un système de numération (en dimension s)", Acta Arith. 41, 1982) instead of
+    /// Sobol' dimensions: a pixel's first `4^k` samples of a group's four dimensions are a
+    /// (0,k,4)-net in base 4 (every box of `4^-a x 4^-b x 4^-c x 4^-d` with `a + b + c + d =
+    /// k` holds one), its dimensions 0-1 and 2-3 (the draws at the group's first and third
+    /// dimension) are binary (0,2)-sequences as `zsobol`'s draws are, and the other pairs of
+    /// the four have `t = 1`. A 2D draw at a group's last dimension pairs it with a fifth
+    /// matrix (`docs/results.md` tabulates every pair). Needs no `joe-kuo` feature; on a GPU as
+    /// `zjoint` ([`gpu_joint_table`](Self::gpu_joint_table)).
+    pub fn zquad(width: u32, height: u32) -> Result<Self> {
+        let mut s = Self::z(Kind::ZQuad, "Sequence::zquad", width, height)?;
+        s.group = 4;
+        s.joint = &crate::digital::FAURE4;
+        Ok(s)
+    }
+
     /// The names the adapter knows (`zjoint` also as `zjoint-G`, groups of `G` dimensions).
     #[cfg(feature = "joe-kuo")]
-    pub const NAMES: [&'static str; 9] = [
-        "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02", "zjoint",
+    pub const NAMES: [&'static str; 10] = [
+        "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02", "zquad",
+        "zjoint",
     ];
 
     /// The names the adapter knows (with the `joe-kuo` feature also `zjoint`).
     #[cfg(not(feature = "joe-kuo"))]
-    pub const NAMES: [&'static str; 8] = [
-        "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02",
+    pub const NAMES: [&'static str; 9] = [
+        "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02", "zquad",
     ];
 
     /// The table of every sequence (Markdown: name, constructor, what the samples-per-pixel
@@ -468,6 +509,7 @@ impl Sequence {
             "lattice" => Self::lattice(),
             "zsobol" => Self::zsobol(resolution[0], resolution[1])?,
             "zpmj02" => Self::zpmj02(resolution[0], resolution[1])?,
+            "zquad" => Self::zquad(resolution[0], resolution[1])?,
             "zjoint" => Self::zjoint(resolution[0], resolution[1], DEFAULT_JOINT_GROUP)?,
             other if other.starts_with("zjoint-") => {
                 let group = other["zjoint-".len()..].parse::<u32>().map_err(|_| {
@@ -504,6 +546,7 @@ impl Sequence {
             Kind::Lattice => "lattice",
             Kind::ZSobol => "zsobol",
             Kind::ZPmj02 => "zpmj02",
+            Kind::ZQuad => "zquad",
             Kind::ZJoint => "zjoint",
         }
     }
@@ -514,14 +557,15 @@ impl Sequence {
         self.group
     }
 
-    /// `zjoint`'s table for the [`WGSL_ZJOINT`](super::WGSL_ZJOINT) shader (`None` for the
-    /// other sequences): word 0 the group size `G`, then the 32 generator columns, in the
-    /// bit-reversed domain, of each of the Sobol' dimensions `0..=G` the draws read (column
+    /// `zjoint`'s and `zquad`'s table for the [`WGSL_ZJOINT`](super::WGSL_ZJOINT) shader
+    /// (`None` for the other sequences): word 0 the group size `G`, then the 32 generator
+    /// columns, in the bit-reversed domain, of each of the dimensions `0..=G` the draws read
+    /// (Sobol' for `zjoint`; for `zquad` the four base-4 Faure matrices and the fifth) (column
     /// `j` of dimension `d` at word `1 + 32 d + j`: the XOR of the columns of the set bits of a
     /// reversed index is its point, reversed). `1 + 32 (G + 1)` words: 97 for groups of 2,
-    /// 16 417 (64 KiB) for 512. Upload it as the shader's `strata_joint` storage buffer.
+    /// 161 for `zquad`, 16 417 (64 KiB) for 512. Upload it as the shader's `strata_joint` storage buffer.
     pub fn gpu_joint_table(&self) -> Option<Vec<u32>> {
-        if self.kind != Kind::ZJoint {
+        if !matches!(self.kind, Kind::ZJoint | Kind::ZQuad) {
             return None;
         }
         let dims = &self.joint[..=self.group as usize];
@@ -582,7 +626,7 @@ impl Sequence {
             Kind::Random => kernel::random::<X2>(&k(), index).unit_f32(),
             Kind::Lattice => kernel::lattice::<X2>(&k(), index).unit_f32(),
             Kind::Jittered => jittered(&k(), index.get(), spp),
-            Kind::ZJoint => {
+            Kind::ZJoint | Kind::ZQuad => {
                 kernel::joint::<X2>(self.joint, keys, self.group_start(dim), dim, index).unit_f32()
             }
             Kind::Halton => {
@@ -663,7 +707,7 @@ impl Sequence {
                 join(p, q).reverse_bits().unit_f32()
             }
             Kind::Lattice => join(kernel::lattice(&a, ia), kernel::lattice(&b, ib)).unit_f32(),
-            Kind::Jittered | Kind::Halton | Kind::ZJoint => {
+            Kind::Jittered | Kind::Halton | Kind::ZJoint | Kind::ZQuad => {
                 let [x, y] = self.sample_2d(ka, ia, dim, spp);
                 let [z, w] = self.sample_2d(kb, ib, dim.wrapping_add(2), spp);
                 [x, y, z, w]
@@ -693,7 +737,7 @@ impl Sequence {
                 kernel::digital::<[u32; 2]>(self.table(), &k, index)
             }
             Kind::Lattice => kernel::lattice::<[u32; 2]>(&k, index),
-            Kind::ZJoint => {
+            Kind::ZJoint | Kind::ZQuad => {
                 kernel::joint::<[u32; 2]>(self.joint, keys, self.group_start(dim), dim, index)
             }
             Kind::Jittered | Kind::Halton => return None,
@@ -706,7 +750,13 @@ impl Sequence {
     pub(crate) fn pads_uniformly(&self) -> bool {
         matches!(
             self.kind,
-            Kind::Sobol | Kind::Pmj02 | Kind::Lattice | Kind::ZSobol | Kind::ZPmj02 | Kind::ZJoint
+            Kind::Sobol
+                | Kind::Pmj02
+                | Kind::Lattice
+                | Kind::ZSobol
+                | Kind::ZPmj02
+                | Kind::ZQuad
+                | Kind::ZJoint
         )
     }
 
@@ -733,6 +783,7 @@ impl Sequence {
             | Kind::Lattice
             | Kind::ZSobol
             | Kind::ZPmj02
+            | Kind::ZQuad
             | Kind::ZJoint => n.checked_next_power_of_two().unwrap_or(1 << 31),
         }
     }
@@ -783,7 +834,9 @@ impl Sequence {
             Kind::ZSobol | Kind::ZPmj02 if n <= 1u64 << spp.z_bits() => pmj::pmj_grids(n, true),
             // every draw's two coordinates are 1D (0, 1)-sequences (only the first draw of a
             // group is a 2D net); the same grids as the lattice's
-            Kind::ZJoint if n.is_power_of_two() && n <= (1u64 << spp.z_bits()).min(1 << 31) => {
+            Kind::ZJoint | Kind::ZQuad
+                if n.is_power_of_two() && n <= (1u64 << spp.z_bits()).min(1 << 31) =>
+            {
                 StrataGrid::axes(n as u32)
             }
             Kind::Lattice if n.is_power_of_two() && n <= 1 << 31 => StrataGrid::axes(n as u32),

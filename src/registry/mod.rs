@@ -5,7 +5,7 @@
 //! The registry sits above the samplers: it imports each sampler's `ENTRY`, and no sampler
 //! imports it (the entry types are a leaf module of their own, re-exported here). Without the
 //! `std` feature the list holds the samplers that build without it: `random`, `regular`,
-//! `jittered`, `nrooks`, `multijittered`, `cmj`, `pmj02-stochastic`, `sobol`, `halton`,
+//! `jittered`, `nrooks`, `multijittered`, `cmj`, `pmj02-stochastic`, `sobol`, `faure4`, `halton`,
 //! `lattice`, `fibonacci`, `latin` and `uncorrelated`.
 //!
 //! ```
@@ -63,6 +63,7 @@ static ENTRIES: &[Entry] = &[
     #[cfg(feature = "std")]
     bnot::ENTRY,
     sobol::ENTRY,
+    sobol::FAURE4_ENTRY,
     halton::ENTRY,
     lattice::LATTICE,
     lattice::FIBONACCI,

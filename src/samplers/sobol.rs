@@ -1,4 +1,5 @@
-//! Sobol' sequences, Owen-scrambled by hashing.
+//! Sobol' sequences, Owen-scrambled by hashing, and with the same machinery the binary form of
+//! Faure's base-4 (0,4)-sequence (`faure4`).
 //!
 //! * Sobol', "On the distribution of points in a cube and the approximate evaluation of
 //!   integrals" (1967): dimension `d` of point `i` is `C_d bits(i)` over GF(2), a (t,s)-sequence
@@ -17,12 +18,19 @@
 //!   its own seed: unbiased, decorrelated across seeds, nets kept. The generator matrices and
 //!   their tables are [`crate::digital`]'s.
 //!
+//! * `faure4`: the first four dimensions of Faure's (0,4)-sequence in base 4 (Faure,
+//!   "Discrépance de suites associées à un système de numération (en dimension s)", Acta Arith.
+//!   41, 1982), written as binary generator matrices of 2x2 blocks ([`crate::digital`] says
+//!   how): every aligned block of `4^k` points a (0,k,4)-net in base 4, dimensions 0-1 and 2-3
+//!   binary (0,2)-sequences, the other pairs `t <= 1` at `4^k` points. The sequence of the
+//!   adapter's `zquad` ([`crate::pixel::Sequence::zquad`]), randomized as Sobol' is.
+//!
 //! Evaluation is direct (no running state): indices up to `2^32 - 1`, any order, in O(1) by
 //! four 256-entry tables per dimension (one per byte of the index).
 
 use super::Epochs;
 use super::pmj::MAX_SEQUENCE_LEN;
-use crate::digital::{ByteTables, lookup, sobol_byte_tables, sobol_dimensions};
+use crate::digital::{ByteTables, FAURE4, lookup, sobol_byte_tables, sobol_dimensions};
 use crate::entry::{Built, CountRule, Entry, Family, Rates};
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
@@ -35,6 +43,43 @@ use crate::scramble::{Lanes, X4, owen_scramble_lanes, shuffle_lanes};
 #[inline]
 fn dim_tables(dim: u32) -> Option<&'static ByteTables> {
     sobol_byte_tables(dim)
+}
+
+/// Which generator matrices a [`Sobol`] or [`SobolNd`] reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Matrices {
+    /// Sobol' (Joe-Kuo directions).
+    Sobol,
+    /// Faure's base-4 (0,4)-sequence, binary form: four dimensions.
+    Faure4,
+}
+
+impl Matrices {
+    /// The byte tables of dimension `dim`, `None` past the last.
+    #[inline]
+    fn tables(self, dim: u32) -> Option<&'static ByteTables> {
+        match self {
+            Matrices::Sobol => dim_tables(dim),
+            Matrices::Faure4 => FAURE4[..4].get(dim as usize),
+        }
+    }
+
+    /// The seed the randomization is keyed by: `faure4`'s is hashed anew, so that its
+    /// scrambles are not `sobol`'s of the same seed (whose dimension 0 is the same matrix).
+    fn seed(self, seed: Seed) -> Seed {
+        match self {
+            Matrices::Sobol => seed,
+            Matrices::Faure4 => Seed(mix64(seed.0 ^ 0xfa_0e4d_0004)),
+        }
+    }
+
+    /// The registered name of the sampler.
+    fn name(self) -> &'static str {
+        match self {
+            Matrices::Sobol => NAME,
+            Matrices::Faure4 => FAURE4_NAME,
+        }
+    }
 }
 
 /// The number of Sobol' dimensions available (1000 with the `joe-kuo` feature, else 2).
@@ -64,14 +109,59 @@ pub fn sobol_u32(index: u32, dim: u32) -> Option<u32> {
 /// ```
 #[cfg(feature = "std")]
 pub fn projection_t_value(dims: &[u32], m: u32) -> Result<u32> {
+    projection_t_value_of(NAME, dims, m, 2)
+}
+
+/// The t-value of the projection onto dimensions `dims` of the sequence registered as
+/// `sampler` (`sobol`: its dimensions below [`max_dimensions`]; `faure4`: 0-3, and 4 for the
+/// fifth matrix that `zquad`'s 2D draws at a group's last dimension read), as a `(t, m,
+/// s)`-net in base `base` (2 or 4) of `base^m` points (`base^m <= 2^32`), from the generator
+/// matrices (exact; kept by every Owen scramble and nested index shuffle). A base-4 net is a
+/// statement about boxes of sides `4^-a`: `faure4`'s dimensions 0-3 are a (0,m,4)-net in base
+/// 4 at every `m`, while as a base-2 net their `t` is positive.
+///
+/// ```
+/// use strata::samplers::sobol::projection_t_value_of;
+/// assert_eq!(projection_t_value_of("faure4", &[0, 1, 2, 3], 8, 4)?, 0);
+/// assert_eq!(projection_t_value_of("faure4", &[2, 3], 16, 2)?, 0);
+/// assert!(projection_t_value_of("sobol", &[0, 1, 2, 3], 8, 4)? > 0);
+/// assert!(projection_t_value_of("faure4", &[0, 5], 8, 2).is_err());
+/// # Ok::<(), strata::Error>(())
+/// ```
+#[cfg(feature = "std")]
+pub fn projection_t_value_of(sampler: &str, dims: &[u32], m: u32, base: u32) -> Result<u32> {
     let context = "sobol::projection_t_value";
-    let max = max_dimensions();
-    if dims.is_empty() || m > 32 {
+    let bits = match base {
+        2 => 1,
+        4 => 2,
+        _ => {
+            return Err(crate::Error::input(
+                context,
+                format!("base {base}: the bases of these nets are 2 and 4"),
+            ));
+        }
+    };
+    let (matrix, max): (fn(u32) -> Option<crate::digital::Matrix>, u32) = match sampler {
+        NAME => (crate::digital::sobol_matrix, max_dimensions()),
+        FAURE4_NAME => (
+            |d| crate::digital::faure4_matrices().get(d as usize).copied(),
+            5,
+        ),
+        other => {
+            return Err(crate::Error::input(
+                context,
+                format!("'{other}': the t-values are computed for 'sobol' and 'faure4'"),
+            ));
+        }
+    };
+    if dims.is_empty() || m * bits > 32 {
         return Err(crate::Error::input(
             context,
             format!(
-                "{} dimensions at m = {m}: at least one dimension, and m from 0 to 32",
-                dims.len()
+                "{} dimensions at m = {m} in base {base}: at least one dimension, and m from \
+                 0 to {}",
+                dims.len(),
+                32 / bits
             ),
         ));
     }
@@ -83,17 +173,17 @@ pub fn projection_t_value(dims: &[u32], m: u32) -> Result<u32> {
                 format!("dimension {d} is listed twice: the dimensions must be distinct"),
             ));
         }
-        match crate::digital::sobol_matrix(d) {
+        match matrix(d) {
             Some(m) => matrices.push(m),
             None => {
                 return Err(crate::Error::input(
                     context,
-                    format!("dimension {d}: this build has dimensions 0 to {}", max - 1),
+                    format!("dimension {d}: {sampler} has dimensions 0 to {}", max - 1),
                 ));
             }
         }
     }
-    Ok(crate::digital::digital_t_value(&matrices, m))
+    Ok(crate::digital::digital_t_value_in(&matrices, m, bits))
 }
 
 /// Dimension `dim` of point `index` of the Owen-scrambled Sobol' sequence seeded by `seed`:
@@ -154,11 +244,11 @@ impl Scramble {
         shuffle_lanes(index.reverse_bits(), self.even, self.shuffle)
     }
 
-    /// Dimensions `dim` and `dim + 1` of point `index`, as 32-bit fixed point (`dim + 1` must
-    /// exist).
+    /// Dimensions `dim` and `dim + 1` of point `index` of `matrices`, as 32-bit fixed point
+    /// (`dim + 1` must exist).
     #[inline]
-    pub fn sample2_u32(&self, index: u32, dim: u32) -> [u32; 2] {
-        let table = |d: u32| dim_tables(d).expect("the dimension exists");
+    fn sample2_u32(&self, matrices: Matrices, index: u32, dim: u32) -> [u32; 2] {
+        let table = |d: u32| matrices.tables(d).expect("the dimension exists");
         let i = self.index_rev(index);
         [
             self.sample_rev_u32(table(dim), i, dim),
@@ -260,6 +350,32 @@ pub(crate) const ENTRY: Entry = Entry {
     },
 };
 
+/// The registered name of the base-4 Faure sequence.
+const FAURE4_NAME: &str = "faure4";
+
+/// The registry entry of `faure4`.
+pub(crate) const FAURE4_ENTRY: Entry = Entry {
+    name: FAURE4_NAME,
+    description: "Faure's (0,4)-sequence in base 4, binary form, Owen-scrambled by hashing, \
+                  progressive, up to 4 dims",
+    paper: "Faure 1982; Burley 2020",
+    family: Family::Qmc,
+    progressive: true,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "(0,k,4)-nets in base 4 at every `4^k`; dims 0-1 and 2-3 (0,m,2)-nets at `2^m`",
+    rates: Rates::NETS,
+    expensive: false,
+    blue_noise: None,
+    any_dims: true,
+    build: |p| {
+        Ok(match p.dims {
+            2 => Built::two(Sobol::with(Matrices::Faure4, p.sampler_seed())),
+            d => Built::nd(SobolNd::with(Matrices::Faure4, d, p.sampler_seed())?),
+        })
+    },
+};
+
 /// The scrambled Sobol' sequence in 2D (dimensions 0 and 1: a (0,2)-sequence), progressive.
 ///
 /// ```
@@ -277,21 +393,29 @@ pub struct Sobol {
     epochs: Epochs,
     seed: u64,
     scramble: Scramble,
+    matrices: Matrices,
 }
 
 impl Sobol {
     /// The sequence for `seed`.
     pub fn new(seed: Seed) -> Self {
+        Self::with(Matrices::Sobol, seed)
+    }
+
+    /// Dimensions 0-1 of the sequence of `matrices` for `seed`.
+    fn with(matrices: Matrices, seed: Seed) -> Self {
+        let seed = matrices.seed(seed);
         Sobol {
             epochs: Epochs::new(seed, MAX_SEQUENCE_LEN),
             seed: seed.0,
             scramble: Scramble::new(seed.0),
+            matrices,
         }
     }
 
     /// Point `index` (2D) as 32-bit fixed point, without changing the stream position.
     pub fn sample_u32(&self, index: u32) -> [u32; 2] {
-        self.scramble.sample2_u32(index, 0)
+        self.scramble.sample2_u32(self.matrices, index, 0)
     }
 
     /// The old name of [`sample_u32`](Self::sample_u32).
@@ -305,7 +429,7 @@ impl Sobol {
 
     /// Point `index` (2D), without changing the stream position.
     pub fn sample(&self, index: u32) -> Point2 {
-        let [x, y] = self.scramble.sample2_u32(index, 0);
+        let [x, y] = self.sample_u32(index);
         Point2::new(unit_f32_from_u32(x), unit_f32_from_u32(y))
     }
 }
@@ -321,7 +445,7 @@ fn advance(epochs: &mut Epochs, scramble: &mut Scramble) -> u32 {
 
 impl Sampler for Sobol {
     fn name(&self) -> &'static str {
-        NAME
+        self.matrices.name()
     }
 
     fn progression(&self) -> Progression {
@@ -357,23 +481,40 @@ pub struct SobolNd {
     dims: u32,
     seed: u64,
     scramble: Scramble,
+    matrices: Matrices,
 }
 
 impl SobolNd {
     /// `dims` dimensions (1 to [`max_dimensions`]) seeded by `seed`.
     pub fn new(dims: u32, seed: Seed) -> Result<Self> {
-        let max = max_dimensions();
-        let why = if cfg!(feature = "joe-kuo") {
-            ""
-        } else {
-            " (enable the `joe-kuo` feature for 1000)"
-        };
-        super::check_dims(NAME, dims, max, why)?;
+        Self::with(Matrices::Sobol, dims, seed)
+    }
+
+    /// `dims` dimensions of the sequence of `matrices`.
+    fn with(matrices: Matrices, dims: u32, seed: Seed) -> Result<Self> {
+        let seed = matrices.seed(seed);
+        match matrices {
+            Matrices::Sobol => {
+                let why = if cfg!(feature = "joe-kuo") {
+                    ""
+                } else {
+                    " (enable the `joe-kuo` feature for 1000)"
+                };
+                super::check_dims(NAME, dims, max_dimensions(), why)?;
+            }
+            Matrices::Faure4 => super::check_dims(
+                FAURE4_NAME,
+                dims,
+                4,
+                " (a base-4 (0,s)-sequence has at most 4 dimensions)",
+            )?,
+        }
         Ok(SobolNd {
             epochs: Epochs::new(seed, MAX_SEQUENCE_LEN),
             dims,
             seed: seed.0,
             scramble: Scramble::new(seed.0),
+            matrices,
         })
     }
 }
@@ -391,7 +532,7 @@ impl SobolNd {
 
 impl SamplerNd for SobolNd {
     fn name(&self) -> &'static str {
-        NAME
+        self.matrices.name()
     }
 
     fn dimensions(&self) -> u32 {
@@ -416,7 +557,7 @@ impl SamplerNd for SobolNd {
     fn fill(&mut self, out: &mut [f32]) {
         let d = self.dims as usize;
         let tables: Vec<&'static ByteTables> = (0..self.dims)
-            .map(|k| dim_tables(k).expect("checked at construction"))
+            .map(|k| self.matrices.tables(k).expect("checked at construction"))
             .collect();
         let total = out.len() / d;
         let mut done = 0usize;
@@ -448,7 +589,7 @@ impl SamplerNd for SobolNd {
         // one index shuffle for all dimensions of the point
         let ir = self.scramble.index_rev(i);
         for (d, o) in (0..self.dims).zip(out.iter_mut()) {
-            let table = dim_tables(d).expect("checked at construction");
+            let table = self.matrices.tables(d).expect("checked at construction");
             *o = unit_f32_from_u32(self.scramble.sample_rev_u32(table, ir, d));
         }
     }
@@ -493,5 +634,51 @@ mod tests {
                 assert_eq!(chunk, &p[..]);
             }
         }
+    }
+
+    #[test]
+    fn faure4_points_are_base4_nets_and_its_2d_form_is_dimensions_0_1() {
+        // every aligned block of 4^k points of the scrambled 4D sequence: one point in each
+        // base-4 box of volume 4^-k (k = 1..4), counted on the points
+        let mut s = SobolNd::with(Matrices::Faure4, 4, Seed(5)).unwrap();
+        assert_eq!(s.name(), "faure4");
+        let mut pts = vec![0f32; 4 * 512];
+        s.fill(&mut pts);
+        for k in 1..=4u32 {
+            let n = 1usize << (2 * k);
+            for block in [0usize, 1] {
+                let pts = &pts[4 * n * block..4 * n * (block + 1)];
+                for a in 0..=k {
+                    for b in 0..=k - a {
+                        for c in 0..=k - a - b {
+                            let d = k - a - b - c;
+                            let mut seen = std::collections::HashSet::new();
+                            for p in pts.chunks_exact(4) {
+                                let cell: Vec<u32> = p
+                                    .iter()
+                                    .zip([a, b, c, d])
+                                    .map(|(&v, e)| (v * 4f32.powi(e as i32)) as u32)
+                                    .collect();
+                                assert!(seen.insert(cell), "4^{k} block {block} box {a}{b}{c}{d}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // the 2D sampler is dimensions 0-1 of the same scrambled sequence; faure4 is keyed
+        // apart from sobol (same seed, other values, though dimension 0 is the same matrix)
+        let mut two = Sobol::with(Matrices::Faure4, Seed(5));
+        for p in pts.chunks_exact(4).take(64) {
+            let q = two.next_sample();
+            assert_eq!([q.x, q.y], [p[0], p[1]]);
+        }
+        assert_ne!(
+            Sobol::with(Matrices::Faure4, Seed(5)).sample(3),
+            Sobol::new(Seed(5)).sample(3)
+        );
+        // at most four dimensions
+        let e = SobolNd::with(Matrices::Faure4, 5, Seed(5)).unwrap_err();
+        assert!(e.to_string().contains("1 to 4"), "{e}");
     }
 }

@@ -143,8 +143,8 @@ class PixelSampler:
     dimension), as ``strata::PixelSampler`` gives them to a renderer.
 
     ``sequence`` is one of ``strata_sampling.sequences()`` (``random``, ``jittered``, ``pmj02``,
-    ``sobol``, ``halton``, ``lattice``, ``zsobol``, ``zpmj02``, ``zjoint``, and ``zjoint-G`` for
-    groups of ``G`` dimensions); ``spp`` the samples per pixel
+    ``sobol``, ``halton``, ``lattice``, ``zsobol``, ``zpmj02``, ``zquad``, ``zjoint``, and
+    ``zjoint-G`` for groups of ``G`` dimensions); ``spp`` the samples per pixel
     (used by ``jittered``, which needs a square, ``halton`` and the Z-ordered sequences);
     ``resolution`` the ``(width, height)`` image of the Z-ordered sequences.
 
