@@ -342,13 +342,16 @@ pub(crate) const ENTRY: Entry = Entry {
     expensive: false,
     blue_noise: None,
     any_dims: true,
-    build: |p| {
-        Ok(match p.dims {
-            2 => Built::two(Sobol::new(p.sampler_seed())),
-            d => Built::nd(SobolNd::new(d, p.sampler_seed())?),
-        })
-    },
+    build: |p| build(Matrices::Sobol, p),
 };
+
+/// The sampler of `matrices` for the registry: the 2D one at two dimensions.
+fn build(matrices: Matrices, p: &crate::entry::Params) -> Result<Built> {
+    Ok(match p.dims {
+        2 => Built::two(Sobol::with(matrices, p.sampler_seed())),
+        d => Built::nd(SobolNd::with(matrices, d, p.sampler_seed())?),
+    })
+}
 
 /// The registered name of the base-4 Faure sequence.
 const FAURE4_NAME: &str = "faure4";
@@ -368,12 +371,7 @@ pub(crate) const FAURE4_ENTRY: Entry = Entry {
     expensive: false,
     blue_noise: None,
     any_dims: true,
-    build: |p| {
-        Ok(match p.dims {
-            2 => Built::two(Sobol::with(Matrices::Faure4, p.sampler_seed())),
-            d => Built::nd(SobolNd::with(Matrices::Faure4, d, p.sampler_seed())?),
-        })
-    },
+    build: |p| build(Matrices::Faure4, p),
 };
 
 /// The scrambled Sobol' sequence in 2D (dimensions 0 and 1: a (0,2)-sequence), progressive.
