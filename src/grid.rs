@@ -236,7 +236,7 @@ impl TorusGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::hash::mix64;
+    use strata::hash::mix64;
 
     fn random_points(n: usize, seed: u64) -> Vec<[f64; 2]> {
         let mut h = seed;

@@ -416,7 +416,7 @@ mod tests {
         // strata pairs whose points collide with nothing.
         let mut h = 0x9e37u64;
         let mut rnd = || {
-            h = crate::hash::mix64(h);
+            h = strata::hash::mix64(h);
             h as u32
         };
         // m past 12 runs the sparse steps (more than 64 candidates per axis)

@@ -21,8 +21,8 @@
 use std::io::Write;
 use std::path::Path;
 
-use crate::error::{Error, Result};
-use crate::sampler::Point2;
+use strata::{Error, Result};
+use strata::Point2;
 
 /// Who reports the errors.
 const CONTEXT: &str = "pointsets";
@@ -75,7 +75,7 @@ impl PointSet {
             dims: 2,
             coords: points
                 .iter()
-                .flat_map(|p| [p.x as f64, p.y as f64])
+                .flat_map(|p| [p[0] as f64, p[1] as f64])
                 .collect(),
         }
     }
@@ -102,10 +102,10 @@ impl PointSet {
             self.coords
                 .chunks_exact(2)
                 .map(|c| {
-                    Point2::new(
-                        crate::float::unit_f32_from_f64(c[0]),
-                        crate::float::unit_f32_from_f64(c[1]),
-                    )
+                    [
+                        strata::float::unit_f32_from_f64(c[0]),
+                        strata::float::unit_f32_from_f64(c[1]),
+                    ]
                 })
                 .collect()
         })

@@ -33,7 +33,7 @@
 //!
 //! Points are point-major slices of `f32` or `f64`, coordinates in `[0, 1]`.
 
-use crate::error::{Error, Result};
+use strata::{Error, Result};
 
 /// The largest set [`star_2d`] accepts.
 pub const MAX_EXACT_STAR: usize = 1 << 14;
@@ -158,7 +158,7 @@ pub fn mixture_squared<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result
 /// docs); `None` when the count is not a power of two. Coordinates in `[0, 1)`.
 ///
 /// ```
-/// use strata::analysis::discrepancy::net_t_value;
+/// use strata_lab::analysis::discrepancy::net_t_value;
 /// // the 2^2 points (i/4, bitreverse(i)/4): a (0,2,2)-net
 /// let hammersley = [0.0, 0.0, 0.25, 0.5, 0.5, 0.25, 0.75, 0.75];
 /// assert_eq!(net_t_value(&hammersley)?, Some(0));
@@ -324,13 +324,13 @@ mod tests {
 
     #[test]
     fn t_values_of_nets_and_of_random_sets() {
-        use crate::sampler::Sampler;
+        use strata::Sampler;
         // Sobol' prefixes are (0,m,2)-nets; two interleaved copies of one are a (1,m+1,2)-net
-        let mut s = crate::samplers::Sobol::new(crate::sampler::Seed(3));
+        let mut s = strata::samplers::Sobol::new(strata::Seed(3));
         let pts: Vec<f64> = (0..256)
             .flat_map(|_| {
                 let p = s.next_sample();
-                [p.x as f64, p.y as f64]
+                [p[0] as f64, p[1] as f64]
             })
             .collect();
         assert_eq!(net_t_value(&pts).unwrap(), Some(0));
@@ -366,8 +366,8 @@ mod tests {
         let mut h = seed;
         (0..2 * n)
             .map(|_| {
-                h = crate::hash::mix64(h + 1);
-                crate::float::unit_f32_from_u32(h as u32)
+                h = strata::hash::mix64(h + 1);
+                strata::float::unit_f32_from_u32(h as u32)
             })
             .collect()
     }

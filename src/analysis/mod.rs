@@ -9,14 +9,10 @@
 //! per sample. Seeds run in parallel with rayon; results are reduced in seed order, so every
 //! number but the timings is bit-identical for any thread count.
 
-#[cfg(feature = "spectrum")]
 pub mod discrepancy;
-#[cfg(feature = "spectrum")]
 mod fit;
-#[cfg(feature = "spectrum")]
 pub mod fourier;
 mod integrands;
-#[cfg(feature = "spectrum")]
 pub mod study;
 
 pub use integrands::Integrand;

@@ -18,9 +18,8 @@ pub use super::fit::{
     MAX_PROJECTED_COUNT, bootstrap_interval, count_to_reach, fit_slope, pareto_front, power_law_at,
 };
 use super::fourier::{integrand_power, predicted_variance};
-use crate::error::{Error, Result};
+use strata::{Error, Result};
 use crate::registry::{CountRule, Entry, Params};
-use crate::sampler::Point2;
 use crate::spectrum::expected_spectrum;
 
 /// The largest count a study accepts.
@@ -292,9 +291,9 @@ fn realization(entry: &Entry, n: u64, seed: u64, dims: u32) -> Result<Vec<f32>> 
     let params = Params::new(n).seed(seed);
     Ok(if dims == 2 {
         let mut s = entry.build(&params)?;
-        let mut pts = vec![Point2::ZERO; n as usize];
+        let mut pts = vec![[0.0; 2]; n as usize];
         s.fill(&mut pts);
-        pts.iter().flat_map(|p| [p.x, p.y]).collect()
+        pts.iter().flat_map(|p| *p).collect()
     } else {
         let mut s = entry.build_nd(&params, dims)?;
         let mut v = vec![0f32; n as usize * dims as usize];
@@ -451,7 +450,7 @@ fn study_count(
         let spectrum = expected_spectrum(seeds.min(32), k, |r| {
             Ok(sets[r as usize]
                 .chunks_exact(dims as usize)
-                .map(|c| Point2::new(c[0], c[1]))
+                .map(|c| [c[0], c[1]])
                 .collect())
         })?;
         Some((k, spectrum))
@@ -536,7 +535,7 @@ fn fit_slopes(config: &Config, acc: &Measured) -> Vec<Slope> {
                 integrand: f,
                 slope: fit_slope(&pts),
                 expected: entry.rates.on(f),
-                interval: bootstrap_interval(&series, crate::hash::hash_u64(f as u64, 0x5107)),
+                interval: bootstrap_interval(&series, strata::hash::hash_u64(f as u64, 0x5107)),
             });
         }
     }

@@ -57,7 +57,7 @@
 //! # Use on a renderer's own values
 //!
 //! ```
-//! use strata::conformance::Suite;
+//! use strata_lab::conformance::Suite;
 //! use strata::{PixelSampler, Seed, Sequence};
 //! let suite = Suite {
 //!     spp: 256,
@@ -82,10 +82,10 @@ use std::fmt;
 pub use pairs::{PairReport, PairStudy, Shuffle};
 
 use crate::analysis::Integrand;
-use crate::error::{Error, Result};
-use crate::pixel::{PixelSampler, Sequence};
-use crate::sampler::Seed;
-use crate::sampler::StrataGrid;
+use strata::{Error, Result};
+use strata::pixel::{PixelSampler, Sequence};
+use strata::Seed;
+use strata::StrataGrid;
 use crate::stats;
 
 /// What the suite draws values from.

@@ -22,10 +22,10 @@
 use std::fmt;
 
 use super::{Source, parallel_map};
-use crate::error::{Error, Result};
-use crate::hash::mix64;
-use crate::pixel::kernel::{DrawKeys, Key, pixel_keys};
-use crate::scramble::owen_scramble_rev;
+use strata::{Error, Result};
+use strata::hash::mix64;
+use strata::pixel::DrawKeys;
+use strata::scramble::owen_scramble_rev;
 
 /// The configuration of a pair study.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -181,7 +181,7 @@ impl PairStudy {
 
 /// The index shuffles the pair test compares, on Sobol' dimension 0 (van der Corput: a
 /// bijection of the shuffled index, so the pairing of two draws is all the test sees), keyed
-/// as the adapter keys its draws ([`crate::pixel::kernel`]); the value is Owen-scrambled.
+/// as the adapter keys its draws ([`strata::pixel::DrawKeys`]); the value is Owen-scrambled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Shuffle {
@@ -193,7 +193,7 @@ pub enum Shuffle {
     /// Two plain rounds with independent keys (what the adapter shipped before).
     TwoRounds,
     /// What the adapter ships: the seeded XOR-multiply, then one round
-    /// ([`crate::scramble::shuffle_rev`]).
+    /// ([`strata::scramble::shuffle_rev`]).
     Shipped,
 }
 
@@ -234,7 +234,7 @@ impl Shuffle {
             Shuffle::TwoRounds => {
                 owen_scramble_rev(owen_scramble_rev(r, k.h), k.e | 1).reverse_bits()
             }
-            Shuffle::Shipped => crate::scramble::shuffle_rev(r, k.e, k.h).reverse_bits(),
+            Shuffle::Shipped => strata::scramble::shuffle_rev(r, k.e, k.h).reverse_bits(),
         }
     }
 }
@@ -246,13 +246,13 @@ impl Source for Shuffle {
         if dim % 2 == 1 {
             return 0.0;
         }
-        let keys = pixel_keys(&Key::new(crate::Seed(seed)), pixel);
-        self.draw(&DrawKeys::new(&keys, dim), index as u32)
+        self.draw(&DrawKeys::of(strata::Seed(seed), pixel, dim), index as u32)
     }
 
     fn fill(&self, seed: u64, pixel: [u32; 2], spp: u32, dims: u32, out: &mut [f32]) {
-        let keys = pixel_keys(&Key::new(crate::Seed(seed)), pixel);
-        let draws: Vec<DrawKeys> = (0..dims).map(|d| DrawKeys::new(&keys, d)).collect();
+        let draws: Vec<DrawKeys> = (0..dims)
+            .map(|d| DrawKeys::of(strata::Seed(seed), pixel, d))
+            .collect();
         for (i, row) in out
             .chunks_exact_mut(dims as usize)
             .take(spp as usize)
@@ -273,6 +273,6 @@ impl Shuffle {
     /// The first coordinate of the draw with keys `k` at `index`.
     fn draw(self, k: &DrawKeys, index: u32) -> f32 {
         let i = self.apply(k, index);
-        crate::float::unit_f32_from_u32(owen_scramble_rev(i, k.v[0]).reverse_bits())
+        strata::float::unit_f32_from_u32(owen_scramble_rev(i, k.v[0]).reverse_bits())
     }
 }

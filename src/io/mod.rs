@@ -6,11 +6,9 @@
 //! needs a system library and the output is reproducible byte for byte.
 
 mod canvas;
-#[cfg(feature = "spectrum")]
 mod plot;
 
 pub use canvas::{Canvas, Rgb};
-#[cfg(feature = "spectrum")]
 pub use plot::{
     LinePlot, Marker, PALETTE, Series, label, overview_row_label, panel_grid, radial_plot,
 };
@@ -18,9 +16,8 @@ pub use plot::{
 use std::io::Write;
 use std::path::Path;
 
-use crate::error::{Error, Result};
-use crate::sampler::{Point2, StrataGrid};
-#[cfg(feature = "spectrum")]
+use strata::{Error, Result};
+use strata::{Point2, StrataGrid};
 use crate::spectrum::{RadialBin, Spectrum};
 
 /// Writes `canvas` as an 8-bit RGB PNG (through `image`), as [`write_file`] writes: never half
@@ -37,7 +34,7 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
             canvas.height(),
             image::ExtendedColorType::Rgb8,
         )
-        .map_err(|e| crate::Error::io(path, e))?;
+        .map_err(|e| strata::Error::io(path, e))?;
     write_file(path, &bytes)
 }
 
@@ -54,12 +51,12 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
 /// ```
 /// let dir = std::env::temp_dir().join(format!("strata-doc-{}", std::process::id()));
 /// let path = dir.join("a.txt");
-/// strata::io::write_file(&path, b"hello")?;
+/// strata_lab::io::write_file(&path, b"hello")?;
 /// assert_eq!(std::fs::read(&path).unwrap(), b"hello");
 /// # std::fs::remove_dir_all(&dir).unwrap();
 /// // a full device: an error, not a silent truncated file
 /// # #[cfg(target_os = "linux")]
-/// assert!(strata::io::write_file("/dev/full", b"hello").is_err());
+/// assert!(strata_lab::io::write_file("/dev/full", b"hello").is_err());
 /// # Ok::<(), strata::Error>(())
 /// ```
 pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
@@ -148,7 +145,7 @@ pub fn draw_points(points: &[Point2], grids: &[StrataGrid], size: u32) -> Canvas
     }
     let radius = (s / (points.len().max(1) as f32).sqrt() * 0.18).clamp(0.9, 5.0);
     for p in points {
-        canvas.disc(p.x * s, (1.0 - p.y) * s, radius, Rgb::new(20, 40, 120));
+        canvas.disc(p[0] * s, (1.0 - p[1]) * s, radius, Rgb::new(20, 40, 120));
     }
     canvas.frame(Rgb::grey(120));
     canvas
@@ -173,7 +170,6 @@ fn draw_grid(canvas: &mut Canvas, grid: &StrataGrid, colour: Rgb) {
     }
 }
 
-#[cfg(feature = "spectrum")]
 /// Draws the 2D projections of a `dims`-dimensional point set (`values` point-major) as a
 /// `dims x dims` matrix of `tile`-pixel scatter plots: tile (row `i`, column `j`) plots
 /// dimension `j` across against dimension `i` up; the diagonal shows each 1D projection as
@@ -221,7 +217,6 @@ pub fn draw_projections(
 /// white noise (`P = 1`) is a mid grey and every picture shares one scale.
 pub const SPECTRUM_LOG_RANGE: (f64, f64) = (-2.0, 1.0);
 
-#[cfg(feature = "spectrum")]
 /// Draws a spectrum as a grey-scale image, log-scaled over [`SPECTRUM_LOG_RANGE`], DC in the
 /// centre (drawn white), `v` pointing up, each frequency a square of `scale` pixels.
 pub fn draw_spectrum(spectrum: &Spectrum, scale: u32) -> Canvas {
@@ -252,7 +247,6 @@ pub fn draw_spectrum(spectrum: &Spectrum, scale: u32) -> Canvas {
     canvas
 }
 
-#[cfg(feature = "spectrum")]
 /// Writes a spectrum as a single-channel (`Y`), 32-bit float OpenEXR image, unscaled, in the
 /// orientation of [`draw_spectrum`] (row 0 is `v = +K/2`, column 0 is `u = -K/2`).
 pub fn write_spectrum_exr(path: impl AsRef<Path>, spectrum: &Spectrum) -> Result<()> {
@@ -278,7 +272,7 @@ pub fn write_spectrum_exr(path: impl AsRef<Path>, spectrum: &Spectrum) -> Result
     Image::from_layer(layer)
         .write()
         .to_buffered(&mut bytes)
-        .map_err(|e| crate::Error::io(path, e))?;
+        .map_err(|e| strata::Error::io(path, e))?;
     write_file(path, &bytes.into_inner())
 }
 
@@ -294,7 +288,7 @@ pub fn read_exr_y(path: impl AsRef<Path>) -> Result<(usize, usize, Vec<f32>)> {
         .first_valid_layer()
         .all_attributes()
         .from_file(path)
-        .map_err(|e| crate::Error::io(path, e))?;
+        .map_err(|e| strata::Error::io(path, e))?;
     let layer = &image.layer_data;
     let size = layer.size;
     let channel = layer
@@ -302,12 +296,11 @@ pub fn read_exr_y(path: impl AsRef<Path>) -> Result<(usize, usize, Vec<f32>)> {
         .list
         .iter()
         .find(|c| c.name.eq("Y"))
-        .ok_or_else(|| crate::Error::io(path, "no channel named Y"))?;
+        .ok_or_else(|| strata::Error::io(path, "no channel named Y"))?;
     let values = channel.sample_data.values_as_f32().collect();
     Ok((size.width(), size.height(), values))
 }
 
-#[cfg(feature = "spectrum")]
 /// Writes the radial mean as CSV: `frequency,power,anisotropy`, one row per bin.
 pub fn write_radial_csv(path: impl AsRef<Path>, bins: &[RadialBin]) -> Result<()> {
     let mut text = String::from("frequency,power,anisotropy\n");
@@ -326,7 +319,6 @@ pub fn write_text(path: impl AsRef<Path>, text: &str) -> Result<()> {
 /// `measure` programs do: `NAME-spectrum.png` (log-scaled), `NAME-spectrum.exr` (the values),
 /// `NAME-radial.csv` and `NAME-radial.png` (the radial mean), and `NAME-points.png` (`points`,
 /// one realization, with `grids`).
-#[cfg(feature = "spectrum")]
 pub fn write_spectrum_files(
     dir: impl AsRef<Path>,
     name: &str,

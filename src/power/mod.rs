@@ -7,7 +7,7 @@
 //! sites on the unit torus `[0,1)^2`.
 //!
 //! ```
-//! use strata::power::PowerDiagram;
+//! use strata_lab::power::PowerDiagram;
 //!
 //! // A 2 x 2 grid: every vertex is shared by four co-circular sites; the cells are exact squares.
 //! let sites = [[0.25, 0.25], [0.75, 0.25], [0.25, 0.75], [0.75, 0.75]];
@@ -104,7 +104,7 @@
 
 use core::cmp::Ordering;
 
-use crate::error::{Error, Result};
+use strata::{Error, Result};
 use crate::grid::wrap_unit;
 
 mod exact;
@@ -213,7 +213,7 @@ pub(crate) struct Stats {
 /// The power diagram of weighted sites on the unit torus. See the [module](self) docs.
 ///
 /// ```
-/// use strata::power::PowerDiagram;
+/// use strata_lab::power::PowerDiagram;
 ///
 /// // Two sites on a horizontal line: two vertical strips; a weight widens its strip.
 /// let d = PowerDiagram::new(&[[0.25, 0.5], [0.75, 0.5]], &[0.05, 0.0])?;

@@ -29,7 +29,7 @@
 
 use super::linalg::{CgWork, SparseSym, pcg};
 use super::{MIN_MAGNITUDE, PowerDiagram};
-use crate::error::{Error, Result};
+use strata::{Error, Result};
 
 /// The context named in this module's errors.
 const CONTEXT: &str = "transport";
@@ -385,7 +385,7 @@ mod tests {
             Pcg32(rand_pcg::Pcg32::new(seed, 0xda3e_39cb_94b9_5bdb))
         }
         fn next_f64(&mut self) -> f64 {
-            crate::float::unit_f64_from_u64(self.0.next_u64())
+            strata::float::unit_f64_from_u64(self.0.next_u64())
         }
         fn points(&mut self, n: usize) -> Vec<[f64; 2]> {
             (0..n).map(|_| [self.next_f64(), self.next_f64()]).collect()

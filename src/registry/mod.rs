@@ -2,14 +2,13 @@
 //! entries, each declared in its sampler's own file, the lookup by name, and the building of an
 //! entry's sampler from [`Params`] (whose errors name the other entries that would do).
 //!
-//! The registry sits above the samplers: it imports each sampler's `ENTRY`, and no sampler
-//! imports it (the entry types are a leaf module of their own, re-exported here). Without the
-//! `std` feature the list holds the samplers that build without it: `random`, `regular`,
-//! `jittered`, `nrooks`, `multijittered`, `cmj`, `pmj02-stochastic`, `sobol`, `faure4`, `halton`,
-//! `lattice`, `fibonacci`, `latin` and `uncorrelated`.
+//! The registry sits above the samplers: it imports each lab sampler's `ENTRY`, and no sampler
+//! imports it (the entry types are a leaf module of their own, re-exported here). The renderer
+//! crate's samplers (`strata::samplers`) know nothing of the registry: their entries are
+//! declared here, in `strata_entries.rs`.
 //!
 //! ```
-//! use strata::registry::{self, Params};
+//! use strata_lab::registry::{self, Params};
 //! let mut s = registry::build("cmj", &Params::new(100).seed(7)).unwrap();
 //! let p = s.next_sample();
 //! assert!(p.x < 1.0 && p.y < 1.0);
@@ -18,60 +17,42 @@
 //! assert!(err.to_string().contains("jittered")); // the error lists the known names
 //! ```
 
-pub use crate::entry::{
-    BlueNoise, Bound, Built, CountRule, Entry, Family, Kind, ParameterSpec, Params, Rates,
-};
+pub use crate::entry::{BlueNoise, Bound, Built, Entry, Family, Kind, ParameterSpec, Params, Rates};
+pub use strata::counts::CountRule;
 
-use crate::error::{Error, Result};
-use crate::prelude::*;
-use crate::sampler::{Sampler, SamplerNd};
-#[cfg(feature = "std")]
-use crate::samplers::{best_candidate, bnot, ccvt, net02bn, oa, poisson};
-use crate::samplers::{
-    halton, jittered, latin, lattice, multijitter, pmj, random, regular, sobol, uncorrelated,
-};
+mod strata_entries;
+
+use crate::samplers::{best_candidate, bnot, ccvt, lloyd, net02bn, oa, pmj, poisson};
+use strata::{Error, Result, Sampler, SamplerNd};
 
 /// Every registered sampler, in a stable order (simplest first).
 static ENTRIES: &[Entry] = &[
-    random::ENTRY,
-    regular::ENTRY,
-    jittered::ENTRY,
-    latin::NROOKS,
-    multijitter::MULTIJITTERED,
-    multijitter::CMJ,
-    #[cfg(feature = "std")]
+    strata_entries::RANDOM,
+    strata_entries::REGULAR,
+    strata_entries::JITTERED,
+    strata_entries::NROOKS,
+    strata_entries::MULTIJITTERED,
+    strata_entries::CMJ,
     pmj::PMJ,
-    #[cfg(feature = "std")]
     pmj::PMJBN,
-    #[cfg(feature = "std")]
     pmj::PMJ02,
-    #[cfg(feature = "std")]
     pmj::blue::ENTRY,
-    pmj::stochastic::ENTRY,
-    #[cfg(feature = "std")]
+    strata_entries::PMJ02_STOCHASTIC,
     net02bn::ENTRY,
-    #[cfg(feature = "std")]
     poisson::POISSON,
-    #[cfg(feature = "std")]
     poisson::BRIDSON,
-    #[cfg(feature = "std")]
     best_candidate::ENTRY,
-    #[cfg(feature = "lloyd")]
-    crate::samplers::lloyd::ENTRY,
-    #[cfg(feature = "std")]
+    lloyd::ENTRY,
     ccvt::ENTRY,
-    #[cfg(feature = "std")]
     bnot::ENTRY,
-    sobol::ENTRY,
-    sobol::FAURE4_ENTRY,
-    halton::ENTRY,
-    lattice::LATTICE,
-    lattice::FIBONACCI,
-    latin::LATIN,
-    uncorrelated::ENTRY,
-    #[cfg(feature = "std")]
+    strata_entries::SOBOL,
+    strata_entries::FAURE4,
+    strata_entries::HALTON,
+    strata_entries::LATTICE,
+    strata_entries::FIBONACCI,
+    strata_entries::LATIN,
+    strata_entries::UNCORRELATED,
     oa::BOSE,
-    #[cfg(feature = "std")]
     oa::BUSH,
 ];
 
@@ -154,12 +135,12 @@ impl Entry {
     /// sampler's own constructor checks the rest (its count rule, limits a range cannot say).
     pub fn make(&self, params: &Params, strictness: Strictness) -> Result<Built> {
         let dims = params.dims;
-        if dims == 0 || dims > crate::samplers::MAX_DIMENSIONS {
+        if dims == 0 || dims > strata::samplers::MAX_DIMENSIONS {
             return Err(Error::parameter(
                 self.name,
                 "dims",
                 dims,
-                format!("1 to {} dimensions", crate::samplers::MAX_DIMENSIONS),
+                format!("1 to {} dimensions", strata::samplers::MAX_DIMENSIONS),
             ));
         }
         if dims != 2 && !self.has_dimensions() {
@@ -341,7 +322,6 @@ mod tests {
     }
 
     #[test]
-    #[cfg(feature = "std")] // the blue-noise samplers need `std`
     fn the_blue_noise_samplers_are_the_family_and_the_pmj_variants() {
         // every sampler of the blue-noise family is one, and so are the PMJ family's
         // blue-noise variants; `spectrum --blue-noise-table` has one row per sampler here
@@ -361,7 +341,6 @@ mod tests {
     }
 
     #[test]
-    #[cfg(feature = "std")] // the samplers with parameters need `std`
     fn each_parameter_is_declared_consistently() {
         // one kind per name; each default inside its own range; a help line; and the range is
         // what `allows` enforces (its ends, and just outside them)
@@ -403,7 +382,7 @@ mod tests {
             }
             let mut a = e.build(&given).unwrap();
             let mut b = e.build(&Params::new(n)).unwrap();
-            let mut va = alloc::vec![crate::sampler::Point2::ZERO; n as usize];
+            let mut va = alloc::vec![strata::[0.0; 2]; n as usize];
             let mut vb = va.clone();
             Sampler::fill(&mut a, &mut va);
             Sampler::fill(&mut b, &mut vb);
@@ -412,7 +391,6 @@ mod tests {
     }
 
     #[test]
-    #[cfg(feature = "std")] // the samplers with parameters need `std`
     fn the_strict_build_refuses_what_the_lenient_one_drops() {
         let jittered = find("jittered").unwrap();
         let p = Params::new(16).seed(3).with("radius", 0.5);
@@ -456,7 +434,6 @@ mod tests {
     }
 
     #[test]
-    #[cfg(feature = "std")] // pmj02bn needs `std`
     fn an_alias_reaches_the_parameter_when_its_name_is_not_given() {
         // pmj02bn's `sweeps` was `iterations`: the old name still sets it, the new one wins
         let pmj02bn = find("pmj02bn").unwrap();
@@ -521,9 +498,9 @@ mod tests {
                 if dims == 2 {
                     // and the 2D form gives the same points
                     let mut s = e.build(&p).unwrap();
-                    let mut v = alloc::vec![crate::sampler::Point2::ZERO; n as usize];
+                    let mut v = alloc::vec![strata::[0.0; 2]; n as usize];
                     Sampler::fill(&mut s, &mut v);
-                    let flat: Vec<f32> = v.iter().flat_map(|q| [q.x, q.y]).collect();
+                    let flat: Vec<f32> = v.iter().flat_map(|q| *q).collect();
                     assert_eq!(flat, a, "{}", e.name);
                 }
             }

@@ -9,14 +9,15 @@
 
 use rand_pcg::Pcg32;
 
-use super::Epochs;
+use strata::samplers::Epochs;
 use super::poisson::uniform;
-use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
-use crate::error::{Error, Result};
-use crate::float::unit_f32_from_f64;
+use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
+use strata::counts::{CountRule};
+use strata::{Error, Result};
+use strata::float::unit_f32_from_f64;
 use crate::grid::TorusGrid;
-use crate::hash::stream_seed;
-use crate::sampler::{Point2, Progression, Sampler, Seed};
+use strata::hash::stream_seed;
+use strata::{Point2, Progression, Sampler, Seed};
 
 /// The default candidate factor `k`.
 pub const DEFAULT_FACTOR: u32 = 1;
@@ -156,6 +157,6 @@ impl Sampler for BestCandidate {
             Some(&p) => p,
             None => self.grow(),
         };
-        Point2::new(unit_f32_from_f64(p[0]), unit_f32_from_f64(p[1]))
+        [unit_f32_from_f64(p[0]), unit_f32_from_f64(p[1])]
     }
 }

@@ -48,10 +48,11 @@ use rand_pcg::Pcg32;
 
 use super::poisson::uniform;
 use super::{SetGenerator, Sets};
-use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
-use crate::error::{Error, Result};
+use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
+use strata::counts::{CountRule};
+use strata::{Error, Result};
 use crate::grid::{relative_radius_max, wrap_unit};
-use crate::hash::{mix64, stream_seed};
+use strata::hash::{mix64, stream_seed};
 use crate::power::transport::{TransportOptions, TransportReport, TransportSolver};
 use crate::power::{MIN_MAGNITUDE, check_coincident, find_coincident, validate_sites};
 

@@ -32,10 +32,11 @@ use rand_pcg::Pcg32;
 
 use super::poisson::{below, uniform};
 use super::{SetGenerator, Sets};
-use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
-use crate::error::{Error, Result};
+use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
+use strata::counts::{CountRule};
+use strata::{Error, Result};
 use crate::grid::{TorusGrid, torus_distance_squared, wrap_unit};
-use crate::hash::stream_seed;
+use strata::hash::stream_seed;
 
 /// Discrete points per site.
 pub const DEFAULT_CAPACITY: u32 = 256;
@@ -275,10 +276,10 @@ fn initial_assignment(
     let grid = TorusGrid::from_points(sites.iter().copied());
     let mut count = vec![0usize; n];
     let mut grouped = vec![[0.0f64; 2]; n * m];
-    let sobol = crate::samplers::Sobol::new(crate::sampler::Seed(density_seed));
+    let sobol = strata::samplers::Sobol::new(strata::Seed(density_seed));
     for k in 0..n * m {
         let p = sobol.sample(k as u32);
-        let x = [p.x as f64, p.y as f64];
+        let x = [p[0] as f64, p[1] as f64];
         let (s, _) = grid
             .nearest_where(x, |i| count[i] < m)
             .expect("room remains while points remain");

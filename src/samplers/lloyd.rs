@@ -16,11 +16,15 @@
 use spade::{DelaunayTriangulation, HasPosition, Point2 as SPoint, Triangulation};
 
 use super::{SetGenerator, Sets};
-use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
-use crate::error::{Error, Result};
-use crate::float::{unit_f64_from_u32, unit_f64_from_u64};
+use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
+use strata::counts::{CountRule};
+use strata::{Error, Result};
+use strata::float::{unit_f64_from_u32, unit_f64_from_u64};
 use crate::grid::{relative_radius_max, wrap_unit as wrap};
-use crate::hash::{Stream, hash_u64, stream_seed};
+use strata::hash::{hash_u64, stream_seed};
+
+/// The stream of the jitter that separates coincident points.
+const JITTER_STREAM: u64 = 0x110d;
 
 /// The convergence tolerance: relaxation stops once the mean distance from a point to its
 /// cell's centroid falls below this fraction of `r_max(N)`. At N = 1024 this takes a few
@@ -278,7 +282,7 @@ pub fn relax_until(
                 }
                 None => {
                     // a duplicate: nudge it by up to 1e-3 r_max in a hashed direction
-                    let h = hash_u64(Stream::LloydJitter.id(), (it as u64) << 32 | i as u64);
+                    let h = hash_u64(JITTER_STREAM, (it as u64) << 32 | i as u64);
                     let (dx, dy) = (
                         unit_f64_from_u32(h as u32) - 0.5,
                         unit_f64_from_u32((h >> 32) as u32) - 0.5,

@@ -24,12 +24,13 @@
 //! (`tests/blue_noise.rs`, `docs/results.md`): larger nearest-neighbour distances and a weaker
 //! low-frequency band than `pmj02` or Sobol'.
 
-use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
-use crate::error::{Error, Result};
+use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
+use strata::counts::{CountRule};
+use strata::{Error, Result};
 use crate::grid::relative_radius_max;
-use crate::hash::{hash_u64, stream_seed};
-use crate::samplers::blocks::{SetGenerator, Sets};
-use crate::samplers::sobol;
+use strata::hash::{hash_u64, stream_seed};
+use crate::samplers::{SetGenerator, Sets};
+use strata::samplers::sobol;
 
 /// The kernel width relative to `r_max(N)`.
 pub(crate) const SIGMA: f64 = 0.5;

@@ -23,14 +23,26 @@
 //! permutation of `i / q`, the index without its lowest digit (for fixed high digits the column
 //! is a bijection of the lowest one). Everything is computed sample by sample, as in the paper.
 
-use super::{BlockCursor, Blocks, check_dims};
-use crate::entry::{
-    Built, CountRule, Entry, Family, ParameterSpec, Params, Rates, check_oa_count, prime_power,
-};
-use crate::error::{Error, Result};
-use crate::float::Strata;
-use crate::hash::{DivMod, Permutation, Stream, hash_u64, hash32, key32, stream_seed};
-use crate::sampler::{Seed, StrataGrid};
+use strata::samplers::{BlockCursor, Blocks, check_dims};
+use crate::entry::{Built, Entry, Family, ParameterSpec, Params, Rates};
+use strata::counts::{CountRule, prime_power};
+use strata::{Error, Result};
+use strata::float::Strata;
+use strata::hash::{DivMod, Permutation, hash_u64, hash32, key32, stream_seed};
+use strata::{Seed, StrataGrid};
+
+/// The stream of a block key from which the sub-stratum permutations are keyed.
+const SUBSTRATA_STREAM: u64 = 0x5eed;
+
+/// The number of symbols `q` of an array of `count = q^t` points, the count checked by the
+/// arrays' rule ([`CountRule::OaPower`]: `q` a prime, or a prime power up to
+/// [`MAX_PRIME_POWER`]).
+fn symbols(name: &'static str, count: u64, t: u32) -> Result<u32> {
+    let n = CountRule::OaPower(t).check(name, count)? as u64;
+    Ok((2u32..)
+        .find(|&q| (q as u64).pow(t) >= n)
+        .expect("n = q^t for some q >= 2"))
+}
 
 /// The registry entry of `oa-bose`.
 pub(crate) const BOSE: Entry = Entry {
@@ -91,7 +103,7 @@ const STRENGTH: ParameterSpec = ParameterSpec::whole(
     "the array's strength t: every t-dimensional projection is stratified on q^t cells",
 );
 
-pub use crate::entry::MAX_PRIME_POWER;
+pub use strata::counts::MAX_PRIME_POWER;
 
 /// A finite field `GF(q)`: arithmetic modulo a prime, or tables for a prime power.
 #[derive(Clone, Debug)]
@@ -212,7 +224,7 @@ impl Field {
 fn dim_keys(key: u64, dims: u32) -> impl Iterator<Item = (u32, u32)> {
     (0..dims as u64).map(move |j| {
         let k = stream_seed(key, j);
-        (key32(k), Stream::OaSubstrata.key32(k))
+        (key32(k), key32(k ^ SUBSTRATA_STREAM))
     })
 }
 
@@ -232,7 +244,7 @@ pub struct Bose {
 impl Bose {
     /// `count = q^2` samples in `dims` dimensions (`dims <= q + 1`), seeded by `seed`.
     pub fn new(count: u64, dims: u32, seed: Seed) -> Result<Self> {
-        let q = check_oa_count(BOSE.name, count, 2)?;
+        let q = symbols(BOSE.name, count, 2)?;
         check_dims(
             BOSE.name,
             dims,
@@ -337,7 +349,7 @@ impl Bush {
         if !(2..=16).contains(&strength) {
             return Err(Error::parameter(BUSH.name, "strength", strength, "2 to 16"));
         }
-        let q = check_oa_count(BUSH.name, count, strength)?;
+        let q = symbols(BUSH.name, count, strength)?;
         check_dims(BUSH.name, dims, q, " (a Bush array has at most q columns)")?;
         Ok(Bush {
             field: Field::new(q).expect("checked"),
@@ -456,11 +468,11 @@ mod tests {
 
     #[test]
     fn count_errors_name_the_nearest_allowed() {
-        let e = check_oa_count("oa-bose", 100, 2).unwrap_err().to_string();
+        let e = symbols("oa-bose", 100, 2).unwrap_err().to_string();
         assert!(e.contains("81 (9^2) or 121 (11^2)"), "{e}");
-        let e = check_oa_count("oa-bush", 100, 3).unwrap_err().to_string();
+        let e = symbols("oa-bush", 100, 3).unwrap_err().to_string();
         assert!(e.contains("64 (4^3) or 125 (5^3)"), "{e}");
-        assert_eq!(check_oa_count("oa-bose", 49, 2).unwrap(), 7);
-        assert_eq!(check_oa_count("oa-bush", 512, 3).unwrap(), 8);
+        assert_eq!(symbols("oa-bose", 49, 2).unwrap(), 7);
+        assert_eq!(symbols("oa-bush", 512, 3).unwrap(), 8);
     }
 }

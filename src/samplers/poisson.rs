@@ -27,11 +27,12 @@ use rand::Rng;
 use rand_pcg::Pcg32;
 
 use super::{SetGenerator, Sets};
-use crate::entry::{BlueNoise, Bound, Built, CountRule, Entry, Family, ParameterSpec, Rates};
-use crate::error::{Error, Result};
-use crate::float::unit_f64_from_u64;
+use crate::entry::{BlueNoise, Bound, Built, Entry, Family, ParameterSpec, Rates};
+use strata::counts::{CountRule};
+use strata::{Error, Result};
+use strata::float::unit_f64_from_u64;
 use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared, wrap_unit as wrap};
-use crate::hash::stream_seed;
+use strata::hash::stream_seed;
 
 /// The default relative radius.
 pub const DEFAULT_RHO: f64 = 0.7;
@@ -538,7 +539,7 @@ mod tests {
         let n = 1024;
         let take = |p: &Params| {
             let mut s = BRIDSON.build(p).unwrap();
-            let mut v = vec![crate::sampler::Point2::ZERO; n];
+            let mut v = vec![strata::[0.0; 2]; n];
             s.fill(&mut v);
             v
         };
@@ -549,9 +550,12 @@ mod tests {
         let r = Bridson::new(n as u64, DEFAULT_RHO).unwrap().radius();
         for (i, a) in few.iter().enumerate() {
             for b in &few[..i] {
-                let d = (*a - *b).abs();
-                let d = d.min(glam::Vec2::ONE - d);
-                assert!(d.length() as f64 >= r * (1.0 - 1e-6), "{a} {b}");
+                let d = [0, 1].map(|k| {
+                    let d = (a[k] - b[k]).abs() as f64;
+                    d.min(1.0 - d)
+                });
+                let length = (d[0] * d[0] + d[1] * d[1]).sqrt();
+                assert!(length >= r * (1.0 - 1e-6), "{a:?} {b:?}");
             }
         }
         let grown = |k: u32| {

@@ -8,14 +8,14 @@ use std::f64::consts::TAU;
 
 use rayon::prelude::*;
 
-use crate::sampler::Point2;
+use strata::Point2;
 
 /// `P(u, v)` on the `(K+1)^2` grid, row-major with `v` then `u` ascending from `-K/2`.
 pub(crate) fn periodogram(points: &[Point2], k: usize) -> Vec<f64> {
     let side = k + 1;
     let half = (k / 2) as i64;
     let n = points.len() as f64;
-    let coords: Vec<(f64, f64)> = points.iter().map(|p| (p.x as f64, p.y as f64)).collect();
+    let coords: Vec<(f64, f64)> = points.iter().map(|p| (p[0] as f64, p[1] as f64)).collect();
     let mut out = vec![0.0f64; side * side];
     out.par_chunks_mut(side).enumerate().for_each(|(row, dst)| {
         let v = row as i64 - half;

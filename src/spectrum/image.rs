@@ -20,7 +20,7 @@
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex64;
 
-use crate::error::{Error, Result};
+use strata::{Error, Result};
 
 /// The radius of the low band, in cycles per pixel.
 pub const LOW_BAND: f64 = 1.0 / 8.0;
@@ -51,7 +51,7 @@ pub struct ErrorImage {
 /// Measures the error image `errors` (row-major, `width x height`, signed errors).
 ///
 /// ```
-/// use strata::spectrum::error_image;
+/// use strata_lab::spectrum::error_image;
 /// // white error: about 5% of its power in the low band, and a blur averages it away
 /// let (w, h) = (64, 64);
 /// let mut x = 1u64;
@@ -87,7 +87,7 @@ pub fn error_image(errors: &[f64], width: u32, height: u32) -> Result<ErrorImage
 /// With every pixel kept this gives [`error_image`]'s figures (to rounding).
 ///
 /// ```
-/// use strata::spectrum::{error_image, error_image_masked};
+/// use strata_lab::spectrum::{error_image, error_image_masked};
 /// // a smooth error with a block of huge values: masked, the block changes nothing
 /// let (w, h) = (32u32, 32u32);
 /// let mut e: Vec<f64> = (0..w * h).map(|i| ((i % w) as f64 * 0.7).sin()).collect();
@@ -379,7 +379,7 @@ mod tests {
         let mut x = seed;
         (0..n)
             .map(|_| {
-                x = crate::hash::mix64(x);
+                x = strata::hash::mix64(x);
                 (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
             })
             .collect()

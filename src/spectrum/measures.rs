@@ -23,9 +23,9 @@
 use std::f64::consts::PI;
 
 use super::check_points;
-use crate::error::{Error, Result};
+use strata::{Error, Result};
 use crate::grid::{TorusGrid, relative_radius_max};
-use crate::sampler::Point2;
+use strata::Point2;
 
 /// The largest point count per set for which [`point_set_measures`] computes the spectral
 /// measures (the pair counting is quadratic).
@@ -55,7 +55,7 @@ pub fn nearest_neighbour_distances(points: &[Point2]) -> Option<Vec<f64>> {
     if points.len() < 2 {
         return None;
     }
-    let grid = TorusGrid::from_points(points.iter().map(|p| [p.x as f64, p.y as f64]));
+    let grid = TorusGrid::from_points(points.iter().map(|p| [p[0] as f64, p[1] as f64]));
     Some(
         grid.points()
             .iter()
@@ -73,7 +73,7 @@ pub fn nearest_neighbour_distances(points: &[Point2]) -> Option<Vec<f64>> {
 /// The PSA measures of one or more realizations of a pattern (all with the same count).
 ///
 /// ```
-/// use strata::spectrum::{point_set_measures, relative_radius_max};
+/// use strata_lab::spectrum::{point_set_measures, relative_radius_max};
 /// use glam::Vec2;
 /// // a 16 x 16 grid: every nearest neighbour is 1/16 away, and the spectrum is empty up to
 /// // the first lattice peak at |w| = 16 = sqrt(N) (PSA's window blurs the peak a little, so
@@ -159,7 +159,7 @@ impl RadialPower {
         let mut counts = vec![0u64; needed.min(nb)];
         let r_cut = counts.len() as f64 * dr;
         for s in sets {
-            let grid = TorusGrid::from_points(s.iter().map(|p| [p.x as f64, p.y as f64]));
+            let grid = TorusGrid::from_points(s.iter().map(|p| [p[0] as f64, p[1] as f64]));
             for (i, &p) in grid.points().iter().enumerate() {
                 grid.for_each_within(p, r_cut, |j, d2| {
                     if j > i {

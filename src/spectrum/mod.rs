@@ -43,8 +43,8 @@ pub use measures::{PointSetMeasures, nearest_neighbour_distances, point_set_meas
 
 use rayon::prelude::*;
 
-use crate::error::{Error, Result};
-use crate::sampler::Point2;
+use strata::{Error, Result};
+use strata::Point2;
 
 /// The largest resolution `K` accepted (the fast path's grid then needs about 300 MB).
 pub const MAX_RESOLUTION: u32 = 2048;
@@ -208,13 +208,13 @@ pub(crate) fn check_points(points: &[Point2]) -> Result<()> {
         ));
     }
     for (i, p) in points.iter().enumerate() {
-        for c in [p.x, p.y] {
+        for c in *p {
             if !(0.0..1.0).contains(&c) {
                 return Err(Error::input(
                     "spectrum::check_points",
                     format!(
                         "point {i} is ({}, {}); coordinates must be finite and in [0, 1)",
-                        p.x, p.y
+                        p[0], p[1]
                     ),
                 ));
             }
@@ -238,7 +238,7 @@ pub fn periodogram_direct(points: &[Point2], resolution: u32) -> Result<Spectrum
 /// [`periodogram_direct`] at every frequency.
 ///
 /// ```
-/// use strata::spectrum::periodogram;
+/// use strata_lab::spectrum::periodogram;
 /// let pts = [glam::Vec2::new(0.25, 0.5), glam::Vec2::new(0.75, 0.5)];
 /// let s = periodogram(&pts, 8)?;
 /// assert!((s.get(0, 0).unwrap() - 2.0).abs() < 1e-9); // DC = N

@@ -49,15 +49,16 @@
 //! `tools/pmj-peer`); counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`; each
 //! sample is then computed from the flags in `O(m)` and one hash.
 
-use super::{MAX_SEQUENCE_LEN, pmj_grids};
-use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
-use crate::error::{Error, Result};
-use crate::float::unit_f32_from_u32;
+use strata::samplers::MAX_SEQUENCE_LEN;
+use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
+use strata::counts::{CountRule};
+use strata::{Error, Result};
+use strata::float::unit_f32_from_u32;
 use crate::grid::relative_radius_max;
-use crate::hash::{hash_u64, stream_seed};
-use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
-use crate::samplers::{Epochs, sobol};
-use crate::scramble::owen_scramble;
+use strata::hash::{hash_u64, stream_seed};
+use strata::{Point2, Progression, Sampler, Seed, StrataGrid};
+use strata::samplers::{Epochs, sobol};
+use strata::scramble::owen_scramble;
 
 /// The kernel width relative to `r_max` of each prefix.
 pub(crate) const SIGMA: f64 = 0.4;
@@ -223,7 +224,7 @@ impl Pmj02Bn {
     /// Sample `index`.
     pub fn sample(&self, index: u32) -> Point2 {
         let p = self.sample_u32(index);
-        Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]))
+        [unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1])]
     }
 
     /// The old name of [`sample_u32`](Self::sample_u32).
@@ -255,7 +256,7 @@ impl Sampler for Pmj02Bn {
     }
 
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
-        pmj_grids(n, true)
+        StrataGrid::net(n, true)
     }
 }
 

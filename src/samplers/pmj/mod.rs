@@ -24,7 +24,8 @@
 //!   Sequences" (EGSR 2021). Sample `2^k + i` copies the top `k` digits of sample
 //!   `i ^ XOR[k]`, flips digit `k + 1` and draws the rest at random: O(1) per sample, and its
 //!   distribution is that of an Owen-scrambled (0,2)-sequence. The XOR values are computed
-//!   from the generator matrices' definition (see [`stochastic`]), not copied.
+//!   from the generator matrices' definition, not copied. It builds without `std` and is the
+//!   renderer crate's (`strata::samplers::Pmj02Stochastic`).
 //!
 //! All of them store points as 32-bit fixed point (8 bytes per generated point; the occupancy
 //! structures of the constructive ones add about `(m + 3) / 8` bytes per point at level `m`),
@@ -38,33 +39,17 @@
 //! classes stratified in about two thirds of the elementary shapes; no split by index makes
 //! both halves full nets.
 
-#[cfg(feature = "std")]
 pub mod blue;
-#[cfg(feature = "std")]
 mod construct;
-pub mod stochastic;
 
-#[cfg(feature = "std")]
 pub use blue::Pmj02Bn;
-#[cfg(feature = "std")]
 use construct::{Construction, Variant};
-pub use stochastic::Pmj02Stochastic;
 
-#[cfg(feature = "std")]
-use super::Epochs;
-#[cfg(feature = "std")]
-use crate::entry::{BlueNoise, Built, CountRule, Entry, Family, ParameterSpec, Rates};
-#[cfg(feature = "std")]
-use crate::error::{Error, Result};
-#[cfg(feature = "std")]
-use crate::float::unit_f32_from_u32;
-use crate::prelude::*;
-use crate::sampler::StrataGrid;
-#[cfg(feature = "std")]
-use crate::sampler::{Point2, Progression, Sampler, Seed};
-
-/// The most samples a progressive PMJ sequence holds before it starts over with a new seed.
-pub const MAX_SEQUENCE_LEN: u64 = 1 << 32;
+use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
+use strata::counts::CountRule;
+use strata::float::unit_f32_from_u32;
+use strata::samplers::{Epochs, MAX_SEQUENCE_LEN};
+use strata::{Error, Point2, Progression, Result, Sampler, Seed, StrataGrid};
 
 /// The default number of best-candidate candidates (as in pmj-cpp and Helmer's code).
 pub const DEFAULT_CANDIDATES: u32 = 100;
@@ -73,7 +58,6 @@ pub const DEFAULT_CANDIDATES: u32 = 100;
 pub const MAX_CANDIDATES: u32 = 1 << 16;
 
 /// The candidates parameter of the best-candidate variants.
-#[cfg(feature = "std")]
 const CANDIDATES: ParameterSpec = ParameterSpec::whole(
     "candidates",
     1,
@@ -83,7 +67,6 @@ const CANDIDATES: ParameterSpec = ParameterSpec::whole(
 );
 
 /// The registry entry of `pmj`.
-#[cfg(feature = "std")]
 pub(crate) const PMJ: Entry = Entry {
     name: "pmj",
     description: "progressive multi-jittered: 1D strata and squarest grid at every power of two",
@@ -101,7 +84,6 @@ pub(crate) const PMJ: Entry = Entry {
 };
 
 /// The registry entry of `pmjbn`.
-#[cfg(feature = "std")]
 pub(crate) const PMJBN: Entry = Entry {
     name: "pmjbn",
     description: "pmj with best-candidate blue noise (--candidates K, default 100)",
@@ -124,7 +106,6 @@ pub(crate) const PMJBN: Entry = Entry {
 };
 
 /// The registry entry of `pmj02`.
-#[cfg(feature = "std")]
 pub(crate) const PMJ02: Entry = Entry {
     name: "pmj02",
     description: "progressive (0,m,2)-nets at every power of two (Pharr's strata enumeration)",
@@ -153,33 +134,6 @@ pub fn class2(index: u64) -> u8 {
     class4(index) >> 1
 }
 
-/// The stratification grids of a prefix of `n` points of a PMJ-family sequence: for a power of
-/// two `2^m`, the squarest grid(s) first, then the 1D strata; for pmj02 every elementary shape.
-pub(crate) fn pmj_grids(n: u64, all_shapes: bool) -> Vec<StrataGrid> {
-    if n == 0 || !n.is_power_of_two() || n > 1 << 31 {
-        return Vec::new();
-    }
-    let m = n.trailing_zeros();
-    let g = |a: u32| StrataGrid {
-        columns: 1 << a,
-        rows: 1 << (m - a),
-    };
-    let mut grids = vec![g(m / 2)];
-    if m % 2 == 1 {
-        grids.push(g(m / 2 + 1));
-    }
-    if all_shapes {
-        grids.extend(
-            (0..=m)
-                .filter(|&a| a != m / 2 && !(m % 2 == 1 && a == m / 2 + 1))
-                .map(g),
-        );
-    } else if m > 0 {
-        grids.push(g(m));
-        grids.push(g(0));
-    }
-    grids
-}
 
 /// A PMJ-family sequence built by construction (pmj, pmjbn, pmj02).
 ///
@@ -194,7 +148,6 @@ pub(crate) fn pmj_grids(n: u64, all_shapes: bool) -> Vec<StrataGrid> {
 /// }
 /// assert!(cells.iter().all(|&c| c == 1));
 /// ```
-#[cfg(feature = "std")]
 #[derive(Clone, Debug)]
 pub struct Pmj {
     epochs: Epochs,
@@ -203,7 +156,6 @@ pub struct Pmj {
     points: Vec<[u32; 2]>,
 }
 
-#[cfg(feature = "std")]
 impl Pmj {
     fn with_variant(variant: Variant, seed: Seed) -> Self {
         let epochs = Epochs::new(seed, MAX_SEQUENCE_LEN);
@@ -264,7 +216,7 @@ impl Pmj {
     /// Sample `index` (`< 2^32`), generating the sequence up to it.
     pub fn generate(&mut self, index: u32) -> Point2 {
         let p = self.generate_u32(index);
-        Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]))
+        [unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1])]
     }
 
     /// The old name of [`generate_u32`](Self::generate_u32).
@@ -291,7 +243,6 @@ impl Pmj {
     }
 }
 
-#[cfg(feature = "std")]
 fn check_candidates(name: &'static str, candidates: u32) -> Result<u32> {
     if candidates == 0 || candidates > MAX_CANDIDATES {
         return Err(Error::parameter(
@@ -304,7 +255,6 @@ fn check_candidates(name: &'static str, candidates: u32) -> Result<u32> {
     Ok(candidates)
 }
 
-#[cfg(feature = "std")]
 impl Sampler for Pmj {
     fn name(&self) -> &'static str {
         match self.variant {
@@ -329,7 +279,7 @@ impl Sampler for Pmj {
     }
 
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
-        pmj_grids(n, matches!(self.variant, Variant::Pmj02 { .. }))
+        StrataGrid::net(n, matches!(self.variant, Variant::Pmj02 { .. }))
     }
 }
 
@@ -351,7 +301,7 @@ mod tests {
 
     #[test]
     fn grids_list_the_squarest_first() {
-        let g = pmj_grids(32, false);
+        let g = StrataGrid::net(32, false);
         assert_eq!(
             g[0],
             StrataGrid {
@@ -366,7 +316,7 @@ mod tests {
                 rows: 4
             }
         );
-        assert_eq!(pmj_grids(32, true).len(), 6);
-        assert!(pmj_grids(33, true).is_empty());
+        assert_eq!(StrataGrid::net(32, true).len(), 6);
+        assert!(StrataGrid::net(33, true).is_empty());
     }
 }

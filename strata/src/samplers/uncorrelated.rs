@@ -9,34 +9,15 @@
 //! hypercube sampling (of which this is a special case).
 
 use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
-use crate::entry::{Built, CountRule, Entry, Family, Rates};
+use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, hash_u64};
 use crate::prelude::*;
 use crate::sampler::{Seed, StrataGrid};
 
-/// The registry entry of `uncorrelated`.
-pub(crate) const ENTRY: Entry = Entry {
-    name: "uncorrelated",
-    description: "uncorrelated jitter: jittered pairs (0,1), (2,3), ... in random orders (N = s^2)",
-    paper: "Cook 1986",
-    family: Family::Multidim,
-    progressive: false,
-    counts: CountRule::Square,
-    parameters: &[],
-    promise: "every pair `(2k, 2k+1)` jittered on `s x s`",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: true,
-    build: |p| {
-        let s = UncorrelatedJitter::new(p.count, p.dims, p.sampler_seed())?;
-        Ok(match p.dims {
-            2 => Built::two(s),
-            _ => Built::nd(s),
-        })
-    },
-};
+/// The name of the sampler.
+const NAME: &str = "uncorrelated";
+
 
 /// Uncorrelated jitter in `D` dimensions: `N = s^2` (any `N` when `D = 1`).
 ///
@@ -63,12 +44,12 @@ impl UncorrelatedJitter {
     /// Sets of `count` points in `dims` (1 to [`MAX_DIMENSIONS`]) dimensions; `count` must be a
     /// perfect square when `dims >= 2`.
     pub fn new(count: u64, dims: u32, seed: Seed) -> crate::Result<Self> {
-        check_dims(ENTRY.name, dims, MAX_DIMENSIONS, "")?;
+        check_dims(NAME, dims, MAX_DIMENSIONS, "")?;
         let (n, side) = if dims >= 2 {
-            let n = ENTRY.counts.check(ENTRY.name, count)?;
+            let n = CountRule::Square.check(NAME, count)?;
             (n, n.isqrt())
         } else {
-            (CountRule::Any.check(ENTRY.name, count)?, 1)
+            (CountRule::Any.check(NAME, count)?, 1)
         };
         Ok(UncorrelatedJitter {
             count: n,
@@ -89,7 +70,7 @@ impl UncorrelatedJitter {
 }
 
 impl Blocks for UncorrelatedJitter {
-    const NAME: &'static str = ENTRY.name;
+    const NAME: &'static str = NAME;
 
     fn set_len(&self) -> u32 {
         self.count()

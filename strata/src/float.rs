@@ -94,9 +94,10 @@ pub fn f32_in_stratum(k: u64, n: u64, u: f64) -> f32 {
 const MAX_SIMD_STRATA: f64 = 2_147_483_648.0;
 
 /// `n` equal strata of `[0,1)`, for placing points inside a given stratum as `f32` (see
-/// [`f32_in_stratum`] for the guarantee).
+/// [`f32_in_stratum`] for the guarantee): the reciprocal computed once, for samplers that place
+/// many points on one grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Strata {
+pub struct Strata {
     n: f64,
     inv_n: f64,
 }
@@ -104,7 +105,7 @@ pub(crate) struct Strata {
 impl Strata {
     /// `n >= 1` strata (`n = 0` is treated as 1).
     #[inline]
-    pub(crate) const fn new(n: u64) -> Self {
+    pub const fn new(n: u64) -> Self {
         let n = if n == 0 { 1.0 } else { n as f64 };
         Strata { n, inv_n: 1.0 / n }
     }
@@ -129,7 +130,7 @@ impl Strata {
             // SAFETY: SSE2 is part of the x86_64 baseline; k < n <= 2^31 fits in i32.
             return unsafe { self.place2_sse2(k, jitter) };
         }
-        Point2::new(self.place(k[0], jitter[0]), self.place(k[1], jitter[1]))
+        [self.place(k[0], jitter[0]), self.place(k[1], jitter[1])]
     }
 
     /// [`place2`](Strata::place2) in SSE2: both coordinates in the two lanes of one register,
@@ -160,7 +161,7 @@ impl Strata {
             let bits = _mm_add_epi32(bits, _mm_cmpgt_epi32(bits, one_minus));
             let mut out = [0f32; 4];
             _mm_storeu_ps(out.as_mut_ptr(), _mm_castsi128_ps(bits));
-            Point2::new(out[0], out[1])
+            [out[0], out[1]]
         }
     }
 
@@ -230,18 +231,18 @@ mod tests {
                 let k = [(h % n) as u32, ((h >> 20) % n) as u32];
                 let j = [(h >> 7) as u32, (h >> 29) as u32];
                 let p = strata.place2(k, j);
-                assert_eq!(p.x.to_bits(), strata.place(k[0], j[0]).to_bits());
-                assert_eq!(p.y.to_bits(), strata.place(k[1], j[1]).to_bits());
+                assert_eq!(p[0].to_bits(), strata.place(k[0], j[0]).to_bits());
+                assert_eq!(p[1].to_bits(), strata.place(k[1], j[1]).to_bits());
                 if n <= 1 << 23 {
-                    assert_eq!((p.x as f64 * n as f64) as u32, k[0]);
-                    assert_eq!((p.y as f64 * n as f64) as u32, k[1]);
+                    assert_eq!((p[0] as f64 * n as f64) as u32, k[0]);
+                    assert_eq!((p[1] as f64 * n as f64) as u32, k[1]);
                 }
             }
             // the extremes of the last stratum
             let last = (n - 1) as u32;
             for j in [0, 1, u32::MAX - 1, u32::MAX] {
                 let p = strata.place2([last, 0], [j, j]);
-                assert!(p.x < 1.0 && p.y < 1.0);
+                assert!(p[0] < 1.0 && p[1] < 1.0);
             }
         }
     }

@@ -19,13 +19,16 @@
 //! with Owen-scrambled Sobol' for rendering once padded: `render` measures it.
 
 use super::{BlockCursor, Blocks, Epochs, check_dims};
-use crate::entry::{Built, CountRule, Entry, Family, Rates, fibonacci_numbers};
+use crate::counts::{CountRule, fibonacci_numbers};
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
 use crate::hash::{hash_u64, stream_seed};
 use crate::prelude::*;
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 use crate::scramble::Pair;
+
+/// The name of the Fibonacci lattice sampler.
+const FIBONACCI: &str = "fibonacci";
 
 /// The first 100 components of Cools, Kuo and Nuyens' embedded base-2 generating vector
 /// (`lattice-32001-1024-1048576.3600`); all odd.
@@ -44,44 +47,7 @@ pub const GENERATOR: [u32; 100] = [
 /// The registered name of the lattice.
 const LATTICE_NAME: &str = "lattice";
 
-/// The registry entry of `lattice`.
-pub(crate) const LATTICE: Entry = Entry {
-    name: LATTICE_NAME,
-    description: "extensible rank-1 lattice (Cools-Kuo-Nuyens vector), toroidally shifted, progressive, up to 100 --dims",
-    paper: "Cools, Kuo, Nuyens 2006",
-    family: Family::Qmc,
-    progressive: true,
-    counts: CountRule::Any,
-    parameters: &[],
-    promise: "a rank-1 lattice at every `2^m` (1D strata in every dimension)",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: true,
-    build: |p| {
-        Ok(match p.dims {
-            2 => Built::two(Lattice::new(p.sampler_seed())),
-            d => Built::nd(LatticeNd::new(d, p.sampler_seed())?),
-        })
-    },
-};
 
-/// The registry entry of `fibonacci`.
-pub(crate) const FIBONACCI: Entry = Entry {
-    name: "fibonacci",
-    description: "Fibonacci lattice, N = F_k points with z = (1, F_(k-1)), toroidally shifted",
-    paper: "Niederreiter 1992",
-    family: Family::Qmc,
-    progressive: false,
-    counts: CountRule::Fibonacci,
-    parameters: &[],
-    promise: "a rank-1 lattice: 1D strata in x and y",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
-    build: |p| Ok(Built::two(Fibonacci::new(p.count, p.sampler_seed())?)),
-};
 
 /// Dimensions 0 and 1 of the lattice point whose radical inverse is `r` (in 32-bit fixed point
 /// `phi_2(i) 2^32` is the bit reversal of `i`), shifted on the torus by `shift`: the point
@@ -128,7 +94,7 @@ impl Lattice {
     pub fn sample(&self, index: u32) -> Point2 {
         let shifts = [shift(self.key, 0), shift(self.key, 1)];
         let [x, y] = point_lanes(index.reverse_bits(), shifts).unit_f32();
-        Point2::new(x, y)
+        [x, y]
     }
 }
 
@@ -228,7 +194,7 @@ impl SamplerNd for LatticeNd {
 /// use strata::{Sampler, Seed, samplers::Fibonacci};
 /// let mut s = Fibonacci::new(89, Seed(2)).unwrap();
 /// let p = s.next_sample();
-/// assert!(p.x < 1.0 && p.y < 1.0);
+/// assert!(p[0] < 1.0 && p[1] < 1.0);
 /// assert!(Fibonacci::new(90, Seed(2)).is_err()); // 89 or 144
 /// ```
 #[derive(Clone, Debug)]
@@ -242,7 +208,7 @@ pub struct Fibonacci {
 impl Fibonacci {
     /// Sets of `count` points, a Fibonacci number (1, 2, 3, 5, 8, ..., at most `2^31`).
     pub fn new(count: u64, seed: Seed) -> Result<Self> {
-        let n = FIBONACCI.counts.check(FIBONACCI.name, count)?;
+        let n = CountRule::Fibonacci.check(FIBONACCI, count)?;
         let z = fibonacci_numbers()
             .take_while(|&f| f < n as u64)
             .last()
@@ -257,7 +223,7 @@ impl Fibonacci {
 }
 
 impl Blocks for Fibonacci {
-    const NAME: &'static str = FIBONACCI.name;
+    const NAME: &'static str = FIBONACCI;
 
     fn set_len(&self) -> u32 {
         self.n
@@ -281,7 +247,7 @@ impl Blocks for Fibonacci {
             unit_f32_from_u32(v as u32)
         };
         let y = (i as u64 * self.z as u64) % n;
-        Point2::new(coord(i as u64, self.shift[0]), coord(y, self.shift[1]))
+        [coord(i as u64, self.shift[0]), coord(y, self.shift[1])]
     }
 
     fn grids(&self) -> Vec<StrataGrid> {
@@ -322,8 +288,8 @@ mod tests {
         let mut rows = vec![0; 144];
         for _ in 0..144 {
             let p = s.next_sample();
-            cols[(p.x as f64 * 144.0) as usize] += 1;
-            rows[(p.y as f64 * 144.0) as usize] += 1;
+            cols[(p[0] as f64 * 144.0) as usize] += 1;
+            rows[(p[1] as f64 * 144.0) as usize] += 1;
         }
         assert!(cols.iter().chain(&rows).all(|&c| c == 1));
     }

@@ -1,10 +1,8 @@
 //! The [`Sampler`] traits (2D and D-dimensional), the point type, and the shape of a stream.
 
 use crate::prelude::*;
-use glam::Vec2;
-
-/// A 2D sample point in `[0,1)^2`.
-pub type Point2 = Vec2;
+/// A 2D sample point in `[0,1)^2`: `[x, y]` (`glam::Vec2::from(p)` and the like convert it).
+pub type Point2 = [f32; 2];
 
 /// The seed of a sampler: every random choice it makes is derived from it, and the same seed
 /// gives the same bits on every platform. A type of its own, so that a count and a seed cannot
@@ -45,6 +43,35 @@ pub struct StrataGrid {
 }
 
 impl StrataGrid {
+    /// The grids of the elementary intervals of a (0,m,2)-net of `n = 2^m` points (`n` at most
+    /// `2^31`; none otherwise): the squarest shape first (both, when `m` is odd), then every
+    /// other shape `2^a x 2^(m-a)` (`all_shapes`) or only the 1D ones `n x 1` and `1 x n`.
+    pub fn net(n: u64, all_shapes: bool) -> Vec<StrataGrid> {
+        if n == 0 || !n.is_power_of_two() || n > 1 << 31 {
+            return Vec::new();
+        }
+        let m = n.trailing_zeros();
+        let g = |a: u32| StrataGrid {
+            columns: 1 << a,
+            rows: 1 << (m - a),
+        };
+        let mut grids = vec![g(m / 2)];
+        if m % 2 == 1 {
+            grids.push(g(m / 2 + 1));
+        }
+        if all_shapes {
+            grids.extend(
+                (0..=m)
+                    .filter(|&a| a != m / 2 && !(m % 2 == 1 && a == m / 2 + 1))
+                    .map(g),
+            );
+        } else if m > 0 {
+            grids.push(g(m));
+            grids.push(g(0));
+        }
+        grids
+    }
+
     /// The two 1D stratifications of `n` points: `n x 1` and `1 x n` (a Latin-hypercube
     /// promise, one point per `1/n` along each axis).
     pub(crate) fn axes(n: u32) -> Vec<StrataGrid> {
@@ -220,7 +247,7 @@ impl SamplerNd for Box<dyn Sampler> {
     }
     fn next_point(&mut self, out: &mut [f32]) {
         let p = (**self).next_sample();
-        for (o, v) in out.iter_mut().zip([p.x, p.y]) {
+        for (o, v) in out.iter_mut().zip(p) {
             *o = v;
         }
     }

@@ -7,50 +7,17 @@
 //! axes (low power at `u = 0` or `v = 0`) and is white elsewhere.
 
 use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
-use crate::entry::{Built, CountRule, Entry, Family, Rates};
+use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::{Permutation, Stream, hash_u64};
 use crate::prelude::*;
 use crate::sampler::{Point2, Seed, StrataGrid};
 
-/// The registry entry of `nrooks`.
-pub(crate) const NROOKS: Entry = Entry {
-    name: "nrooks",
-    description: "N-rooks / 2D Latin hypercube, one point per row and column",
-    paper: "Shirley 1991",
-    family: Family::Classic,
-    progressive: false,
-    counts: CountRule::Any,
-    parameters: &[],
-    promise: "one point per row and column",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
-    build: |p| Ok(Built::two(NRooks::new(p.count, p.sampler_seed())?)),
-};
+/// The names of the samplers.
+const NROOKS: &str = "nrooks";
+const LATIN: &str = "latin";
 
-/// The registry entry of `latin`.
-pub(crate) const LATIN: Entry = Entry {
-    name: "latin",
-    description: "Latin hypercube in D dimensions (--dims D): one point per 1/N stratum of every axis",
-    paper: "McKay et al. 1979",
-    family: Family::Multidim,
-    progressive: false,
-    counts: CountRule::Any,
-    parameters: &[],
-    promise: "every 1D projection into `N` strata",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: true,
-    build: |p| {
-        Ok(match p.dims {
-            2 => Built::two(LatinHypercube::new(p.count, 2, p.sampler_seed())?),
-            d => Built::nd(LatinHypercube::new(p.count, d, p.sampler_seed())?),
-        })
-    },
-};
+
 
 /// N-rooks (2D Latin hypercube): any `N >= 1`, one point per `1/N` column and per `1/N` row.
 ///
@@ -80,7 +47,7 @@ pub struct NRooks {
 impl NRooks {
     /// N-rooks sets of `count >= 1` points seeded by `seed`.
     pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
-        let n = NROOKS.counts.check(NROOKS.name, count)?;
+        let n = CountRule::Any.check(NROOKS, count)?;
         let identity = Permutation::new(n, 0).expect("n >= 1");
         Ok(NRooks {
             count: n,
@@ -99,7 +66,7 @@ impl NRooks {
 }
 
 impl Blocks for NRooks {
-    const NAME: &'static str = NROOKS.name;
+    const NAME: &'static str = NROOKS;
 
     fn set_len(&self) -> u32 {
         self.count()
@@ -153,8 +120,8 @@ pub struct LatinHypercube {
 impl LatinHypercube {
     /// Sets of `count >= 1` points in `dims` (1 to [`MAX_DIMENSIONS`]) dimensions.
     pub fn new(count: u64, dims: u32, seed: Seed) -> crate::Result<Self> {
-        let n = LATIN.counts.check(LATIN.name, count)?;
-        check_dims(LATIN.name, dims, MAX_DIMENSIONS, "")?;
+        let n = CountRule::Any.check(LATIN, count)?;
+        check_dims(LATIN, dims, MAX_DIMENSIONS, "")?;
         Ok(LatinHypercube {
             count: n,
             dims,
@@ -172,7 +139,7 @@ impl LatinHypercube {
 }
 
 impl Blocks for LatinHypercube {
-    const NAME: &'static str = LATIN.name;
+    const NAME: &'static str = LATIN;
 
     fn set_len(&self) -> u32 {
         self.count()

@@ -22,13 +22,13 @@
 //! Stirling numbers of the second kind mod 2, which its tests check independently). The
 //! path-tracer adapter's `pmj02` is the same digital sequence, Owen-scrambled.
 
-use crate::entry::{Built, CountRule, Entry, Family, Rates};
+
 use crate::float::unit_f32_from_u32;
 use crate::hash::{hash_u64, stream_seed};
 use crate::prelude::*;
 use crate::sampler::{Point2, Progression, Sampler, Seed, StrataGrid};
 
-use super::{MAX_SEQUENCE_LEN, pmj_grids};
+use super::MAX_SEQUENCE_LEN;
 use crate::samplers::Epochs;
 
 /// The partner offsets of the construction, from the generator matrices of pmj02 as a digital
@@ -54,22 +54,6 @@ pub struct Pmj02Stochastic {
 /// The registered name.
 const NAME: &str = "pmj02-stochastic";
 
-/// The registry entry of `pmj02-stochastic`.
-pub(crate) const ENTRY: Entry = Entry {
-    name: NAME,
-    description: "pmj02 by stochastic generation, O(1) per sample",
-    paper: "Helmer, Christensen, Kensler 2021",
-    family: Family::Pmj,
-    progressive: true,
-    counts: CountRule::Any,
-    parameters: &[],
-    promise: "as `pmj02`, O(1) per sample, stratified classes",
-    rates: Rates::NETS,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
-    build: |p| Ok(Built::two(Pmj02Stochastic::new(p.sampler_seed()))),
-};
 
 impl Pmj02Stochastic {
     /// The sequence seeded by `seed`.
@@ -133,7 +117,7 @@ impl Pmj02Stochastic {
     /// Sample `index`, generating the sequence up to it.
     pub fn generate(&mut self, index: u32) -> Point2 {
         let p = self.generate_u32(index);
-        Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]))
+        [unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1])]
     }
 
     /// The old name of [`generate_u32`](Self::generate_u32).
@@ -164,7 +148,7 @@ impl Pmj02Stochastic {
     /// (The seed last, as in every stateless function of the crate.)
     pub fn point(index: u32, seed: Seed) -> Point2 {
         let p = Self::point_u32(index, seed);
-        Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]))
+        [unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1])]
     }
 
     /// The old form of [`point`](Self::point), the seed first.
@@ -225,7 +209,7 @@ impl Sampler for Pmj02Stochastic {
 
     #[inline]
     fn next_sample(&mut self) -> Point2 {
-        let mut p = [Point2::ZERO];
+        let mut p = [[0.0; 2]];
         self.fill(&mut p);
         p[0]
     }
@@ -244,14 +228,14 @@ impl Sampler for Pmj02Stochastic {
                 .iter_mut()
                 .zip(&self.points[start as usize..(start + k) as usize])
             {
-                *o = Point2::new(unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1]));
+                *o = [unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1])];
             }
             rest = tail;
         }
     }
 
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
-        pmj_grids(n, true)
+        StrataGrid::net(n, true)
     }
 }
 

@@ -50,6 +50,8 @@
 //! `halton` and `jittered` divide by the block size and hash with 64-bit arithmetic: they run on
 //! the CPU only. The other eight are the [kernel](super::kernel)'s, 32-bit throughout.
 
+use alloc::sync::Arc;
+
 use super::SampleIndex;
 use super::kernel::{self, DrawKeys, PixelKeys};
 use crate::digital::{ByteTables, PMJ02, PairTables, SOBOL01};
@@ -58,7 +60,7 @@ use crate::float::Strata;
 use crate::hash::{DivMod, GOLDEN_GAMMA, Permutation, hash_u64, mix64};
 use crate::prelude::*;
 use crate::sampler::StrataGrid;
-use crate::samplers::{halton, pmj};
+use crate::samplers::halton;
 use crate::scramble::{Lanes, X2, join, owen_scramble_lanes};
 
 /// The largest block of [`Sequence::halton`]: `2^31`.
@@ -285,7 +287,7 @@ pub struct Sequence {
     group: u32,
     /// The byte tables `zjoint` (Sobol') and `zquad` (Faure, base 4) read (empty for the
     /// others).
-    joint: &'static [ByteTables],
+    joint: Arc<[ByteTables]>,
 }
 
 impl PartialEq for Sequence {
@@ -317,18 +319,18 @@ pub const MAX_Z_RESOLUTION: u32 = 1 << 16;
 pub const DEFAULT_Z_RESOLUTION: [u32; 2] = [256, 256];
 
 impl Sequence {
-    const fn of(kind: Kind) -> Self {
+    fn of(kind: Kind) -> Self {
         Sequence {
             kind,
             resolution: [0, 0],
             digital: Self::digital_table(kind),
             group: 1,
-            joint: &[],
+            joint: Arc::from([]),
         }
     }
 
     /// The digital sequence a kind reads, if it is a digital one.
-    const fn digital_table(kind: Kind) -> Option<&'static PairTables> {
+    fn digital_table(kind: Kind) -> Option<&'static PairTables> {
         match kind {
             Kind::Sobol | Kind::ZSobol => Some(&SOBOL01),
             Kind::Pmj02 | Kind::ZPmj02 => Some(&PMJ02),
@@ -386,7 +388,7 @@ impl Sequence {
             resolution: [width, height],
             digital: Self::digital_table(kind),
             group: 1,
-            joint: &[],
+            joint: Arc::from([]),
         })
     }
 
@@ -418,23 +420,12 @@ impl Sequence {
                 format!("a power of two from 2 to {MAX_JOINT_GROUP} dimensions"),
             ));
         }
-        let tables = crate::digital::sobol_all_byte_tables();
-        if tables.len() <= group as usize {
-            return Err(Error::parameter(
-                context,
-                "group",
-                group,
-                format!(
-                    "at most {} dimensions in this build, which has {} Sobol' dimensions \
-                     (enable the `joe-kuo` feature for 1000)",
-                    tables.len().saturating_sub(1),
-                    tables.len()
-                ),
-            ));
-        }
         let mut s = Self::z(Kind::ZJoint, context, width, height)?;
         s.group = group;
-        s.joint = tables;
+        s.joint = crate::digital::SOBOL[..=group as usize]
+            .iter()
+            .map(crate::digital::byte_tables)
+            .collect();
         Ok(s)
     }
 
@@ -452,21 +443,14 @@ impl Sequence {
     pub fn zquad(width: u32, height: u32) -> Result<Self> {
         let mut s = Self::z(Kind::ZQuad, "Sequence::zquad", width, height)?;
         s.group = 4;
-        s.joint = &crate::digital::FAURE4;
+        s.joint = Arc::from(&crate::digital::FAURE4[..]);
         Ok(s)
     }
 
     /// The names the adapter knows (`zjoint` also as `zjoint-G`, groups of `G` dimensions).
-    #[cfg(feature = "joe-kuo")]
-    pub const NAMES: [&'static str; 10] = [
+    pub const NAMES: &'static [&'static str] = &[
         "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02", "zquad",
         "zjoint",
-    ];
-
-    /// The names the adapter knows (with the `joe-kuo` feature also `zjoint`).
-    #[cfg(not(feature = "joe-kuo"))]
-    pub const NAMES: [&'static str; 9] = [
-        "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02", "zquad",
     ];
 
     /// The table of every sequence (Markdown: name, constructor, what the samples-per-pixel
@@ -568,7 +552,7 @@ impl Sequence {
         if !matches!(self.kind, Kind::ZJoint | Kind::ZQuad) {
             return None;
         }
-        let dims = &self.joint[..=self.group as usize];
+        let dims = &self.joint[..];
         let mut words = Vec::with_capacity(1 + 32 * dims.len());
         words.push(self.group);
         for t in dims {
@@ -627,7 +611,7 @@ impl Sequence {
             Kind::Lattice => kernel::lattice::<X2>(&k(), index).unit_f32(),
             Kind::Jittered => jittered(&k(), index.get(), spp),
             Kind::ZJoint | Kind::ZQuad => {
-                kernel::joint::<X2>(self.joint, keys, self.group_start(dim), dim, index).unit_f32()
+                kernel::joint::<X2>(&self.joint, keys, self.group_start(dim), dim, index).unit_f32()
             }
             Kind::Halton => {
                 let k = k();
@@ -738,7 +722,7 @@ impl Sequence {
             }
             Kind::Lattice => kernel::lattice::<[u32; 2]>(&k, index),
             Kind::ZJoint | Kind::ZQuad => {
-                kernel::joint::<[u32; 2]>(self.joint, keys, self.group_start(dim), dim, index)
+                kernel::joint::<[u32; 2]>(&self.joint, keys, self.group_start(dim), dim, index)
             }
             Kind::Jittered | Kind::Halton => return None,
         })
@@ -801,7 +785,7 @@ impl Sequence {
                     spp as u64,
                     format!(
                         "jittered needs a square number of samples per pixel (nearest allowed: {})",
-                        crate::error::nearest_squares(spp as u64)
+                        crate::counts::nearest_squares(spp as u64)
                     ),
                 ));
             }
@@ -829,9 +813,9 @@ impl Sequence {
                     rows: 3u32.pow(b),
                 }]
             }
-            Kind::Pmj02 | Kind::Sobol => pmj::pmj_grids(n, true),
+            Kind::Pmj02 | Kind::Sobol => StrataGrid::net(n, true),
             // inside a pixel's block of the global sequence: an aligned block, a net
-            Kind::ZSobol | Kind::ZPmj02 if n <= 1u64 << spp.z_bits() => pmj::pmj_grids(n, true),
+            Kind::ZSobol | Kind::ZPmj02 if n <= 1u64 << spp.z_bits() => StrataGrid::net(n, true),
             // every draw's two coordinates are 1D (0, 1)-sequences (only the first draw of a
             // group is a 2D net); the same grids as the lattice's
             Kind::ZJoint | Kind::ZQuad
@@ -870,7 +854,6 @@ fn jittered(k: &DrawKeys, index: u32, spp: &SamplesPerPixel) -> [f32; 2] {
     let h = hash_u64(key, c as u64);
     spp.strata
         .place2([col, row], [h as u32, (h >> 32) as u32])
-        .to_array()
 }
 
 /// `halton`: the Halton index the sample is sent to (its block's members in a random order).

@@ -38,14 +38,14 @@ use crate::scramble::{
 /// (on the CPU: [`Key::new`]); a shader receives them as a uniform
 /// ([`PixelSampler::gpu_parameters`](super::PixelSampler::gpu_parameters)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Key([u32; 4]);
+pub(crate) struct Key([u32; 4]);
 
 /// The stream of the seed from which the [`Key`] is expanded.
 const KEY_STREAM: u64 = 0x6b65_7934;
 
 impl Key {
     /// The key of `seed`.
-    pub fn new(seed: Seed) -> Key {
+    pub(crate) fn new(seed: Seed) -> Key {
         let (a, b) = (
             stream_seed(seed.0, KEY_STREAM),
             stream_seed(seed.0, KEY_STREAM + 1),
@@ -54,13 +54,13 @@ impl Key {
     }
 
     /// The key's four words.
-    pub fn words(&self) -> [u32; 4] {
+    pub(crate) fn words(&self) -> [u32; 4] {
         self.0
     }
 
     /// The key of the samples `e 2^32 ..< (e + 1) 2^32` (`e >= 1`): a fresh, independent copy
     /// of every sequence for each block of `2^32` samples. Epoch 0 is the key itself.
-    pub fn epoch(&self, e: u32) -> Key {
+    pub(crate) fn epoch(&self, e: u32) -> Key {
         if e == 0 {
             return *self;
         }
@@ -227,18 +227,26 @@ pub(crate) fn uniform_block(index: u32, bits: u32, key: u32, dim: u32) -> u32 {
     (index & !mask) | (gf_mul(alpha, index & mask, bits) ^ beta)
 }
 
-/// The keys of one draw (see the [module docs](self)).
+/// The keys of one draw: what randomizes the draw at a dimension of a pixel (public for tests
+/// that study the randomization itself, such as the lab's pair test of index shuffles).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct DrawKeys {
+pub struct DrawKeys {
     /// The index shuffle's key (also the base of the value keys).
-    pub(crate) h: u32,
+    pub h: u32,
     /// The index shuffle's even multiplier.
-    pub(crate) e: u32,
+    pub e: u32,
     /// The keys of the two values' scrambles (or shifts).
-    pub(crate) v: [u32; 2],
+    pub v: [u32; 2],
 }
 
 impl DrawKeys {
+    /// The keys of the draw at `dim` of `pixel` for `seed`, in the first `2^32` samples: the
+    /// keys [`PixelSampler`](super::PixelSampler) gives the draws of the sequences that are
+    /// not Z-ordered.
+    pub fn of(seed: Seed, pixel: [u32; 2], dim: u32) -> Self {
+        DrawKeys::new(&pixel_keys(&Key::new(seed), pixel), dim)
+    }
+
     /// The keys of the draw at `dim` of a pixel (or tile) with keys `p`.
     #[inline(always)]
     pub(crate) fn new(p: &PixelKeys, dim: u32) -> Self {

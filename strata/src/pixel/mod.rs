@@ -165,15 +165,14 @@
 //! # Ok::<(), strata::Error>(())
 //! ```
 
-pub mod kernel;
+mod kernel;
 mod rng;
 mod sequence;
 #[cfg(feature = "std")]
 pub mod warp;
 
-use glam::{Vec2, Vec4};
-
-pub use kernel::Key;
+pub use kernel::DrawKeys;
+use kernel::Key;
 pub use rng::PixelRng;
 use sequence::SamplesPerPixel;
 pub use sequence::{
@@ -612,7 +611,7 @@ impl PixelSampler {
     /// next two dimensions too and keep it for the next call, as [`get_4d`](Self::get_4d)
     /// does: the same values, for little more than the cost of one draw.
     #[inline(always)]
-    pub fn get_2d(&mut self) -> Vec2 {
+    pub fn get_2d(&mut self) -> [f32; 2] {
         self.check_budget(2);
         let dim = self.dim;
         let v = if dim == self.next_dim {
@@ -627,7 +626,7 @@ impl PixelSampler {
             self.sequence.sample_2d(&keys, index, dim, &self.spp)
         };
         self.dim = dim.wrapping_add(2);
-        Vec2::from_array(v)
+        v
     }
 
     /// The next four dimensions as two 2D draws `(x0, y0, x1, y1)`: the same values as two
@@ -635,11 +634,11 @@ impl PixelSampler {
     /// sequences run four lanes at a time), for renderers that draw a light sample and a
     /// direction at once.
     #[inline]
-    pub fn get_4d(&mut self) -> Vec4 {
+    pub fn get_4d(&mut self) -> [f32; 4] {
         self.check_budget(4);
         let v = self.draw_4(self.dim);
         self.dim = self.dim.wrapping_add(4);
-        Vec4::from_array(v)
+        v
     }
 
     /// The draws at `dim` and `dim + 2` of the current sample.
@@ -657,7 +656,7 @@ impl PixelSampler {
 
     /// The position inside the pixel: a 2D draw meant for dimensions 0-1 (call it first).
     #[inline]
-    pub fn get_pixel_2d(&mut self) -> Vec2 {
+    pub fn get_pixel_2d(&mut self) -> [f32; 2] {
         self.get_2d()
     }
 
@@ -683,9 +682,7 @@ impl PixelSampler {
         self.start_pixel_sample(pixel, index, dim);
         let mut pairs = out.chunks_exact_mut(2);
         for pair in &mut pairs {
-            let v = self.get_2d();
-            pair[0] = v.x;
-            pair[1] = v.y;
+            pair.copy_from_slice(&self.get_2d());
         }
         if let [last] = pairs.into_remainder() {
             *last = self.get_1d();
@@ -706,24 +703,17 @@ impl PixelSampler {
         self.sequence.sample_1d(&keys, index, dim, &self.spp)
     }
 
-    /// The old name of [`sample_1d`](Self::sample_1d) (the same values).
-    #[deprecated(since = "0.1.0", note = "renamed `sample_1d`, beside `sample_2d`")]
-    pub fn sample(&self, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
-        self.sample_1d(pixel, index, dim)
-    }
-
     /// Stateless: the 2D value [`get_2d`](Self::get_2d) gives at `dim` for `(pixel, index)`.
-    pub fn sample_2d(&self, pixel: [u32; 2], index: u64, dim: u32) -> Vec2 {
+    pub fn sample_2d(&self, pixel: [u32; 2], index: u64, dim: u32) -> [f32; 2] {
         let c = self.stateless(pixel, index);
         let (keys, index) = self.at(&c, dim);
-        let [x, y] = self.sequence.sample_2d(&keys, index, dim, &self.spp);
-        Vec2::new(x, y)
+        self.sequence.sample_2d(&keys, index, dim, &self.spp)
     }
 
     /// Stateless: the 4D value [`get_4d`](Self::get_4d) gives at `dim` for `(pixel, index)`.
-    pub fn sample_4d(&self, pixel: [u32; 2], index: u64, dim: u32) -> Vec4 {
+    pub fn sample_4d(&self, pixel: [u32; 2], index: u64, dim: u32) -> [f32; 4] {
         let c = self.stateless(pixel, index);
-        Vec4::from_array(self.four(&c, dim))
+        self.four(&c, dim)
     }
 
     /// Stateless: the 2D draw at `dim` for `(pixel, index)` as the [`kernel`]'s 32-bit

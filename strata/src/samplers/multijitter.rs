@@ -14,45 +14,17 @@
 //! Both are computed point by point from hashed permutations ([`Permutation`]), with no tables.
 
 use super::{BlockCursor, Blocks};
-use crate::entry::{Built, CountRule, Entry, Family, Rates};
+use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, Stream, hash_u64, hash32};
 use crate::prelude::*;
 use crate::sampler::{Point2, Seed, StrataGrid};
 
-/// The registry entry of `multijittered`.
-pub(crate) const MULTIJITTERED: Entry = Entry {
-    name: "multijittered",
-    description: "jittered and N-rooks at once (N = n^2)",
-    paper: "Chiu, Shirley, Wang 1994",
-    family: Family::Classic,
-    progressive: false,
-    counts: CountRule::Square,
-    parameters: &[],
-    promise: "jittered on `n x n` and N-rooks",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
-    build: |p| Ok(Built::two(MultiJittered::new(p.count, p.sampler_seed())?)),
-};
+/// The names of the samplers.
+const MULTIJITTERED: &str = "multijittered";
+const CMJ: &str = "cmj";
 
-/// The registry entry of `cmj`.
-pub(crate) const CMJ: Entry = Entry {
-    name: "cmj",
-    description: "correlated multi-jittered, any N",
-    paper: "Kensler 2013",
-    family: Family::Classic,
-    progressive: false,
-    counts: CountRule::Any,
-    parameters: &[],
-    promise: "multi-jittered on `m x n`, correlated shuffles",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
-    build: |p| Ok(Built::two(Cmj::new(p.count, p.sampler_seed())?)),
-};
+
 
 /// The point of cell `(col, row)` of an `m x n` grid whose x lies in sub-column `sub_x` (of `n`)
 /// and y in sub-row `sub_y` (of `m`), jittered by the two halves of `h`; `fine` holds the
@@ -117,9 +89,7 @@ pub struct MultiJittered {
 impl MultiJittered {
     /// Multi-jittered sets of `count` points seeded by `seed`; `count` must be a perfect square.
     pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
-        let n = MULTIJITTERED
-            .counts
-            .check(MULTIJITTERED.name, count)?
+        let n = CountRule::Square.check(MULTIJITTERED, count)?
             .isqrt();
         Ok(MultiJittered {
             side: DivMod::new(n).expect("side >= 1"),
@@ -138,7 +108,7 @@ impl MultiJittered {
 }
 
 impl Blocks for MultiJittered {
-    const NAME: &'static str = MULTIJITTERED.name;
+    const NAME: &'static str = MULTIJITTERED;
 
     fn set_len(&self) -> u32 {
         self.count()
@@ -208,7 +178,7 @@ pub struct Cmj {
 impl Cmj {
     /// Correlated multi-jittered sets of `count >= 1` points seeded by `seed`.
     pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
-        let count = CMJ.counts.check(CMJ.name, count)?;
+        let count = CountRule::Any.check(CMJ, count)?;
         let m = (count as u64).isqrt() as u32;
         let n = count.div_ceil(m);
         let identity = |len| Permutation::new(len, 0).expect("len >= 1");
@@ -270,7 +240,7 @@ impl Cmj {
 }
 
 impl Blocks for Cmj {
-    const NAME: &'static str = CMJ.name;
+    const NAME: &'static str = CMJ;
 
     fn set_len(&self) -> u32 {
         self.count()

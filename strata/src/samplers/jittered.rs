@@ -7,32 +7,15 @@
 //! low power near DC, no peaks. The cost is a count fixed in advance, and a square one.
 
 use super::{BlockCursor, Blocks};
-use crate::entry::{Built, CountRule, Entry, Family, Rates};
+use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::{DivMod, hash_u64};
 use crate::prelude::*;
 use crate::sampler::{Point2, Seed, StrataGrid};
 
-/// The registry entry of `jittered`.
-pub(crate) const ENTRY: Entry = Entry {
-    name: "jittered",
-    description: "one uniform point per cell of an s x s grid (N = s^2)",
-    paper: "Cook 1986",
-    family: Family::Classic,
-    progressive: false,
-    counts: CountRule::Square,
-    parameters: &[],
-    promise: "one point per cell of `s x s`",
-    rates: Rates {
-        discontinuous: Some(-1.5),
-        smooth: Some(-2.0),
-        higher: None,
-    },
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
-    build: |p| Ok(Built::two(Jittered::new(p.count, p.sampler_seed())?)),
-};
+
+/// The name of the sampler.
+const NAME: &str = "jittered";
 
 /// One uniform point per cell of an `s x s` grid (`N = s^2`), cells in row-major order.
 ///
@@ -53,7 +36,7 @@ pub struct Jittered {
 impl Jittered {
     /// Jittered sets of `count` points seeded by `seed`; `count` must be a perfect square.
     pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
-        let n = ENTRY.counts.check(ENTRY.name, count)?;
+        let n = CountRule::Square.check(NAME, count)?;
         let s = n.isqrt();
         Ok(Jittered {
             side: DivMod::new(s).expect("side >= 1"),
@@ -70,7 +53,7 @@ impl Jittered {
 }
 
 impl Blocks for Jittered {
-    const NAME: &'static str = ENTRY.name;
+    const NAME: &'static str = NAME;
 
     fn set_len(&self) -> u32 {
         self.count()

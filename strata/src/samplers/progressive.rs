@@ -9,9 +9,13 @@
 use crate::hash::stream_seed;
 use crate::sampler::Seed;
 
+/// The most samples a progressive sequence holds before it starts over with a new seed:
+/// `2^32` (its indices are 32-bit).
+pub const MAX_SEQUENCE_LEN: u64 = 1 << 32;
+
 /// Sample `next` of epoch `epoch` of a progressive sampler whose sequences hold `len` points.
 #[derive(Clone, Debug)]
-pub(crate) struct Epochs {
+pub struct Epochs {
     seed: u64,
     len: u64,
     epoch: u64,
@@ -20,7 +24,7 @@ pub(crate) struct Epochs {
 
 impl Epochs {
     /// The start of the stream.
-    pub(crate) fn new(seed: Seed, len: u64) -> Self {
+    pub fn new(seed: Seed, len: u64) -> Self {
         Epochs {
             seed: seed.0,
             len,
@@ -30,14 +34,14 @@ impl Epochs {
     }
 
     /// The key of epoch `epoch`.
-    pub(crate) fn key(&self, epoch: u64) -> u64 {
+    pub fn key(&self, epoch: u64) -> u64 {
         stream_seed(self.seed, epoch)
     }
 
     /// The index (inside its sequence) of the next sample, and the key of the new epoch when
     /// that sample starts one (never for the first epoch: the sampler set it up itself).
     #[inline]
-    pub(crate) fn advance(&mut self) -> (u64, Option<u64>) {
+    pub fn advance(&mut self) -> (u64, Option<u64>) {
         let (start, _, key) = self.take(1);
         (start, key)
     }
@@ -45,7 +49,7 @@ impl Epochs {
     /// Moves `n` samples on, as `n` calls of [`advance`](Epochs::advance) would. Returns the
     /// epoch it ends in when that differs from the one it started in (the sampler must then
     /// re-key: epoch 0 with its initial key, a later one with [`key`](Epochs::key)).
-    pub(crate) fn skip(&mut self, n: u64) -> Option<u64> {
+    pub fn skip(&mut self, n: u64) -> Option<u64> {
         // absolute position, in samples taken; a full epoch stays "exhausted" (next == len)
         // so that the next take starts the following epoch with its key, as advance does
         let p = (self.epoch as u128) * (self.len as u128) + self.next as u128 + n as u128;
@@ -65,7 +69,7 @@ impl Epochs {
     /// Up to `max` (>= 1) next samples inside one sequence: the first index, how many, and the
     /// key of the new epoch when they start one.
     #[inline]
-    pub(crate) fn take(&mut self, max: u64) -> (u64, u64, Option<u64>) {
+    pub fn take(&mut self, max: u64) -> (u64, u64, Option<u64>) {
         let mut key = None;
         if self.next == self.len {
             self.epoch += 1;

@@ -25,7 +25,8 @@ pub const GOLDEN_GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
 
 /// The named streams of randomness derived from one key. Each use of a key (a permutation, a
 /// scramble, a set of jitters) takes its own stream, so that no two uses see related bits; the
-/// values are fixed forever, since every sampler's output depends on them.
+/// values are fixed forever, since every sampler's output depends on them. (The lab's samplers
+/// name their own: orthogonal arrays `0x5eed`, Lloyd's jitter `0x110d`.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u64)]
 pub(crate) enum Stream {
@@ -43,16 +44,10 @@ pub(crate) enum Stream {
     NRooksX = 0x6c61_7469_6e58,
     /// N-rooks: the row permutation.
     NRooksY = 0x6c61_7469_6e59,
-    /// Orthogonal arrays: the sub-stratum permutations.
-    #[cfg(feature = "std")]
-    OaSubstrata = 0x5eed,
     /// Sobol': the scramble of a seed.
     SobolScramble = 0x50b0,
     /// Halton: the digit permutations of dimension 0 (dimension `d` adds `d`).
     HaltonDigits = 0x4a17,
-    /// Lloyd: the jitter that separates coincident points.
-    #[cfg(feature = "lloyd")]
-    LloydJitter = 0x110d,
 }
 
 impl Stream {
@@ -126,7 +121,7 @@ pub const fn hash32(x: u32, key: u32) -> u32 {
 
 /// A 32-bit key derived from a 64-bit one (for [`permute`], whose key is 32 bits).
 #[inline]
-pub(crate) const fn key32(key: u64) -> u32 {
+pub const fn key32(key: u64) -> u32 {
     (mix64(key) >> 32) as u32
 }
 
@@ -192,7 +187,7 @@ impl Permutation {
     /// [`Permutation::new`]`(d, key)` without its division, for code that builds many
     /// permutations of one length (one per row or column).
     #[inline]
-    pub(crate) const fn with_divider(len: &DivMod, key: u32) -> Self {
+    pub const fn with_divider(len: &DivMod, key: u32) -> Self {
         let d = len.divisor();
         let mask = if d == 1 {
             0
@@ -305,7 +300,7 @@ impl Permutation {
 /// Lemire's direct computation: with `M = ceil(2^64 / d)`, `n / d = floor(M n / 2^64)` for every
 /// 32-bit `n`. `d = 1` (where `M` would overflow) is handled separately.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct DivMod {
+pub struct DivMod {
     d: u32,
     m: u64,
 }

@@ -3,7 +3,7 @@
 
 use core::convert::Infallible;
 
-use rand::TryRng;
+use rand_core::TryRng;
 
 use super::PixelSampler;
 
@@ -35,7 +35,7 @@ pub struct PixelRng<'a> {
 
 impl<'a> PixelRng<'a> {
     /// The bridge over `sampler`'s current pixel sample.
-    pub fn new(sampler: &'a mut PixelSampler) -> Self {
+    pub(crate) fn new(sampler: &'a mut PixelSampler) -> Self {
         PixelRng { sampler }
     }
 

@@ -5,7 +5,7 @@
 /// The Morton (Z-order) code of a cell: the bits of `x` (below 2^16) in the even positions, of
 /// `y` in the odd ones.
 #[inline]
-pub(crate) fn morton(x: u32, y: u32) -> u32 {
+pub fn morton(x: u32, y: u32) -> u32 {
     let spread = |v: u32| {
         let mut v = v & 0xffff;
         v = (v | (v << 8)) & 0x00ff_00ff;
@@ -18,7 +18,7 @@ pub(crate) fn morton(x: u32, y: u32) -> u32 {
 
 /// The cell of a Morton code: the inverse of [`morton`].
 #[inline]
-pub(crate) fn unmorton(z: u32) -> [u32; 2] {
+pub fn unmorton(z: u32) -> [u32; 2] {
     let compact = |v: u32| {
         let mut v = v & 0x5555_5555;
         v = (v | (v >> 1)) & 0x3333_3333;

@@ -221,30 +221,9 @@ impl core::error::Error for Error {
     }
 }
 
-/// The perfect squares nearest to `n` (one if `n` is a square, else the one below and the one
-/// above), for error messages.
-pub(crate) fn nearest_squares(n: u64) -> String {
-    let r = n.isqrt();
-    if n == 0 {
-        return "1".to_string();
-    }
-    if r * r == n {
-        return format!("{n}");
-    }
-    format!("{} or {}", r * r, (r + 1) * (r + 1))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn nearest_squares_brackets_the_count() {
-        assert_eq!(nearest_squares(10), "9 or 16");
-        assert_eq!(nearest_squares(16), "16");
-        assert_eq!(nearest_squares(0), "1");
-        assert_eq!(nearest_squares(2), "1 or 4");
-    }
 
     #[test]
     #[cfg(feature = "std")]

@@ -6,28 +6,15 @@
 //! point, not as a sampler to render with.
 
 use super::{BlockCursor, Blocks};
-use crate::entry::{Built, CountRule, Entry, Family, Rates};
+use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::DivMod;
 use crate::prelude::*;
 use crate::sampler::{Point2, Seed, StrataGrid};
 
-/// The registry entry of `regular`.
-pub(crate) const ENTRY: Entry = Entry {
-    name: "regular",
-    description: "cell centres of an s x s grid (N = s^2); deterministic",
-    paper: "-",
-    family: Family::Classic,
-    progressive: false,
-    counts: CountRule::Square,
-    parameters: &[],
-    promise: "cell centres (aliasing, zero variance, biased)",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
-    build: |p| Ok(Built::two(Regular::new(p.count)?)),
-};
+/// The name of the sampler.
+const NAME: &str = "regular";
+
 
 /// The `N = s^2` cell centres `((i + 1/2) / s, (j + 1/2) / s)`, in row-major order.
 ///
@@ -47,7 +34,7 @@ pub struct Regular {
 impl Regular {
     /// A regular grid of `count` points; `count` must be a perfect square.
     pub fn new(count: u64) -> crate::Result<Self> {
-        let n = ENTRY.counts.check(ENTRY.name, count)?;
+        let n = CountRule::Square.check(NAME, count)?;
         let s = n.isqrt();
         Ok(Regular {
             side: DivMod::new(s).expect("side >= 1"),
@@ -63,7 +50,7 @@ impl Regular {
 }
 
 impl Blocks for Regular {
-    const NAME: &'static str = ENTRY.name;
+    const NAME: &'static str = NAME;
 
     fn set_len(&self) -> u32 {
         self.count()
