@@ -8,8 +8,8 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use strata::samplers::{Bridson, Ccvt, DartThrowing, SetGenerator, poisson};
-use strata::spectrum::relative_radius_max;
+use strata_lab::samplers::{Bridson, Ccvt, DartThrowing, SetGenerator, poisson};
+use strata_lab::spectrum::relative_radius_max;
 
 fn poisson_disk(c: &mut Criterion) {
     for n in [1024u64, 4096] {
@@ -54,9 +54,8 @@ fn poisson_disk(c: &mut Criterion) {
     }
 }
 
-#[cfg(feature = "lloyd")]
 fn lloyd(c: &mut Criterion) {
-    use strata::samplers::lloyd::relax;
+    use strata_lab::samplers::lloyd::relax;
     let mut group = c.benchmark_group("blue_noise/lloyd-N4096");
     group
         .sample_size(30)

@@ -10,8 +10,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use glam::Vec2;
-use strata::registry::{self, Params};
+use strata_lab::registry::{self, Params};
 
 const COUNTS: [u64; 3] = [256, 4096, 65536];
 
@@ -19,7 +18,7 @@ fn generate(c: &mut Criterion) {
     for n in COUNTS {
         let mut group = c.benchmark_group(format!("generate/{n}"));
         group.throughput(Throughput::Elements(n));
-        let mut buf = vec![Vec2::ZERO; n as usize];
+        let mut buf = vec![[0.0f32; 2]; n as usize];
         common::pcg32_baseline(&mut group, &mut buf);
 
         for entry in registry::entries() {

@@ -12,7 +12,7 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use strata::float::{f32_in_stratum, unit_f32_from_u32};
 use strata::hash::{GOLDEN_GAMMA, Permutation, hash32, mix64, stream_seed};
-use strata::registry::{self, Params};
+use strata_lab::registry::{self, Params};
 use strata::samplers::halton::PRIMES;
 use strata::scramble::owen_scramble;
 

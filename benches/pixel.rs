@@ -47,7 +47,7 @@ fn get_2d(s: &mut PixelSampler, shape: Shape) -> f32 {
                 s.start_pixel_sample([x, y], i, 0);
                 for _ in 0..shape.pairs {
                     let v = s.get_2d();
-                    acc += v.x + v.y;
+                    acc += v[0] + v[1];
                 }
             }
         }
@@ -63,7 +63,7 @@ fn get_4d(s: &mut PixelSampler, shape: Shape) -> f32 {
                 s.start_pixel_sample([x, y], i, 0);
                 for _ in 0..shape.pairs / 2 {
                     let v = s.get_4d();
-                    acc += v.x + v.y + v.z + v.w;
+                    acc += v[0] + v[1] + v[2] + v[3];
                 }
             }
         }

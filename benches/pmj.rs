@@ -17,8 +17,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use glam::Vec2;
-use strata::registry::{self, Params};
+use strata_lab::registry::{self, Params};
 
 fn pmj(c: &mut Criterion) {
     for n in [4096u64, 65536] {
@@ -28,7 +27,7 @@ fn pmj(c: &mut Criterion) {
             .sample_size(20)
             .warm_up_time(Duration::from_millis(500))
             .measurement_time(Duration::from_secs(3));
-        let mut buf = vec![Vec2::ZERO; n as usize];
+        let mut buf = vec![[0.0f32; 2]; n as usize];
         common::pcg32_baseline(&mut group, &mut buf);
         for name in ["pmj", "pmjbn", "pmj02", "pmj02bn", "pmj02-stochastic"] {
             if name == "pmjbn" && n > 4096 {
@@ -64,7 +63,7 @@ fn growth(c: &mut Criterion) {
             .sample_size(10)
             .warm_up_time(Duration::from_millis(100))
             .measurement_time(Duration::from_secs(if e >= 22 { 20 } else { 3 }));
-        let mut buf = vec![Vec2::ZERO; n as usize];
+        let mut buf = vec![[0.0f32; 2]; n as usize];
         for name in ["pmj02", "pmj02-stochastic"] {
             let mut seed = 0u64;
             group.bench_function(BenchmarkId::from_parameter(name), |b| {

@@ -8,13 +8,12 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use glam::Vec2;
-use strata::registry::{self, Params};
-use strata::spectrum::{periodogram, periodogram_direct};
+use strata_lab::registry::{self, Params};
+use strata_lab::spectrum::{periodogram, periodogram_direct};
 
-fn points(n: u64) -> Vec<Vec2> {
+fn points(n: u64) -> Vec<[f32; 2]> {
     let mut s = registry::build("jittered", &Params::new(n).seed(1)).unwrap();
-    let mut v = vec![Vec2::ZERO; n as usize];
+    let mut v = vec![[0.0f32; 2]; n as usize];
     s.fill(&mut v);
     v
 }

@@ -12,7 +12,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use common::{CliError, cli_error, parse_int, parse_open_float, string_value};
-use strata::conformance::{PairStudy, SequenceSource, Shuffle, Source, Suite};
+use strata_lab::conformance::{PairStudy, SequenceSource, Shuffle, Source, Suite};
 use strata::pixel::Sequence;
 
 const USAGE: &str = "conformance --sampler NAME|all [--spp N] [--dims D] [--pixels K] [--seeds K] \

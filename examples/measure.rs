@@ -12,9 +12,9 @@ use std::process::ExitCode;
 
 use common::{CliError, cli_error};
 use rayon::prelude::*;
-use strata::analysis::discrepancy;
-use strata::pointsets::{self, PointSet};
-use strata::{io, spectrum};
+use strata_lab::analysis::discrepancy;
+use strata_lab::pointsets::{self, PointSet};
+use strata_lab::{io, spectrum};
 
 const USAGE: &str = "measure FILE... [--out DIR] [--resolution K]";
 

@@ -154,7 +154,7 @@ fn tables(args: &Args) -> Result<String, CliError> {
         )
     };
     let t_of =
-        |dims: &[u32], m: u32, base: u32| sobol::projection_t_value_of(args.sampler, dims, m, base);
+        |dims: &[u32], m: u32, base: u32| sobol::projection_t_value(args.sampler, dims, m, base);
     let quad = args.sampler == "faure4";
     // zquad: the four dimensions and the fifth matrix a 2D draw at dimension 3 pairs with
     let dims = if quad { 5 } else { args.group };

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use strata::{PixelSampler, Seed, Sequence};
 
 const SIZE: u32 = 256;
@@ -12,9 +12,9 @@ const SPP: u32 = 64;
 
 /// Radiance at the floor point under pixel (x, y): the light seen past the sphere.
 fn shade(s: &mut PixelSampler, x: u32, y: u32) -> f32 {
-    let film = s.get_pixel_2d(); // dimensions 0-1: where in the pixel
+    let film = Vec2::from(s.get_pixel_2d()); // dimensions 0-1: where in the pixel
     let p = Vec3::new(x as f32 + film.x, 0.0, y as f32 + film.y) / SIZE as f32 * 4.0 - 2.0;
-    let on_light = s.get_2d(); // dimensions 2-3: a point on the 1 x 1 light at height 3
+    let on_light = Vec2::from(s.get_2d()); // dimensions 2-3: a point on the 1 x 1 light at height 3
     let q = Vec3::new(on_light.x - 0.5, 3.0, on_light.y - 0.5);
     let (d, c, r) = ((q - p).normalize(), Vec3::new(0.0, 1.0, 0.0), 0.6);
     let b = (p - c).dot(d);
@@ -91,7 +91,7 @@ fn render(out: &std::path::Path) -> Result<String, strata::Error> {
         .collect();
     let path = out.join("path_tracer.pgm");
     // never half written; a failure names the file and the reason
-    strata::io::write_file(
+    strata_lab::io::write_file(
         &path,
         &[format!("P5 {SIZE} {SIZE} 255\n").as_bytes(), &bytes].concat(),
     )?;

@@ -15,8 +15,8 @@ use std::process::ExitCode;
 use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_pair, string_value};
 use strata::SamplerNd;
 use strata::pixel::{PixelSampler, Sequence};
-use strata::pointsets::{self, Format};
-use strata::registry::{self, Built, Params, Strictness};
+use strata_lab::pointsets::{self, Format};
+use strata_lab::registry::{self, Built, Params, Strictness};
 
 /// The most values (`N x D`) one run prints.
 const MAX_VALUES: u64 = 1 << 27;
@@ -228,11 +228,11 @@ fn main() -> ExitCode {
                 .make(&params, Strictness::Strict)?
             {
                 Built::Two(mut sampler) => {
-                    let mut points = vec![glam::Vec2::ZERO; n as usize];
+                    let mut points = vec![[0.0f32; 2]; n as usize];
                     strata::Sampler::fill(&mut sampler, &mut points);
                     for (row, p) in values.chunks_exact_mut(2).zip(&points) {
-                        row[0] = p.x;
-                        row[1] = p.y;
+                        row[0] = p[0];
+                        row[1] = p[1];
                     }
                     grids = strata::Sampler::strata(&sampler, n);
                 }
@@ -260,16 +260,16 @@ fn main() -> ExitCode {
             let canvas = if dims > 2 {
                 // the matrix of all 2D projections
                 let tile = (900 / dims as u32).clamp(48, 200);
-                strata::io::draw_projections(&values, dims, tile, &projection_grids)
+                strata_lab::io::draw_projections(&values, dims, tile, &projection_grids)
             } else {
                 // the points (the first dimension twice for D = 1)
-                let points: Vec<glam::Vec2> = values
+                let points: Vec<[f32; 2]> = values
                     .chunks_exact(dims)
-                    .map(|r| glam::Vec2::new(r[0], r[dims - 1]))
+                    .map(|r| [r[0], r[dims - 1]])
                     .collect();
-                strata::io::draw_points(&points, &grids, 640)
+                strata_lab::io::draw_points(&points, &grids, 640)
             };
-            strata::io::write_png(path, &canvas)?;
+            strata_lab::io::write_png(path, &canvas)?;
         }
 
         let stdout = std::io::stdout();

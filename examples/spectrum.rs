@@ -16,12 +16,11 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, string_value};
-use glam::Vec2;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use strata::io::{self, Canvas, Rgb};
-use strata::registry::{self, Entry, Params};
-use strata::spectrum::{self, PointSetMeasures, RadialBin, Spectrum};
+use strata_lab::io::{self, Canvas, Rgb};
+use strata_lab::registry::{self, Entry, Params};
+use strata_lab::spectrum::{self, PointSetMeasures, RadialBin, Spectrum};
 
 const USAGE: &str = "spectrum [--sampler NAME|all] [-n N] [--realizations R] [--seed S] [--resolution K] [--out DIR] [--markdown FILE] | spectrum --blue-noise-table [-n N] [--realizations R] [--seed S] [--resolution K] [--markdown FILE]";
 
@@ -186,7 +185,7 @@ struct Outcome {
     ms_per_set: f64,
     low_power: f64,
     measures: PointSetMeasures,
-    points: Vec<Vec2>,
+    points: Vec<[f32; 2]>,
     grids: Vec<strata::StrataGrid>,
     spectrum: Spectrum,
     radial: Vec<RadialBin>,
@@ -203,9 +202,9 @@ fn run_one(
     // for other samplers)
     let mut params = args.params.kept_for(entry);
     params.count = count;
-    let generate = |r: u32| -> Result<Vec<Vec2>, strata::Error> {
+    let generate = |r: u32| -> Result<Vec<[f32; 2]>, strata::Error> {
         let mut s = entry.build(&params.clone().seed(args.seed.wrapping_add(r as u64)))?;
-        let mut v = vec![Vec2::ZERO; count as usize];
+        let mut v = vec![[0.0f32; 2]; count as usize];
         s.fill(&mut v);
         Ok(v)
     };
@@ -226,7 +225,7 @@ fn run_one(
     let radial = spectrum.radial();
     // PSA measures from the first realizations (at most 2^22 points in all)
     let kept = (realizations as u64).min(((1u64 << 22) / count).max(1)) as u32;
-    let sets: Vec<Vec<Vec2>> = (0..kept)
+    let sets: Vec<Vec<[f32; 2]>> = (0..kept)
         .into_par_iter()
         .map(generate)
         .collect::<Result<_, strata::Error>>()?;
@@ -305,7 +304,7 @@ fn table_row(
         let params = Params::new(count).seed(args.seed.wrapping_add(r as u64));
         let start = Instant::now();
         let mut s = entry.build(&params)?;
-        let mut v = vec![Vec2::ZERO; count as usize];
+        let mut v = vec![[0.0f32; 2]; count as usize];
         s.fill(&mut v);
         let seconds = start.elapsed().as_secs_f64();
         if r == 0 && seconds * seeds as f64 > TABLE_BUDGET_S {

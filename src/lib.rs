@@ -37,6 +37,8 @@ pub mod registry;
 pub mod samplers;
 pub mod spectrum;
 mod stats;
+#[cfg(test)]
+mod strata_checks;
 
 /// The README's code examples, compiled and run by `cargo test`.
 #[cfg(doctest)]

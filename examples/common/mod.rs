@@ -139,9 +139,9 @@ pub fn unexpected(arg: lexopt::Arg<'_>, usage: &str) -> CliError {
 }
 
 /// True when `flag` (without dashes) names a parameter some registered sampler declares
-/// (`strata::registry::parameter_names`): the programs take `--NAME VALUE` for every one.
+/// (`strata_lab::registry::parameter_names`): the programs take `--NAME VALUE` for every one.
 pub fn is_sampler_param(flag: &str) -> bool {
-    strata::registry::parameter_names().contains(&flag)
+    strata_lab::registry::parameter_names().contains(&flag)
 }
 
 /// Reads the value of the sampler parameter `--flag` from `parser` into `params`, parsed by the
@@ -150,9 +150,9 @@ pub fn is_sampler_param(flag: &str) -> bool {
 pub fn sampler_param(
     flag: &str,
     parser: &mut lexopt::Parser,
-    params: &mut strata::registry::Params,
+    params: &mut strata_lab::registry::Params,
 ) -> Result<(), CliError> {
-    use strata::registry::{self, Bound, Kind};
+    use strata_lab::registry::{self, Bound, Kind};
     let dashed = format!("--{flag}");
     let v = string_value(&dashed, parser.value()?)?;
     let specs: Vec<_> = registry::parameters()
@@ -185,7 +185,7 @@ pub fn sampler_param(
 /// The `--help` lines of the sampler parameters, from their declarations: a line per flag and
 /// one per sampler that takes it (its range, default and what it does).
 pub fn parameter_help() -> String {
-    use strata::registry;
+    use strata_lab::registry;
     let mut s = String::new();
     for name in registry::parameter_names() {
         let kind = registry::parameter_kind(name).map_or("", |k| k.name());
@@ -241,7 +241,7 @@ pub fn write_markdown_section(
     );
     let old = read_markdown(path)?;
     let new = splice_section(path, &old, name, &section)?;
-    strata::io::write_text(path, &new)?;
+    strata_lab::io::write_text(path, &new)?;
     Ok(())
 }
 

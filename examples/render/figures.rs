@@ -2,10 +2,10 @@
 //! `blue-noise.png` (every sequence's signed error image above its periodogram; and
 //! `blue-noise-masked.png`, the same without the pixels that see an emitter).
 
-use strata::spectrum::ErrorImage;
+use strata_lab::spectrum::ErrorImage;
 
 use glam::Vec3;
-use strata::io::{self, Canvas, Rgb};
+use strata_lab::io::{self, Canvas, Rgb};
 
 use crate::args::Args;
 use crate::common::CliError;

@@ -43,7 +43,7 @@ mod trace;
 
 use std::process::ExitCode;
 
-use strata::io;
+use strata_lab::io;
 
 /// Renders the reference, every sequence at every count over the seeds, then writes the
 /// pictures, `render.csv` and the tables (see `--help`).

@@ -2,8 +2,8 @@
 //! colour maps, and the canvases of an image, its error map and its signed error image.
 
 use glam::Vec3;
-use strata::io::{self, Canvas, Rgb};
-use strata::spectrum::ErrorImage;
+use strata_lab::io::{self, Canvas, Rgb};
+use strata_lab::spectrum::ErrorImage;
 
 /// A pixel value's display byte: Reinhard tone mapping, then display gamma.
 fn tone(v: f32) -> u8 {

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use strata::analysis::study;
-use strata::io::{self, LinePlot, Marker, Rgb, Series};
+use strata_lab::analysis::study;
+use strata_lab::io::{self, LinePlot, Marker, Rgb, Series};
 use strata::pixel::Sequence;
 
 use crate::args::{Args, markdown_section};

@@ -174,7 +174,7 @@ impl Camera {
             + self.right * ndc.x * self.tan_half * w / h
             + self.up * ndc.y * self.tan_half)
             .normalize();
-        let disk = warp::concentric_disk(lens) * self.aperture;
+        let disk = Vec2::from(warp::concentric_disk(lens.into())) * self.aperture;
         let offset = self.right * disk.x + self.up * disk.y;
         let focal_point = self.eye + dir * (self.focus / dir.dot(self.forward));
         let origin = self.eye + offset;

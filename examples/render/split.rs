@@ -3,9 +3,9 @@
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use strata::io::{self, Rgb};
+use strata_lab::io::{self, Rgb};
 use strata::pixel::{DimensionLayout, PixelSampler, Sequence};
-use strata::spectrum::ErrorImage;
+use strata_lab::spectrum::ErrorImage;
 
 use crate::args::Args;
 use crate::common::CliError;
@@ -146,9 +146,9 @@ impl Draws for Mixed<'_> {
         let d = self.dim;
         self.dim += 2;
         if d == self.keep {
-            self.tested.sample_2d(self.pixel, self.index, d)
+            self.tested.sample_2d(self.pixel, self.index, d).into()
         } else {
-            self.others.sample_2d(self.pixel, self.inner, d)
+            self.others.sample_2d(self.pixel, self.inner, d).into()
         }
     }
     fn get_1d(&mut self) -> f32 {

@@ -5,9 +5,9 @@
 use std::time::Instant;
 
 use glam::Vec3;
-use strata::io;
+use strata_lab::io;
 use strata::pixel::{Padding, PixelSampler, Sequence};
-use strata::spectrum::{self, ErrorImage};
+use strata_lab::spectrum::{self, ErrorImage};
 
 use crate::args::Args;
 use crate::common::CliError;

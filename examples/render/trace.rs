@@ -70,10 +70,10 @@ pub trait Draws {
 
 impl Draws for PixelSampler {
     fn get_pixel_2d(&mut self) -> Vec2 {
-        PixelSampler::get_pixel_2d(self)
+        PixelSampler::get_pixel_2d(self).into()
     }
     fn get_2d(&mut self) -> Vec2 {
-        PixelSampler::get_2d(self)
+        PixelSampler::get_2d(self).into()
     }
     fn get_1d(&mut self) -> f32 {
         PixelSampler::get_1d(self)
@@ -218,7 +218,7 @@ impl Path {
             if scene.direct {
                 return false; // direct lighting only
             }
-            let local = warp::cosine_hemisphere(draw_2d(s, base, DIRECTION));
+            let local = Vec3::from(warp::cosine_hemisphere(draw_2d(s, base, DIRECTION).into()));
             let (t, b) = basis(n);
             self.dir = (t * local.x + b * local.y + n * local.z).normalize();
             self.origin = hit.point + n * 1e-4;

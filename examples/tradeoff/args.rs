@@ -3,9 +3,9 @@
 
 use std::path::PathBuf;
 
-use strata::analysis::Integrand;
-use strata::analysis::study::{self, Seeds};
-use strata::registry::{self, Entry};
+use strata_lab::analysis::Integrand;
+use strata_lab::analysis::study::{self, Seeds};
+use strata_lab::registry::{self, Entry};
 
 use crate::common::{self, CliError, cli_error, parse_int, string_value};
 use crate::outln;

@@ -1,8 +1,8 @@
 //! The CSV files: `tradeoff.csv` (one row per sampler, integrand and count), `slopes.csv` (the
 //! fitted rates) and `time_to_error.csv`.
 
-use strata::analysis::study::{Row, Slope, TimeToError};
-use strata::io;
+use strata_lab::analysis::study::{Row, Slope, TimeToError};
+use strata_lab::io;
 
 use crate::args::Args;
 use crate::common::CliError;

@@ -10,7 +10,7 @@
 //!
 //! The program's parts: [`args`] (the command line), [`files`] (the CSV files), [`plots`]
 //! (the convergence and time panels) and [`tables`] (the printed tables and the Markdown
-//! sections); the study itself is `strata::analysis::study`.
+//! sections); the study itself is `strata_lab::analysis::study`.
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -24,7 +24,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use strata::analysis::study::{self, Config};
+use strata_lab::analysis::study::{self, Config};
 
 use crate::args::Args;
 

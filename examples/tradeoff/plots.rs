@@ -2,10 +2,10 @@
 //! with the published rates) and `tradeoff-F.png` (RMSE against the time of a set, with the
 //! Pareto front).
 
-use strata::analysis::Integrand;
-use strata::analysis::study::{self, Row, Slope};
-use strata::io::{self, Canvas, LinePlot, Marker, PALETTE, Rgb, Series};
-use strata::registry::{Entry, Family};
+use strata_lab::analysis::Integrand;
+use strata_lab::analysis::study::{self, Row, Slope};
+use strata_lab::io::{self, Canvas, LinePlot, Marker, PALETTE, Rgb, Series};
+use strata_lab::registry::{Entry, Family};
 
 use crate::args::Args;
 

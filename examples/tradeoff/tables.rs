@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use strata::analysis::Integrand;
-use strata::analysis::study::{Row, Slope, TimeToError};
+use strata_lab::analysis::Integrand;
+use strata_lab::analysis::study::{Row, Slope, TimeToError};
 
 use crate::args::Args;
 use crate::common::{self, CliError};

@@ -6,10 +6,10 @@ use glam::Vec2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use strata::analysis::Integrand;
-use strata::analysis::discrepancy as disc;
-use strata::analysis::study::{self, Config};
-use strata::spectrum::{self, Spectrum};
+use strata_lab::analysis::Integrand;
+use strata_lab::analysis::discrepancy as disc;
+use strata_lab::analysis::study::{self, Config};
+use strata_lab::spectrum::{self, Spectrum};
 
 use crate::{input_slice, to_py_err, value_error};
 
@@ -39,7 +39,7 @@ fn check_unit(points: &[Vec2], what: &str) -> PyResult<()> {
     {
         Some(i) => Err(value_error(format!(
             "{what}: point {i} is ({}, {}); coordinates must be finite and in [0, 1)",
-            points[i].x, points[i].y
+            points[i][0], points[i][1]
         ))),
         None => Ok(()),
     }
@@ -113,7 +113,7 @@ fn sampler_spectrum<'py>(
     seed: u64,
     parameters: Option<&Bound<'py, pyo3::types::PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let entry = strata::registry::find(name).map_err(to_py_err)?;
+    let entry = strata_lab::registry::find(name).map_err(to_py_err)?;
     let params = crate::samplers::params(count, seed, parameters)?;
     let n = usize::try_from(count).map_err(|_| value_error("sampler_spectrum: count too large"))?;
     // checks the parameters and the count before the parallel run
@@ -132,7 +132,7 @@ fn sampler_spectrum<'py>(
 }
 
 /// Radial bins of a `(K+1, K+1)` spectrum: `(frequency, power, anisotropy, count)` arrays for
-/// the bins `1..=K/2` (see `strata::spectrum::Spectrum::radial`).
+/// the bins `1..=K/2` (see `strata_lab::spectrum::Spectrum::radial`).
 #[pyfunction]
 #[allow(clippy::type_complexity)]
 fn radial<'py>(
@@ -327,7 +327,7 @@ fn convergence<'py>(
     seeds: u32,
     predict: bool,
 ) -> PyResult<Bound<'py, PyList>> {
-    let entry = strata::registry::find(name).map_err(to_py_err)?;
+    let entry = strata_lab::registry::find(name).map_err(to_py_err)?;
     let integrands = integrands
         .iter()
         .map(|f| Integrand::by_name(f))
@@ -380,7 +380,7 @@ fn fit_slope(pairs: Vec<(f64, f64)>) -> Option<f64> {
 /// The published variance exponent of sampler `name` on integrand `integrand`, if any.
 #[pyfunction]
 fn published_rate(name: &str, integrand: &str) -> PyResult<Option<f64>> {
-    let e = strata::registry::find(name).map_err(to_py_err)?;
+    let e = strata_lab::registry::find(name).map_err(to_py_err)?;
     let f = Integrand::by_name(integrand).map_err(to_py_err)?;
     Ok(e.rates.on(f))
 }

@@ -84,10 +84,10 @@ fn _strata(m: &Bound<'_, PyModule>) -> PyResult<()> {
     samplers::register(m)?;
     pixel::register(m)?;
     analysis::register(m)?;
-    m.add("MAX_RESOLUTION", strata::spectrum::MAX_RESOLUTION)?;
+    m.add("MAX_RESOLUTION", strata_lab::spectrum::MAX_RESOLUTION)?;
     m.add("MAX_DIMENSIONS", strata::samplers::MAX_DIMENSIONS)?;
-    m.add("MAX_FIXED_COUNT", strata::samplers::MAX_FIXED_COUNT)?;
-    m.add("MAX_STUDY_COUNT", strata::analysis::study::MAX_STUDY_COUNT)?;
-    m.add("MAX_SEEDS", strata::analysis::study::MAX_SEEDS)?;
+    m.add("MAX_FIXED_COUNT", strata::counts::MAX_FIXED_COUNT)?;
+    m.add("MAX_STUDY_COUNT", strata_lab::analysis::study::MAX_STUDY_COUNT)?;
+    m.add("MAX_SEEDS", strata_lab::analysis::study::MAX_SEEDS)?;
     Ok(())
 }

@@ -7,7 +7,7 @@ use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use strata::SamplerNd;
-use strata::registry::{self, Built, CountRule, Entry, Kind, Params, Strictness};
+use strata_lab::registry::{self, Built, CountRule, Entry, Kind, Params, Strictness};
 
 use crate::{borrow_output, output_slice, to_py_err, value_error};
 

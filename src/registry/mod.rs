@@ -11,7 +11,7 @@
 //! use strata_lab::registry::{self, Params};
 //! let mut s = registry::build("cmj", &Params::new(100).seed(7)).unwrap();
 //! let p = s.next_sample();
-//! assert!(p.x < 1.0 && p.y < 1.0);
+//! assert!(p[0] < 1.0 && p[1] < 1.0);
 //!
 //! let err = registry::build("jitter", &Params::new(16)).unwrap_err();
 //! assert!(err.to_string().contains("jittered")); // the error lists the known names
@@ -382,7 +382,7 @@ mod tests {
             }
             let mut a = e.build(&given).unwrap();
             let mut b = e.build(&Params::new(n)).unwrap();
-            let mut va = alloc::vec![strata::[0.0; 2]; n as usize];
+            let mut va = vec![[0.0f32; 2]; n as usize];
             let mut vb = va.clone();
             Sampler::fill(&mut a, &mut va);
             Sampler::fill(&mut b, &mut vb);
@@ -409,7 +409,7 @@ mod tests {
         let mut b = jittered
             .make(&Params::new(16).seed(3), Strictness::Strict)
             .unwrap();
-        let (mut va, mut vb) = (alloc::vec![0f32; 32], alloc::vec![0f32; 32]);
+        let (mut va, mut vb) = (vec![0f32; 32], vec![0f32; 32]);
         a.fill(&mut va);
         b.fill(&mut vb);
         assert_eq!(va, vb);
@@ -442,7 +442,7 @@ mod tests {
         assert_eq!(parameter_kind("sweeps"), Some(Kind::Whole));
         let take = |p: &Params| {
             let mut s = pmj02bn.make(p, Strictness::Strict).unwrap();
-            let mut v = alloc::vec![0f32; 512];
+            let mut v = vec![0f32; 512];
             s.fill(&mut v);
             v
         };
@@ -491,14 +491,14 @@ mod tests {
                 };
                 assert_eq!(matches!(made, Built::Two(_)), dims == 2, "{}", e.name);
                 let k = n as usize * dims as usize;
-                let (mut a, mut b) = (alloc::vec![0f32; k], alloc::vec![0f32; k]);
+                let (mut a, mut b) = (vec![0f32; k], vec![0f32; k]);
                 nd.fill(&mut a);
                 made.fill(&mut b);
                 assert_eq!(a, b, "{} in {dims}", e.name);
                 if dims == 2 {
                     // and the 2D form gives the same points
                     let mut s = e.build(&p).unwrap();
-                    let mut v = alloc::vec![strata::[0.0; 2]; n as usize];
+                    let mut v = vec![[0.0f32; 2]; n as usize];
                     Sampler::fill(&mut s, &mut v);
                     let flat: Vec<f32> = v.iter().flat_map(|q| *q).collect();
                     assert_eq!(flat, a, "{}", e.name);

@@ -60,11 +60,13 @@ pub(crate) const ENTRY: Entry = Entry {
 /// The best-candidate sequence (progressive).
 ///
 /// ```
-/// use strata::{Sampler, Seed, samplers::BestCandidate};
+/// use strata::{Sampler, Seed};
+/// use strata_lab::samplers::BestCandidate;
 /// let mut s = BestCandidate::new(Seed(1), 1).unwrap();
 /// let a = s.next_sample();
 /// let b = s.next_sample();
-/// assert!(a.distance(b) > 0.1); // the second point is far from the first
+/// let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+/// assert!(d > 0.1); // the second point is far from the first
 /// ```
 #[derive(Clone, Debug)]
 pub struct BestCandidate {

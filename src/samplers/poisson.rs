@@ -539,7 +539,7 @@ mod tests {
         let n = 1024;
         let take = |p: &Params| {
             let mut s = BRIDSON.build(p).unwrap();
-            let mut v = vec![strata::[0.0; 2]; n];
+            let mut v = vec![[0.0f32; 2]; n];
             s.fill(&mut v);
             v
         };

@@ -74,11 +74,10 @@ pub fn nearest_neighbour_distances(points: &[Point2]) -> Option<Vec<f64>> {
 ///
 /// ```
 /// use strata_lab::spectrum::{point_set_measures, relative_radius_max};
-/// use glam::Vec2;
 /// // a 16 x 16 grid: every nearest neighbour is 1/16 away, and the spectrum is empty up to
 /// // the first lattice peak at |w| = 16 = sqrt(N) (PSA's window blurs the peak a little, so
 /// // nu_eff approaches 1 from below as N grows: 0.81 here, 0.95 at N = 4096)
-/// let pts: Vec<Vec2> = (0..256).map(|i| Vec2::new((i % 16) as f32 / 16.0, (i / 16) as f32 / 16.0)).collect();
+/// let pts: Vec<[f32; 2]> = (0..256).map(|i| [(i % 16) as f32 / 16.0, (i / 16) as f32 / 16.0]).collect();
 /// let m = point_set_measures(&[pts])?;
 /// let expected = (1.0 / 16.0) / relative_radius_max(256);
 /// assert!((m.global_min_distance - expected).abs() < 1e-6);

@@ -239,7 +239,7 @@ pub fn periodogram_direct(points: &[Point2], resolution: u32) -> Result<Spectrum
 ///
 /// ```
 /// use strata_lab::spectrum::periodogram;
-/// let pts = [glam::Vec2::new(0.25, 0.5), glam::Vec2::new(0.75, 0.5)];
+/// let pts = [[0.25, 0.5], [0.75, 0.5]];
 /// let s = periodogram(&pts, 8)?;
 /// assert!((s.get(0, 0).unwrap() - 2.0).abs() < 1e-9); // DC = N
 /// assert!(s.get(1, 0).unwrap() < 1e-9); // the two points cancel at u = 1

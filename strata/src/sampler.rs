@@ -101,10 +101,10 @@ impl StrataGrid {
 /// ```
 /// use strata::{Sampler, Seed, samplers::Jittered};
 /// let mut s = Jittered::new(16, Seed(7)).unwrap();
-/// let mut pts = vec![glam::Vec2::ZERO; 16];
+/// let mut pts = vec![[0.0f32; 2]; 16];
 /// s.fill(&mut pts);
 /// // one point in each cell of the 4 x 4 grid
-/// let mut cells: Vec<_> = pts.iter().map(|p| ((p.x * 4.0) as u32, (p.y * 4.0) as u32)).collect();
+/// let mut cells: Vec<_> = pts.iter().map(|p| ((p[0] * 4.0) as u32, (p[1] * 4.0) as u32)).collect();
 /// cells.sort();
 /// cells.dedup();
 /// assert_eq!(cells.len(), 16);
@@ -148,8 +148,8 @@ pub trait Sampler: Send {
 /// organisation.
 ///
 /// ```
-/// use strata::registry::{self, Params};
-/// let mut s = registry::build_nd("sobol", &Params::new(16), 5)?;
+/// use strata::{SamplerNd, Seed, samplers::SobolNd};
+/// let mut s = SobolNd::new(5, Seed(1))?;
 /// let mut p = [0.0f32; 5];
 /// s.next_point(&mut p);
 /// assert!(p.iter().all(|&v| (0.0..1.0).contains(&v)));

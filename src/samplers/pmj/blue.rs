@@ -167,12 +167,13 @@ impl Flags {
 /// The blue-noise (0,2)-sequence (progressive).
 ///
 /// ```
-/// use strata::{Sampler, Seed, samplers::Pmj02Bn};
+/// use strata::{Sampler, Seed};
+/// use strata_lab::samplers::Pmj02Bn;
 /// let mut s = Pmj02Bn::new(Seed(3), 256, 4)?;
 /// let pts: Vec<_> = (0..16).map(|_| s.next_sample()).collect();
 /// let mut cells = [0; 16]; // a (0,4,2)-net: one point in each 4 x 4 cell
 /// for p in &pts {
-///     cells[(p.y * 4.0) as usize * 4 + (p.x * 4.0) as usize] += 1;
+///     cells[(p[1] * 4.0) as usize * 4 + (p[0] * 4.0) as usize] += 1;
 /// }
 /// assert!(cells.iter().all(|&c| c == 1));
 /// # Ok::<(), strata::Error>(())

@@ -138,13 +138,14 @@ pub fn class2(index: u64) -> u8 {
 /// A PMJ-family sequence built by construction (pmj, pmjbn, pmj02).
 ///
 /// ```
-/// use strata::{Sampler, Seed, samplers::Pmj};
+/// use strata::{Sampler, Seed};
+/// use strata_lab::samplers::Pmj;
 /// let mut s = Pmj::pmj02(Seed(7));
 /// let pts: Vec<_> = (0..16).map(|_| s.next_sample()).collect();
 /// // a (0,4,2)-net: one point in each 4 x 4 cell, and in each 16 x 1 and 1 x 16 stratum
 /// let mut cells = vec![0; 16];
 /// for p in &pts {
-///     cells[(p.y * 4.0) as usize * 4 + (p.x * 4.0) as usize] += 1;
+///     cells[(p[1] * 4.0) as usize * 4 + (p[0] * 4.0) as usize] += 1;
 /// }
 /// assert!(cells.iter().all(|&c| c == 1));
 /// ```

@@ -26,6 +26,8 @@
 //! from the plain index ([`sobol01_rev`], [`pmj02_rev`]): the form the WGSL shader uses, where a
 //! table would be per-thread memory. A test checks that the two agree.
 
+use crate::prelude::*;
+
 /// A generator matrix: column `k` (for index bit `k`) as a 32-bit fixed-point value, first
 /// digit in the most significant bit.
 pub(crate) type Matrix = [u32; 32];

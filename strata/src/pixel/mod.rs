@@ -152,9 +152,9 @@
 //!         sampler.start_bounce(bounce); // dimension 8 + 8 * bounce
 //!         let light = sampler.get_1d(); // which light
 //!         let on_light = sampler.get_2d(); // where on it
-//!         sum += light * on_light.x;
+//!         sum += light * on_light[0];
 //!     }
-//!     sum += film.x + lens.y + time;
+//!     sum += film[0] + lens[1] + time;
 //! }
 //! // the same value from the stateless form, in any order
 //! assert_eq!(sampler.sample_1d([10, 20], 3, 4), {
@@ -673,7 +673,7 @@ impl PixelSampler {
     /// let mut s = PixelSampler::new(Sequence::pmj02(), 16, Seed(3))?;
     /// let mut row = [0.0f32; 5];
     /// s.fill_sample([4, 2], 7, 0, &mut row);
-    /// assert_eq!(row[2..4], s.sample_2d([4, 2], 7, 2).to_array());
+    /// assert_eq!(row[2..4], s.sample_2d([4, 2], 7, 2));
     /// assert_eq!(row[4], s.sample_1d([4, 2], 7, 4));
     /// # Ok::<(), strata::Error>(())
     /// ```

@@ -387,7 +387,7 @@ impl DigitTree<'_> {
 /// use strata::{Sampler, Seed, samplers::Halton};
 /// let mut s = Halton::new(Seed(3));
 /// // the first 6 points: one per cell of the 2 x 3 grid
-/// let mut cells: Vec<_> = (0..6).map(|_| { let p = s.next_sample(); ((p.x * 2.0) as u32, (p.y * 3.0) as u32) }).collect();
+/// let mut cells: Vec<_> = (0..6).map(|_| { let p = s.next_sample(); ((p[0] * 2.0) as u32, (p[1] * 3.0) as u32) }).collect();
 /// cells.sort();
 /// cells.dedup();
 /// assert_eq!(cells.len(), 6);

@@ -23,7 +23,7 @@ const NAME: &str = "jittered";
 /// use strata::{Sampler, Seed, samplers::Jittered};
 /// let mut s = Jittered::new(9, Seed(1)).unwrap();
 /// let p = s.next_sample(); // the first cell is [0, 1/3) x [0, 1/3)
-/// assert!(p.x < 1.0 / 3.0 && p.y < 1.0 / 3.0);
+/// assert!(p[0] < 1.0 / 3.0 && p[1] < 1.0 / 3.0);
 /// ```
 #[derive(Clone, Debug)]
 pub struct Jittered {

@@ -30,7 +30,7 @@ const LATIN: &str = "latin";
 /// let mut s = NRooks::new(7, Seed(3)).unwrap(); // any count
 /// let mut cols = vec![false; 7];
 /// for _ in 0..7 {
-///     cols[(s.next_sample().x * 7.0) as usize] = true;
+///     cols[(s.next_sample()[0] * 7.0) as usize] = true;
 /// }
 /// assert!(cols.iter().all(|&c| c));
 /// ```

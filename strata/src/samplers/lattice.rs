@@ -70,7 +70,7 @@ fn shift(key: u64, d: u32) -> u32 {
 /// ```
 /// use strata::{Sampler, Seed, samplers::Lattice};
 /// let mut s = Lattice::new(Seed(1));
-/// let mut xs: Vec<u32> = (0..16).map(|_| (s.next_sample().x * 16.0) as u32).collect();
+/// let mut xs: Vec<u32> = (0..16).map(|_| (s.next_sample()[0] * 16.0) as u32).collect();
 /// xs.sort();
 /// assert_eq!(xs, (0..16).collect::<Vec<_>>()); // one point per 1/16 in x
 /// ```

@@ -72,7 +72,7 @@ fn multi_jittered_grids(m: u32, n: u32) -> Vec<StrataGrid> {
 /// let mut s = MultiJittered::new(16, Seed(5)).unwrap();
 /// let mut rows = vec![0; 16];
 /// for _ in 0..16 {
-///     rows[(s.next_sample().y * 16.0) as usize] += 1;
+///     rows[(s.next_sample()[1] * 16.0) as usize] += 1;
 /// }
 /// assert!(rows.iter().all(|&r| r == 1)); // N-rooks in y
 /// ```
@@ -158,7 +158,7 @@ impl Blocks for MultiJittered {
 /// let mut cells = vec![0; 12];
 /// for _ in 0..12 {
 ///     let p = s.next_sample();
-///     cells[(p.y * 4.0) as usize * 3 + (p.x * 3.0) as usize] += 1;
+///     cells[(p[1] * 4.0) as usize * 3 + (p[0] * 3.0) as usize] += 1;
 /// }
 /// assert!(cells.iter().all(|&c| c == 1));
 /// ```

@@ -21,7 +21,7 @@ const NAME: &str = "regular";
 /// ```
 /// use strata::{Sampler, samplers::Regular};
 /// let mut s = Regular::new(4).unwrap();
-/// assert_eq!(s.next_sample(), glam::Vec2::new(0.25, 0.25));
+/// assert_eq!(s.next_sample(), [0.25, 0.25]);
 /// assert!(Regular::new(5).is_err()); // not a square: the error names 4 and 9
 /// ```
 #[derive(Clone, Debug)]

@@ -335,7 +335,7 @@ const FAURE4_NAME: &str = "faure4";
 /// let mut s = Sobol::new(Seed(7));
 /// let pts: Vec<_> = (0..4).map(|_| s.next_sample()).collect();
 /// // the first 4 points: one in each quadrant
-/// let mut q: Vec<_> = pts.iter().map(|p| (p.x >= 0.5, p.y >= 0.5)).collect();
+/// let mut q: Vec<_> = pts.iter().map(|p| (p[0] >= 0.5, p[1] >= 0.5)).collect();
 /// q.sort();
 /// q.dedup();
 /// assert_eq!(q.len(), 4);

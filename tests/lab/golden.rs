@@ -4,14 +4,13 @@
 //! dimensions) and of every adapter sequence (three pixels, dimensions 0-31, indices at the
 //! start, across `2^16` and across `2^32`) is compared with `tests/golden.txt`. A refactor must
 //! leave every digest as it is; a deliberate change of values is announced in `CHANGELOG.md`
-//! under "value-breaking" and blessed with `STRATA_BLESS=1 cargo test --test golden`.
+//! under "value-breaking" and blessed with `STRATA_BLESS=1 cargo test -p strata-lab --test lab golden`.
 //! `.ci/run` also runs this test with the SIMD lane types compiled out
 //! (`RUSTFLAGS="--cfg strata_portable"`), so the same digests hold without SIMD.
 
 use std::path::Path;
 
-use strata::registry::{self, Params};
-use strata::{PixelSampler, Seed, Sequence};
+use strata_lab::registry::{self, Params};
 
 /// A 64-bit digest of a stream of 32-bit words (each folded in with SplitMix64's finalizer).
 #[derive(Default)]
@@ -39,8 +38,7 @@ fn sampler_digests() -> Vec<(String, u64)> {
             .unwrap_or_else(|err| panic!("{}: {err}", e.name));
         let mut d = Digest::default();
         for _ in 0..n {
-            let p = s.next_sample();
-            d.floats(&[p.x, p.y]);
+            d.floats(&s.next_sample());
         }
         out.push((e.name.to_string(), d.0));
         if e.has_dimensions() {
@@ -86,41 +84,14 @@ fn sampler_digests() -> Vec<(String, u64)> {
     })
 }
 
-/// The digests of every adapter sequence.
-fn sequence_digests() -> Vec<(String, u64)> {
-    let indices: Vec<u64> = (0..64)
-        .chain(65_530..65_542)
-        .chain((1u64 << 32) - 6..(1u64 << 32) + 6)
-        .collect();
-    Sequence::NAMES
-        .iter()
-        .map(|&name| {
-            let seq = Sequence::by_name_at(name, [64, 64]).unwrap();
-            let s = PixelSampler::new(seq, 16, Seed(1)).unwrap();
-            let mut d = Digest::default();
-            for pixel in [[0u32, 0], [1, 0], [37, 11]] {
-                for &i in &indices {
-                    for dim in (0..32).step_by(2) {
-                        let v = s.sample_2d(pixel, i, dim);
-                        d.floats(&[v.x, v.y]);
-                    }
-                    d.floats(&[s.sample_1d(pixel, i, 31)]);
-                }
-            }
-            (format!("pixel {name}"), d.0)
-        })
-        .collect()
-}
-
 #[test]
-fn every_sampler_and_sequence_gives_its_pinned_values() {
-    let mut digests = sampler_digests();
-    digests.extend(sequence_digests());
+fn every_sampler_gives_its_pinned_values() {
+    let digests = sampler_digests();
     let text: String = digests
         .iter()
         .map(|(name, d)| format!("{d:016x} {name}\n"))
         .collect();
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden.txt");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/lab/golden.txt");
     if std::env::var_os("STRATA_BLESS").is_some() {
         std::fs::write(&path, &text).unwrap();
     }
@@ -135,9 +106,35 @@ fn every_sampler_and_sequence_gives_its_pinned_values() {
     assert!(
         changed.is_empty() && text.lines().count() == want.lines().count(),
         "values changed (a deliberate change goes into CHANGELOG.md under value-breaking, then \
-         STRATA_BLESS=1 cargo test --test golden):\n{}",
+         STRATA_BLESS=1 cargo test -p strata-lab --test lab golden):\n{}",
         changed.join("\n")
     );
+}
+
+#[test]
+fn the_renderer_crate_pins_its_samplers_with_the_same_digests() {
+    // one value per line in both files: a renderer sampler's line here is its line there
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let read = |p: &str| std::fs::read_to_string(root.join(p)).unwrap();
+    let (lab, renderer) = (read("tests/lab/golden.txt"), read("strata/tests/golden.txt"));
+    let lab: std::collections::HashMap<&str, &str> = lab
+        .lines()
+        .map(|l| {
+            let (digest, name) = l.split_once(' ').unwrap();
+            (name, digest)
+        })
+        .collect();
+    let mut compared = 0;
+    for line in renderer.lines() {
+        let (digest, name) = line.split_once(' ').unwrap();
+        if name.starts_with("pixel ") {
+            continue;
+        }
+        assert_eq!(lab.get(name), Some(&digest), "{name}: the two golden files disagree");
+        compared += 1;
+    }
+    // every renderer sampler, 2D and D-dimensional forms
+    assert_eq!(compared, 27);
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! sequence on the row that names its fault: a test that cannot fail proves nothing.
 
 use strata::StrataGrid;
-use strata::conformance::{PairStudy, Report, SequenceSource, Shuffle, Source, Suite};
+use strata_lab::conformance::{PairStudy, Report, SequenceSource, Shuffle, Source, Suite};
 use strata::hash::{GOLDEN_GAMMA, hash_u64, hash32, mix64, stream_seed};
 use strata::pixel::{PixelSampler, Sequence};
 use strata::samplers::{Pmj02Stochastic, halton};
@@ -405,7 +405,12 @@ fn the_pair_test_passes_every_sequence_and_fails_one_plain_round() {
     // the 32-bit `random`, which failed at each of 8 seeds): two draws whose keys differ by
     // less than the sample count read each other's hash inputs in another order
     let xor_keyed = |seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
-        let k = strata::pixel::Key::new(strata::Seed(seed)).words();
+        // the image's key words, as the shader receives them
+        let k = strata::PixelSampler::new(Sequence::random(), 1, strata::Seed(seed))
+            .unwrap()
+            .gpu_parameters()
+            .unwrap()
+            .key;
         let p = k.map(|k| hash32(pixel[0], hash32(pixel[1], k)));
         let x = (dim & !1 ^ p[0]).wrapping_mul(0x7feb_352d);
         let h = x ^ (x >> 15);

@@ -2,12 +2,11 @@
 
 #![allow(dead_code)]
 
-use glam::Vec2;
 use strata::Sampler;
 
 /// The next `n` points of `s`.
-pub fn take(s: &mut dyn Sampler, n: usize) -> Vec<Vec2> {
-    let mut v = vec![Vec2::ZERO; n];
+pub fn take(s: &mut dyn Sampler, n: usize) -> Vec<[f32; 2]> {
+    let mut v = vec![[0.0f32; 2]; n];
     s.fill(&mut v);
     v
 }
@@ -19,16 +18,16 @@ pub fn cell(x: f32, cells: u32) -> usize {
 }
 
 /// Points per cell of a `columns x rows` grid, row-major.
-pub fn counts(points: &[Vec2], columns: u32, rows: u32) -> Vec<u32> {
+pub fn counts(points: &[[f32; 2]], columns: u32, rows: u32) -> Vec<u32> {
     let mut c = vec![0u32; columns as usize * rows as usize];
     for p in points {
-        c[cell(p.y, rows) * columns as usize + cell(p.x, columns)] += 1;
+        c[cell(p[1], rows) * columns as usize + cell(p[0], columns)] += 1;
     }
     c
 }
 
 /// Asserts exactly one point in every cell of the grid.
-pub fn assert_one_per_cell(points: &[Vec2], columns: u32, rows: u32, what: &str) {
+pub fn assert_one_per_cell(points: &[[f32; 2]], columns: u32, rows: u32, what: &str) {
     let c = counts(points, columns, rows);
     if let Some(bad) = c.iter().position(|&k| k != 1) {
         panic!(
@@ -41,7 +40,7 @@ pub fn assert_one_per_cell(points: &[Vec2], columns: u32, rows: u32, what: &str)
 }
 
 /// Asserts at most one point in every cell of the grid.
-pub fn assert_at_most_one_per_cell(points: &[Vec2], columns: u32, rows: u32, what: &str) {
+pub fn assert_at_most_one_per_cell(points: &[[f32; 2]], columns: u32, rows: u32, what: &str) {
     let c = counts(points, columns, rows);
     if let Some(bad) = c.iter().position(|&k| k > 1) {
         panic!(
@@ -77,7 +76,7 @@ pub fn is_net_fixed(pts: &[[u32; 2]]) -> bool {
 
 /// Whether `pts` (2^m points) is a (0,m,2)-net: one point per cell of every shape
 /// `2^a x 2^(m-a)`.
-pub fn is_net(pts: &[Vec2]) -> bool {
+pub fn is_net(pts: &[[f32; 2]]) -> bool {
     let m = pts.len().trailing_zeros();
     pts.len().is_power_of_two()
         && (0..=m).all(|a| counts(pts, 1 << a, 1 << (m - a)).iter().all(|&c| c == 1))

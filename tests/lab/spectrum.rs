@@ -3,16 +3,13 @@
 //! on its lattice, DC is N, the expected spectrum does not depend on the thread count, and the
 //! files read back as written.
 
-#![cfg(feature = "spectrum")]
 
-mod common;
 
-use common::take;
-use glam::Vec2;
-use strata::registry::{self, Params};
-use strata::spectrum::{self, Spectrum, expected_spectrum, periodogram, periodogram_direct};
+use crate::common::take;
+use strata_lab::registry::{self, Params};
+use strata_lab::spectrum::{self, Spectrum, expected_spectrum, periodogram, periodogram_direct};
 
-fn set(name: &str, n: u64, seed: u64) -> Vec<Vec2> {
+fn set(name: &str, n: u64, seed: u64) -> Vec<[f32; 2]> {
     let mut s = registry::build(name, &Params::new(n).seed(seed)).unwrap();
     take(s.as_mut(), n as usize)
 }
@@ -27,21 +24,21 @@ fn max_abs_diff(a: &Spectrum, b: &Spectrum) -> f64 {
 
 #[test]
 fn fast_equals_direct_within_1e_minus_6_everywhere() {
-    let cases: Vec<(&str, Vec<Vec2>, u32)> = vec![
+    let cases: Vec<(&str, Vec<[f32; 2]>, u32)> = vec![
         ("random", set("random", 700, 3), 48),
         ("jittered", set("jittered", 1024, 4), 64),
         // regular: |F| = N at the lattice peaks, the hardest case for absolute accuracy
         ("regular", set("regular", 1024, 1), 96),
         ("regular-4096", set("regular", 4096, 1), 130),
         ("cmj", set("cmj", 2000, 5), 40),
-        ("one point", vec![Vec2::new(0.123, 0.987)], 32),
-        ("coincident", vec![Vec2::new(0.5, 0.25); 64], 16),
+        ("one point", vec![[0.123, 0.987]], 32),
+        ("coincident", vec![[0.5, 0.25]; 64], 16),
         (
             "corners",
             vec![
-                Vec2::ZERO,
-                Vec2::new(0.999_999_94, 0.999_999_94),
-                Vec2::new(0.0, 0.999_999_94),
+                [0.0f32; 2],
+                [0.999_999_94, 0.999_999_94],
+                [0.0, 0.999_999_94],
             ],
             20,
         ),
@@ -179,18 +176,18 @@ fn expected_spectrum_is_bit_identical_for_any_thread_count() {
 
 #[test]
 fn bad_input_gives_clear_errors() {
-    let ok = vec![Vec2::new(0.5, 0.5)];
+    let ok = vec![[0.5, 0.5]];
     let msg = |r: Result<Spectrum, strata::Error>| r.expect_err("must fail").to_string();
     assert!(msg(periodogram(&[], 8)).contains("empty"));
-    assert!(msg(periodogram(&[Vec2::new(f32::NAN, 0.1)], 8)).contains("[0, 1)"));
-    assert!(msg(periodogram(&[Vec2::new(1.0, 0.1)], 8)).contains("[0, 1)"));
-    assert!(msg(periodogram(&[Vec2::new(-0.1, 0.1)], 8)).contains("[0, 1)"));
+    assert!(msg(periodogram(&[[f32::NAN, 0.1]], 8)).contains("[0, 1)"));
+    assert!(msg(periodogram(&[[1.0, 0.1]], 8)).contains("[0, 1)"));
+    assert!(msg(periodogram(&[[-0.1, 0.1]], 8)).contains("[0, 1)"));
     assert!(msg(periodogram(&ok, 0)).contains("even"));
     assert!(msg(periodogram(&ok, 7)).contains("even"));
     assert!(msg(periodogram(&ok, 1 << 20)).contains("even"));
     assert!(msg(periodogram_direct(&ok, 9)).contains("even"));
     assert!(msg(expected_spectrum(0, 8, |_| Ok(ok.clone()))).contains("realizations"));
-    let uneven = expected_spectrum(3, 8, |i| Ok(vec![Vec2::new(0.5, 0.5); 1 + i as usize]));
+    let uneven = expected_spectrum(3, 8, |i| Ok(vec![[0.5, 0.5]; 1 + i as usize]));
     assert!(msg(uneven).contains("same count"));
     assert!(spectrum::point_set_measures(&[]).is_err());
 }
@@ -199,26 +196,25 @@ fn bad_input_gives_clear_errors() {
 fn point_set_measures_match_known_values() {
     // Random points: the mean nearest-neighbour distance of a Poisson process of density N is
     // 1 / (2 sqrt N), i.e. 0.465 r_max; no empty disc around DC, so nu_eff = 0.
-    let sets: Vec<Vec<Vec2>> = (0..8).map(|i| set("random", 2048, 77 + i)).collect();
+    let sets: Vec<Vec<[f32; 2]>> = (0..8).map(|i| set("random", 2048, 77 + i)).collect();
     let m = spectrum::point_set_measures(&sets).unwrap();
     assert!((m.average_min_distance - 0.4653).abs() < 0.01, "{m:?}");
     assert!(m.global_min_distance < 0.1, "{m:?}");
     assert_eq!(m.effective_nyquist, Some(0.0));
     // Jittered sets have an emptier low band than random ones, so a larger nu_eff.
-    let jit: Vec<Vec<Vec2>> = (0..8).map(|i| set("jittered", 2025, 77 + i)).collect();
+    let jit: Vec<Vec<[f32; 2]>> = (0..8).map(|i| set("jittered", 2025, 77 + i)).collect();
     let mj = spectrum::point_set_measures(&jit).unwrap();
     assert!(mj.effective_nyquist.unwrap() > 0.1, "{mj:?}");
     assert!(mj.average_min_distance > m.average_min_distance + 0.05);
 }
 
-#[cfg(feature = "io")]
 #[test]
 fn exr_reads_back_the_values_written() {
     let pts = set("jittered", 256, 2);
     let spec = periodogram(&pts, 32).unwrap();
     let path = std::env::temp_dir().join(format!("strata-{}-spectrum.exr", std::process::id()));
-    strata::io::write_spectrum_exr(&path, &spec).unwrap();
-    let (w, h, vals) = strata::io::read_exr_y(&path).unwrap();
+    strata_lab::io::write_spectrum_exr(&path, &spec).unwrap();
+    let (w, h, vals) = strata_lab::io::read_exr_y(&path).unwrap();
     std::fs::remove_file(&path).ok();
     assert_eq!((w, h), (33, 33));
     // Row 0 of the image is v = +K/2.
@@ -234,13 +230,12 @@ fn exr_reads_back_the_values_written() {
     }
 }
 
-#[cfg(feature = "io")]
 #[test]
 fn radial_csv_has_the_contract_columns() {
     let pts = set("random", 64, 2);
     let spec = periodogram(&pts, 16).unwrap();
     let path = std::env::temp_dir().join(format!("strata-{}-radial.csv", std::process::id()));
-    strata::io::write_radial_csv(&path, &spec.radial()).unwrap();
+    strata_lab::io::write_radial_csv(&path, &spec.radial()).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     std::fs::remove_file(&path).ok();
     let mut lines = text.lines();

@@ -3,14 +3,13 @@
 //! harmed, no panic, no hang, no allocation past a stated bound. The Python rows are in
 //! `python/tests/test_edges.py` and `test_errors.py`.
 
-#![cfg(all(feature = "io", feature = "spectrum", unix))]
+#![cfg(unix)]
 
-mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use common::example_bin;
+use crate::common::example_bin;
 
 /// What a program run left: exit status, stdout, stderr.
 struct Run {

@@ -3,7 +3,7 @@
 //! `fuzz/` crate has a libFuzzer target for longer runs).
 
 use proptest::prelude::*;
-use strata::pointsets::{self, Format, PointSet};
+use strata_lab::pointsets::{self, Format, PointSet};
 
 fn valid(format: Format, sets: &[PointSet]) -> Vec<u8> {
     let mut out = Vec::new();

@@ -1,31 +1,29 @@
 //! Blue noise: minimum distances checked pair by pair (toroidal), exact counts, Lloyd's energy
 //! and centroids, CCVT's capacities and areas, best candidate's spacing, and the errors.
 
-mod common;
 
-use common::torus_distance_squared;
-use glam::Vec2;
-use strata::registry::{self, Params};
-use strata::samplers::{Bridson, Ccvt, DartThrowing, SetGenerator};
-use strata::spectrum::relative_radius_max;
+use crate::common::torus_distance_squared;
+use strata_lab::registry::{self, Params};
+use strata_lab::samplers::{Bridson, Ccvt, DartThrowing, SetGenerator};
+use strata_lab::spectrum::relative_radius_max;
 
-fn set(name: &str, n: u64, seed: u64, rho: Option<f64>) -> Vec<Vec2> {
+fn set(name: &str, n: u64, seed: u64, rho: Option<f64>) -> Vec<[f32; 2]> {
     let mut p = Params::new(n).seed(seed);
     if let Some(v) = rho {
         p.set("radius", v);
     }
     let mut s = registry::build(name, &p).unwrap();
-    common::take(s.as_mut(), n as usize)
+    crate::common::take(s.as_mut(), n as usize)
 }
 
 /// The smallest toroidal distance between two points, by brute force over all pairs.
-fn min_distance(pts: &[Vec2]) -> f64 {
+fn min_distance(pts: &[[f32; 2]]) -> f64 {
     let mut best = f64::INFINITY;
     for i in 0..pts.len() {
         for j in 0..i {
             let d = torus_distance_squared(
-                [pts[i].x as f64, pts[i].y as f64],
-                [pts[j].x as f64, pts[j].y as f64],
+                [pts[i][0] as f64, pts[i][1] as f64],
+                [pts[j][0] as f64, pts[j][1] as f64],
             );
             best = best.min(d);
         }
@@ -33,9 +31,9 @@ fn min_distance(pts: &[Vec2]) -> f64 {
     best.sqrt()
 }
 
-fn in_unit_square(pts: &[Vec2]) -> bool {
+fn in_unit_square(pts: &[[f32; 2]]) -> bool {
     pts.iter()
-        .all(|p| (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y))
+        .all(|p| (0.0..1.0).contains(&p[0]) && (0.0..1.0).contains(&p[1]))
 }
 
 #[test]
@@ -62,8 +60,8 @@ fn every_block_is_its_own_poisson_set() {
     let mut p = Params::new(300).seed(9);
     p.set("radius", 0.7);
     let mut s = registry::build("poisson", &p).unwrap();
-    let a = common::take(s.as_mut(), 300);
-    let b = common::take(s.as_mut(), 300);
+    let a = crate::common::take(s.as_mut(), 300);
+    let b = crate::common::take(s.as_mut(), 300);
     assert_ne!(a, b);
     let r = 0.7 * relative_radius_max(300);
     assert!(min_distance(&a) >= r && min_distance(&b) >= r);
@@ -100,14 +98,13 @@ fn radii_beyond_reach_are_refused_at_once() {
     assert!(huge.to_string().contains("between 1 and"), "{huge}");
 }
 
-#[cfg(feature = "lloyd")]
 #[test]
 fn lloyd_energy_never_rises_and_points_end_near_their_centroids() {
-    use strata::samplers::lloyd::{DEFAULT_ITERATIONS, TOLERANCE, relax_until, voronoi_cells};
+    use strata_lab::samplers::lloyd::{DEFAULT_ITERATIONS, TOLERANCE, relax_until, voronoi_cells};
     for (n, seed) in [(100usize, 1u64), (500, 2), (1024, 3)] {
         let mut pts: Vec<[f64; 2]> = set("random", n as u64, seed, None)
             .iter()
-            .map(|p| [p.x as f64, p.y as f64])
+            .map(|p| [p[0] as f64, p[1] as f64])
             .collect();
         // cells tile the torus
         let cells = voronoi_cells(&pts).unwrap();
@@ -142,7 +139,6 @@ fn lloyd_energy_never_rises_and_points_end_near_their_centroids() {
     }
 }
 
-#[cfg(feature = "lloyd")]
 #[test]
 fn converged_lloyd_reaches_the_published_spacing() {
     // A converged CVT of 1024 points has a spacing rho (minimum distance / r_max) of about
@@ -159,10 +155,9 @@ fn converged_lloyd_reaches_the_published_spacing() {
     assert!(mean >= 0.79, "mean rho {mean} over seeds 1-4: {rhos:?}");
 }
 
-#[cfg(feature = "lloyd")]
 #[test]
 fn lloyd_separates_coincident_points() {
-    use strata::samplers::lloyd::relax;
+    use strata_lab::samplers::lloyd::relax;
     let mut pts = vec![[0.25, 0.25]; 5];
     pts.extend([[0.7, 0.1], [0.1, 0.8], [0.6, 0.6]]);
     pts.push([0.6, 0.6]);
@@ -237,7 +232,6 @@ fn blue_noise_sets_are_well_spaced() {
         let d = min_distance(&pts) / relative_radius_max(n as usize);
         assert!(d >= floor, "{name}: minimum distance {d} r_max");
     }
-    #[cfg(feature = "lloyd")]
     {
         let pts = set("lloyd", 256, 4, None);
         assert!(min_distance(&pts) / relative_radius_max(256) > 0.5);
@@ -249,7 +243,7 @@ fn best_candidate_is_progressive() {
     let mut p = Params::new(1);
     p.set("candidates", (2) as f64);
     let mut s = registry::build("best-candidate", &p).unwrap();
-    let pts = common::take(s.as_mut(), 512);
+    let pts = crate::common::take(s.as_mut(), 512);
     for m in [16usize, 64, 256, 512] {
         let d = min_distance(&pts[..m]) / relative_radius_max(m);
         assert!(d > 0.3, "prefix {m}: minimum distance {d} r_max");
@@ -262,10 +256,9 @@ fn iteration_counts_are_checked() {
     assert!(Ccvt::new(100, 1_000_000).is_err());
     assert!(Ccvt::new(0, 10).is_err());
     assert!(Ccvt::new(1 << 20, 10).is_err());
-    #[cfg(feature = "lloyd")]
     {
-        assert!(strata::samplers::Lloyd::new(100, 1_000_000).is_err());
-        assert!(strata::samplers::Lloyd::new(0, 10).is_err());
+        assert!(strata_lab::samplers::Lloyd::new(100, 1_000_000).is_err());
+        assert!(strata_lab::samplers::Lloyd::new(0, 10).is_err());
     }
     let mut p = Params::new(100);
     p.set("iterations", (5) as f64);
@@ -277,7 +270,6 @@ fn iteration_counts_are_checked() {
 
 /// Mean over `seeds` of (per-set minimum distance, per-set mean nearest-neighbour distance),
 /// both relative to `r_max`.
-#[cfg(feature = "spectrum")]
 fn spacing(
     name: &str,
     n: u64,
@@ -293,21 +285,20 @@ fn spacing(
             p.set("iterations", v as f64);
         }
         let mut s = registry::build(name, &p).unwrap();
-        let pts = common::take(s.as_mut(), n as usize);
+        let pts = crate::common::take(s.as_mut(), n as usize);
         if name == "net02bn" {
             assert!(
-                common::is_net(&pts),
+                crate::common::is_net(&pts),
                 "{name} n={n} seed={seed} is not a (0,m,2)-net"
             );
         }
-        let d = strata::spectrum::nearest_neighbour_distances(&pts).unwrap();
+        let d = strata_lab::spectrum::nearest_neighbour_distances(&pts).unwrap();
         sum[0] += d.iter().copied().fold(f64::INFINITY, f64::min) / r;
         sum[1] += d.iter().sum::<f64>() / d.len() as f64 / r;
     }
     [sum[0] / k, sum[1] / k]
 }
 
-#[cfg(feature = "spectrum")]
 #[test]
 fn net02bn_is_a_net_and_bluer_than_pmj02() {
     // Each set is checked as a net (every elementary interval of area 1/N holds one point),
@@ -315,7 +306,7 @@ fn net02bn_is_a_net_and_bluer_than_pmj02() {
     for m in 0..=10u32 {
         for seed in [1u64, 2] {
             let pts = set("net02bn", 1 << m, seed, None);
-            assert!(common::is_net(&pts), "m={m} seed={seed}");
+            assert!(crate::common::is_net(&pts), "m={m} seed={seed}");
         }
     }
     // The targets against pmj02 (4 seeds at 1024 points, each a net): mean nearest-neighbour

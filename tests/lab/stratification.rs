@@ -1,9 +1,8 @@
 //! Stratification of the classic samplers, counted cell by cell at several counts and seeds,
 //! over several consecutive blocks (each block of a fixed-count sampler is its own set).
 
-mod common;
 
-use common::{assert_at_most_one_per_cell, assert_one_per_cell, take};
+use crate::common::{assert_at_most_one_per_cell, assert_one_per_cell, take};
 use strata::samplers::{Cmj, Jittered, MultiJittered, NRooks, Regular};
 use strata::{Progression, Sampler};
 
@@ -35,7 +34,7 @@ fn regular_points_are_cell_centres() {
         let pts = take(&mut smp, (s * s) as usize);
         assert_one_per_cell(&pts, s, s, "regular");
         for p in &pts {
-            for c in [p.x, p.y] {
+            for c in [p[0], p[1]] {
                 let centre = ((c as f64 * s as f64).floor() + 0.5) / s as f64;
                 assert!(
                     (c as f64 - centre).abs() < 1e-6,
@@ -109,7 +108,7 @@ fn cmj_fills_rows_first_for_counts_that_are_not_a_grid() {
     let mut smp = Cmj::new(10, strata::Seed(3)).unwrap();
     assert_eq!(smp.grid(), (3, 4));
     let pts = take(&mut smp, 10);
-    let c = common::counts(&pts, 3, 4);
+    let c = crate::common::counts(&pts, 3, 4);
     assert_eq!(c[..9], [1; 9]);
     assert_eq!(c[9..].iter().sum::<u32>(), 1);
 }
@@ -128,11 +127,11 @@ fn fixed_count_blocks_are_independent_sets() {
 
 #[test]
 fn fill_equals_repeated_next_sample_across_block_edges() {
-    for entry in strata::registry::entries() {
+    for entry in strata_lab::registry::entries() {
         let name = entry.name;
-        let params = strata::registry::Params::new(entry.counts.nearest(9)).seed(4);
-        let mut a = strata::registry::build(name, &params).unwrap();
-        let mut b = strata::registry::build(name, &params).unwrap();
+        let params = strata_lab::registry::Params::new(entry.counts.nearest(9)).seed(4);
+        let mut a = strata_lab::registry::build(name, &params).unwrap();
+        let mut b = strata_lab::registry::build(name, &params).unwrap();
         let bulk = take(a.as_mut(), 31);
         let one_by_one: Vec<_> = (0..31).map(|_| b.next_sample()).collect();
         assert_eq!(bulk, one_by_one, "{name}");
@@ -142,13 +141,13 @@ fn fill_equals_repeated_next_sample_across_block_edges() {
 #[test]
 fn strata_grids_declared_by_samplers_hold() {
     // Every grid a sampler declares for its own count must hold one point per cell.
-    for entry in strata::registry::entries() {
+    for entry in strata_lab::registry::entries() {
         for n in [16u64, 64, 100, 144] {
             if !entry.counts.allows(n) {
                 continue;
             }
             let mut s = entry
-                .build(&strata::registry::Params::new(n).seed(2))
+                .build(&strata_lab::registry::Params::new(n).seed(2))
                 .unwrap();
             let grids = s.strata(n);
             let pts = take(s.as_mut(), n as usize);

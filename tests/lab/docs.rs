@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use strata::registry;
+use strata_lab::registry;
 
 fn read(path: &str) -> String {
     let p = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
@@ -77,7 +77,8 @@ fn nothing_refers_outside_the_repository() {
         "src/lib.rs",
         "examples/points.rs",
         "examples/spectrum.rs",
-        "tests/cli.rs",
+        "tests/lab/cli.rs",
+        "strata/src/lib.rs",
     ] {
         let text = read(f);
         assert!(
@@ -88,48 +89,12 @@ fn nothing_refers_outside_the_repository() {
 }
 
 #[test]
-fn the_sequence_table_is_generated_and_names_every_sequence() {
-    // the pixel module docs include docs/sequences.md, which `Sequence::summary_table` writes
-    let table = strata::Sequence::summary_table();
-    if std::env::var_os("STRATA_BLESS").is_some() {
-        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/sequences.md");
-        std::fs::write(p, &table).unwrap();
-    }
-    assert_eq!(
-        read("docs/sequences.md"),
-        table,
-        "docs/sequences.md is stale (STRATA_BLESS=1)"
-    );
-    assert!(
-        read("src/pixel/mod.rs").contains("include_str!(\"../../docs/sequences.md\")"),
-        "the pixel module docs no longer include the sequence table"
-    );
-    // one row per sequence the adapter knows by name, in the order of `Sequence::NAMES`
-    let rows: Vec<&str> = table.lines().skip(2).collect();
-    assert_eq!(rows.len(), strata::Sequence::NAMES.len());
-    for (row, name) in rows.iter().zip(strata::Sequence::NAMES) {
-        assert!(row.starts_with(&format!("| `{name}` |")), "{row}");
-        // and the row's GPU column says what `gpu_parameters` does
-        let spp = if name == "jittered" { 16 } else { 8 };
-        let seq = strata::Sequence::by_name_at(name, [8, 8]).unwrap();
-        let s = strata::PixelSampler::new(seq, spp, strata::Seed(1)).unwrap();
-        let gpu = s
-            .gpu_parameters()
-            .map(|g| format!("sequence {}", g.sequence));
-        assert!(
-            row.contains(&format!("| {} |", gpu.as_deref().unwrap_or("CPU only"))),
-            "{row}"
-        );
-    }
-}
-
-#[test]
 fn no_merge_conflict_markers_are_left_in_the_sources_or_the_docs() {
     // (a merge once committed its markers into CHANGELOG.md and docs/cli.md unnoticed)
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let markers = [format!("{} ", "<".repeat(7)), format!("{} ", ">".repeat(7))];
     let mut stack: Vec<std::path::PathBuf> =
-        ["src", "docs", "examples", "tests", "benches", "shaders"]
+        ["src", "docs", "examples", "tests", "benches", "strata", "python", "gpu"]
             .iter()
             .map(|d| root.join(d))
             .chain(
@@ -232,7 +197,8 @@ fn the_entry_types_are_a_leaf_below_the_samplers_and_the_registry_is_above_them(
     // The import circle this breaks: the registry imports every sampler's ENTRY, and every
     // sampler imported the entry types from the registry. Now the entry types (src/entry.rs)
     // import no sampler and not the registry, neither directly nor through the modules they
-    // import, and no sampler imports the registry.
+    // import (only the renderer crate, `strata`, which knows nothing of the lab), and no
+    // sampler imports the registry.
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     // the crate root's re-exports of single items: `pub use module::{A, B};`
     let lib = read("src/lib.rs");
@@ -272,10 +238,8 @@ fn the_entry_types_are_a_leaf_below_the_samplers_and_the_registry_is_above_them(
              types must stay a leaf below the samplers"
         );
     }
-    assert!(
-        reached.contains("error") && reached.contains("sampler"),
-        "{reached:?}"
-    );
+    assert_eq!(reached.len(), 1, "{reached:?}");
+    assert!(read("src/entry.rs").contains("use strata::"));
     // no sampler imports the registry (they name the entry types as crate::entry)
     let mut stack = vec![root.join("samplers")];
     let mut files = 0;
@@ -298,7 +262,7 @@ fn the_entry_types_are_a_leaf_below_the_samplers_and_the_registry_is_above_them(
             p.display()
         );
     }
-    assert!(files > 15, "only {files} sampler files read");
+    assert!(files > 10, "only {files} sampler files read");
     // and the registry does import the samplers and the entry types (the check sees imports)
     let registry = crate_modules(&read("src/registry/mod.rs"), &reexports);
     assert!(

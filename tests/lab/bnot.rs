@@ -1,4 +1,4 @@
-//! The `bnot` sampler and the periodic power diagram under it (`strata::power`): the diagram
+//! The `bnot` sampler and the periodic power diagram under it (`strata_lab::power`): the diagram
 //! against a brute-force assignment of grid points to the power-nearest site, degenerate and
 //! co-circular configurations, nearly coincident sites, the sampler's spacing and equal areas,
 //! determinism, tiny counts, and bad input. Ported from the BNOT prototype's tests.
@@ -11,10 +11,10 @@
 use rand::Rng;
 use rand_pcg::Pcg32 as Pcg;
 use strata::Error;
-use strata::power::PowerDiagram;
-use strata::registry::{self, Params};
-use strata::samplers::bnot::{self, Bnot, MAX_BNOT_COUNT, MAX_ITERATIONS};
-use strata::spectrum::{point_set_measures, relative_radius_max};
+use strata_lab::power::PowerDiagram;
+use strata_lab::registry::{self, Params};
+use strata_lab::samplers::bnot::{self, Bnot, MAX_BNOT_COUNT, MAX_ITERATIONS};
+use strata_lab::spectrum::{point_set_measures, relative_radius_max};
 
 /// A deterministic generator of test data (`next_f64` in `[0, 1)` on multiples of `2^-53`).
 struct Pcg32(Pcg);
@@ -769,14 +769,14 @@ fn deterministic_by_seed_and_successive_sets_differ() {
     assert_ne!(a[..128], a[128..]);
     let mut first: Vec<_> = a[..128]
         .iter()
-        .map(|p| (p.x.to_bits(), p.y.to_bits()))
+        .map(|p| (p[0].to_bits(), p[1].to_bits()))
         .collect();
     first.sort_unstable();
     first.dedup();
     assert_eq!(first.len(), 128, "points are distinct");
     assert!(
         a.iter()
-            .all(|p| (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y))
+            .all(|p| (0.0..1.0).contains(&p[0]) && (0.0..1.0).contains(&p[1]))
     );
     let s = registry::build("bnot", &Params::new(64)).unwrap();
     assert!(s.strata(64).is_empty(), "bnot promises no grids");
@@ -828,7 +828,7 @@ fn tiny_sets() {
         let mut s = registry::build("bnot", &Params::new(n).seed(9)).unwrap();
         for _ in 0..3 * n {
             let p = s.next_sample();
-            assert!(p.x.is_finite() && p.y.is_finite());
+            assert!(p[0].is_finite() && p[1].is_finite());
         }
     }
 }

@@ -3,11 +3,10 @@
 //! the spectral variance prediction exact for random sampling, bootstrap intervals that hold the
 //! rates and separate the classes, the time to reach an error, determinism, and the errors.
 
-#![cfg(feature = "spectrum")]
 
-use strata::analysis::Integrand;
-use strata::analysis::study::{self, Config, Seeds};
-use strata::registry;
+use strata_lab::analysis::Integrand;
+use strata_lab::analysis::study::{self, Config, Seeds};
+use strata_lab::registry;
 
 fn config(names: &[&str], integrands: &[Integrand], min_n: u64, max_n: u64, seeds: u32) -> Config {
     Config {

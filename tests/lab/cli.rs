@@ -1,15 +1,13 @@
 //! The `points` program's command-line contract (`docs/cli.md`): CSV that parses back to
 //! the library's values, `--list`, and one-line errors with a non-zero exit status.
 
-#![cfg(feature = "io")]
 
-mod common;
 
-use common::example_bin;
+use crate::common::example_bin;
 use std::path::PathBuf;
 use std::process::Command;
 
-use strata::registry::{self, Params};
+use strata_lab::registry::{self, Params};
 
 fn points_bin() -> Option<PathBuf> {
     example_bin("points")
@@ -37,8 +35,8 @@ fn csv_round_trips_to_the_library_values() {
         for line in lines {
             let (x, y) = line.split_once(',').unwrap();
             let p = s.next_sample();
-            assert_eq!(x.parse::<f32>().unwrap().to_bits(), p.x.to_bits());
-            assert_eq!(y.parse::<f32>().unwrap().to_bits(), p.y.to_bits());
+            assert_eq!(x.parse::<f32>().unwrap().to_bits(), p[0].to_bits());
+            assert_eq!(y.parse::<f32>().unwrap().to_bits(), p[1].to_bits());
             rows += 1;
         }
         assert_eq!(rows, n);
@@ -155,7 +153,7 @@ fn dims_and_pixel_print_the_library_values() {
         let a = sampler.sample_2d([3, 7], i as u64, 0);
         let b = sampler.sample_2d([3, 7], i as u64, 2);
         let c = sampler.sample_1d([3, 7], i as u64, 4);
-        assert_eq!(got, vec![a.x, a.y, b.x, b.y, c]);
+        assert_eq!(got, vec![a[0], a[1], b[0], b[1], c]);
         rows += 1;
     }
     assert_eq!(rows, 4);
@@ -453,17 +451,16 @@ fn run_example_bytes(name: &str, args: &[&str]) -> (i32, Vec<u8>, String) {
 }
 
 #[test]
-#[cfg(feature = "spectrum")]
 fn points_writes_every_format_and_measure_reads_them_back() {
-    use strata::analysis::discrepancy;
-    use strata::pointsets;
+    use strata_lab::analysis::discrepancy;
+    use strata_lab::pointsets;
     let dir = std::env::temp_dir().join(format!("strata-measure-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut s = registry::build("sobol", &Params::new(64).seed(5)).unwrap();
     let want: Vec<f64> = (0..64)
         .flat_map(|_| {
             let p = s.next_sample();
-            [p.x as f64, p.y as f64]
+            [p[0] as f64, p[1] as f64]
         })
         .collect();
     let mut files = Vec::new();
@@ -663,7 +660,7 @@ fn the_blue_noise_table_has_a_row_per_blue_noise_sampler_and_refuses_bad_input()
     // the table fails here ...
     assert_eq!(names, registered, "{text}");
     // ... and one dropped from the registry's blue-noise list fails here
-    let mut known = vec![
+    let known = vec![
         "pmjbn",
         "pmj02bn",
         "net02bn",
@@ -672,10 +669,8 @@ fn the_blue_noise_table_has_a_row_per_blue_noise_sampler_and_refuses_bad_input()
         "best-candidate",
         "ccvt",
         "bnot",
+        "lloyd",
     ];
-    if cfg!(feature = "lloyd") {
-        known.push("lloyd");
-    }
     for name in known {
         assert!(
             registered.contains(&name),

@@ -2,13 +2,13 @@
 //! and every aligned block, under XOR shuffling, PMJ's 1D strata and squarest grids, the
 //! stratified classes, best-candidate spacing, and the errors.
 
-mod common;
 
-use common::top;
+use crate::common::top;
 use strata::Sampler;
-use strata::samplers::pmj::blue::DEFAULT_SWEEPS;
-use strata::samplers::pmj::{class2, class4};
-use strata::samplers::{Pmj, Pmj02Bn, Pmj02Stochastic};
+use strata_lab::samplers::pmj::blue::DEFAULT_SWEEPS;
+use strata_lab::samplers::pmj::{class2, class4};
+use strata::samplers::{Pmj02Stochastic};
+use strata_lab::samplers::{Pmj, Pmj02Bn};
 
 /// For each shape `2^a x 2^(m-a)` (`a = 0..=m`), how many cells hold exactly one point.
 fn stratified_shapes(pts: &[[u32; 2]], m: u32) -> Vec<u32> {
@@ -43,12 +43,12 @@ fn assert_nets(pts: &[[u32; 2]], what: &str) {
 
 fn fixed_points(s: &mut dyn Sampler, n: usize) -> Vec<[u32; 2]> {
     // f32 coordinates keep 24 bits; the stratum of a point at level m <= 24 is exact.
-    common::take(s, n)
+    crate::common::take(s, n)
         .iter()
         .map(|p| {
             [
-                (p.x as f64 * 4294967296.0) as u32,
-                (p.y as f64 * 4294967296.0) as u32,
+                (p[0] as f64 * 4294967296.0) as u32,
+                (p[1] as f64 * 4294967296.0) as u32,
             ]
         })
         .collect()
@@ -212,20 +212,19 @@ fn stochastic_classes_are_stratified_on_their_own() {
 }
 
 fn mean_nn_distance(pts: &[[u32; 2]]) -> f64 {
-    let p: Vec<glam::Vec2> = pts
+    let p: Vec<[f32; 2]> = pts
         .iter()
         .map(|q| {
-            glam::Vec2::new(
+            [
                 strata::float::unit_f32_from_u32(q[0]),
                 strata::float::unit_f32_from_u32(q[1]),
-            )
+            ]
         })
         .collect();
-    let d = strata::spectrum::nearest_neighbour_distances(&p).unwrap();
+    let d = strata_lab::spectrum::nearest_neighbour_distances(&p).unwrap();
     d.iter().sum::<f64>() / d.len() as f64
 }
 
-#[cfg(feature = "spectrum")]
 #[test]
 fn best_candidate_spreads_points_further() {
     for seed in [11u64, 12, 13] {
@@ -247,7 +246,6 @@ fn best_candidate_spreads_points_further() {
 }
 
 /// Mean over seeds of the mean nearest-neighbour distance of the first `n` points.
-#[cfg(feature = "spectrum")]
 fn mean_nn_over_seeds(
     n: usize,
     seeds: std::ops::RangeInclusive<u64>,
@@ -257,7 +255,6 @@ fn mean_nn_over_seeds(
     seeds.map(|s| mean_nn_distance(&make(s)[..n])).sum::<f64>() / k
 }
 
-#[cfg(feature = "spectrum")]
 #[test]
 fn pmj02bn_is_bluer_than_pmj02_at_every_checked_prefix() {
     // The target: mean nearest-neighbour distance >= 1.05x pmj02's, checked per prefix
@@ -286,16 +283,16 @@ fn pmj02bn_is_bluer_than_pmj02_at_every_checked_prefix() {
 #[test]
 fn sequences_are_progressive_and_reproducible() {
     for name in ["pmj", "pmjbn", "pmj02", "pmj02bn", "pmj02-stochastic"] {
-        let p = strata::registry::Params::new(100).seed(5);
-        let mut a = strata::registry::build(name, &p).unwrap();
-        let mut b = strata::registry::build(name, &p).unwrap();
+        let p = strata_lab::registry::Params::new(100).seed(5);
+        let mut a = strata_lab::registry::build(name, &p).unwrap();
+        let mut b = strata_lab::registry::build(name, &p).unwrap();
         assert!(a.progression().is_progressive());
-        let x = common::take(a.as_mut(), 300);
+        let x = crate::common::take(a.as_mut(), 300);
         let y: Vec<_> = (0..300).map(|_| b.next_sample()).collect();
         assert_eq!(x, y, "{name}");
         assert!(
             x.iter()
-                .all(|p| (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y))
+                .all(|p| (0.0..1.0).contains(&p[0]) && (0.0..1.0).contains(&p[1]))
         );
     }
 }
@@ -308,12 +305,12 @@ fn bad_input_is_refused() {
             .to_string()
             .contains("candidates")
     );
-    let mut p = strata::registry::Params::new(16);
+    let mut p = strata_lab::registry::Params::new(16);
     p.set("candidates", (0) as f64);
-    assert!(strata::registry::build("pmjbn", &p).is_err());
+    assert!(strata_lab::registry::build("pmjbn", &p).is_err());
     p.unset("candidates");
     p.set("iterations", (1001) as f64);
-    let e = strata::registry::build("pmj02bn", &p).unwrap_err();
+    let e = strata_lab::registry::build("pmj02bn", &p).unwrap_err();
     assert!(e.to_string().contains("0 to 1000"), "{e}");
     let e = Pmj::pmj02(strata::Seed(1))
         .reserve((1 << 32) + 1)

@@ -58,9 +58,9 @@ fn the_render_loop_allocates_nothing() {
                 for x in 0..16u32 {
                     for i in 0..16u64 {
                         t.start_pixel_sample([x, y], i, 0);
-                        acc += t.get_pixel_2d().x + t.get_2d().y + t.get_1d() + t.get_4d().w;
+                        acc += t.get_pixel_2d()[0] + t.get_2d()[1] + t.get_1d() + t.get_4d()[3];
                         acc += t.sample_1d([x, y], i + (1 << 32), 3);
-                        acc += t.sample_2d([x, y], i * 70_001, 5).x;
+                        acc += t.sample_2d([x, y], i * 70_001, 5)[0];
                     }
                 }
             }

@@ -3,12 +3,12 @@
 
 use proptest::prelude::*;
 use strata::SamplerNd;
-use strata::registry::{self, Params};
-use strata::samplers::{Bose, Cmj, Jittered, MultiJittered, NRooks, Pmj, Pmj02Stochastic, Sobol};
+use strata_lab::registry::{self, Params};
+use strata::samplers::{Cmj, Jittered, MultiJittered, NRooks, Pmj02Stochastic, Sobol};
+use strata_lab::samplers::{Bose, Pmj};
 
-mod common;
 
-use common::{counts, is_net_fixed as is_net, take};
+use crate::common::{counts, is_net_fixed as is_net, take};
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
@@ -112,7 +112,7 @@ proptest! {
             Ok(mut s) => {
                 for _ in 0..8 {
                     let q = s.next_sample();
-                    prop_assert!((0.0..1.0).contains(&q.x) && (0.0..1.0).contains(&q.y));
+                    prop_assert!((0.0..1.0).contains(&q[0]) && (0.0..1.0).contains(&q[1]));
                 }
             }
             Err(e) => prop_assert!(hint(&e), "{}: {e}", entry.name),

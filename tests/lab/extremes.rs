@@ -2,14 +2,13 @@
 //! nets); seeds 0 and u64::MAX; indices near 2^32; Poisson radii near 0 and near the limit;
 //! coincident and nearly coincident points into Lloyd and the spectrum; no 1.0 anywhere.
 
-use glam::Vec2;
-use strata::registry::{self, Params};
-use strata::samplers::{Pmj, Pmj02Stochastic, Sobol};
+use strata_lab::registry::{self, Params};
+use strata::samplers::{Pmj02Stochastic, Sobol};
+use strata_lab::samplers::{Pmj};
 use strata::{Progression, Sampler};
 
-mod common;
 
-use common::is_net_fixed as is_net;
+use crate::common::is_net_fixed as is_net;
 
 #[test]
 fn one_sample_is_a_valid_set_everywhere() {
@@ -18,14 +17,13 @@ fn one_sample_is_a_valid_set_everywhere() {
         let mut s = entry.build(&Params::new(n)).unwrap();
         let p = s.next_sample();
         assert!(
-            (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y),
+            (0.0..1.0).contains(&p[0]) && (0.0..1.0).contains(&p[1]),
             "{}",
             entry.name
         );
     }
-    #[cfg(feature = "spectrum")]
     {
-        let s = strata::spectrum::periodogram(&[Vec2::new(0.5, 0.5)], 8).unwrap();
+        let s = strata_lab::spectrum::periodogram(&[[0.5, 0.5]], 8).unwrap();
         assert!((s.get(0, 0).unwrap() - 1.0).abs() < 1e-9);
         assert!((s.get(3, -2).unwrap() - 1.0).abs() < 1e-7); // one point: |F| = 1 everywhere
     }
@@ -73,13 +71,13 @@ fn seeds_at_the_extremes_work_and_differ() {
         let n = entry.counts.nearest(if entry.expensive { 16 } else { 256 });
         let mut a = entry.build(&Params::new(n).seed(0)).unwrap();
         let mut b = entry.build(&Params::new(n).seed(u64::MAX)).unwrap();
-        let (pa, pb): (Vec<Vec2>, Vec<Vec2>) = (
+        let (pa, pb): (Vec<[f32; 2]>, Vec<[f32; 2]>) = (
             (0..n).map(|_| a.next_sample()).collect(),
             (0..n).map(|_| b.next_sample()).collect(),
         );
         for p in pa.iter().chain(&pb) {
             assert!(
-                (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y),
+                (0.0..1.0).contains(&p[0]) && (0.0..1.0).contains(&p[1]),
                 "{}",
                 entry.name
             );
@@ -101,7 +99,7 @@ fn indices_near_two_to_the_32() {
     for i in [u32::MAX - 3, u32::MAX - 1, u32::MAX] {
         let p = Pmj02Stochastic::point(i, strata::Seed(9));
         let q = Sobol::new(strata::Seed(9)).sample(i);
-        for v in [p.x, p.y, q.x, q.y] {
+        for v in [p[0], p[1], q[0], q[1]] {
             assert!((0.0..1.0).contains(&v), "index {i}: {v}");
         }
     }
@@ -121,15 +119,15 @@ fn indices_near_two_to_the_32() {
         .unwrap();
     for i in [(1u64 << 32) - 1, 1 << 32, u64::MAX] {
         let v = s.sample_2d([1, 1], i, 0);
-        assert!((0.0..1.0).contains(&v.x) && (0.0..1.0).contains(&v.y));
+        assert!((0.0..1.0).contains(&v[0]) && (0.0..1.0).contains(&v[1]));
     }
 }
 
 #[test]
 fn poisson_radii_near_zero_and_near_the_limit() {
-    use common::torus_distance_squared;
-    use strata::samplers::{DartThrowing, SetGenerator};
-    use strata::spectrum::relative_radius_max;
+    use crate::common::torus_distance_squared;
+    use strata_lab::samplers::{DartThrowing, SetGenerator};
+    use strata_lab::spectrum::relative_radius_max;
     // near zero: behaves like random points, and the radius holds
     let g = DartThrowing::new(500, 1e-6).unwrap();
     let pts = g.generate(1).unwrap();
@@ -157,10 +155,9 @@ fn poisson_radii_near_zero_and_near_the_limit() {
     }
 }
 
-#[cfg(feature = "lloyd")]
 #[test]
 fn coincident_and_nearly_coincident_points_into_lloyd() {
-    use strata::samplers::lloyd::{relax, voronoi_cells};
+    use strata_lab::samplers::lloyd::{relax, voronoi_cells};
     let mut pts = vec![[0.3, 0.3]; 10];
     pts.push([0.3 + 1e-15, 0.3]);
     pts.push([0.3, 0.3 + 1e-9]);
@@ -183,13 +180,12 @@ fn coincident_and_nearly_coincident_points_into_lloyd() {
     assert!(voronoi_cells(&[]).is_err());
 }
 
-#[cfg(feature = "spectrum")]
 #[test]
 fn coincident_points_into_the_spectrum() {
-    use strata::spectrum::{periodogram, periodogram_direct, point_set_measures};
-    let mut pts = vec![Vec2::new(0.25, 0.75); 100];
-    pts.push(Vec2::new(0.25 + f32::EPSILON, 0.75));
-    pts.push(Vec2::new(0.999_999_94, 0.999_999_94));
+    use strata_lab::spectrum::{periodogram, periodogram_direct, point_set_measures};
+    let mut pts = vec![[0.25, 0.75]; 100];
+    pts.push([0.25 + f32::EPSILON, 0.75]);
+    pts.push([0.999_999_94, 0.999_999_94]);
     let fast = periodogram(&pts, 32).unwrap();
     let direct = periodogram_direct(&pts, 32).unwrap();
     for (a, b) in fast.values().iter().zip(direct.values()) {
@@ -211,8 +207,8 @@ fn no_sampler_ever_returns_one() {
         for _ in 0..n * blocks {
             let p = s.next_sample();
             assert!(
-                p.x < 1.0 && p.y < 1.0 && p.x >= 0.0 && p.y >= 0.0,
-                "{}: {p}",
+                p[0] < 1.0 && p[1] < 1.0 && p[0] >= 0.0 && p[1] >= 0.0,
+                "{}: {p:?}",
                 entry.name
             );
         }
@@ -229,7 +225,7 @@ fn huge_counts_never_overflow() {
     // u64, and pmj02bn's prefix length overflowed; it now optimises its longest prefix (with
     // 0 sweeps here, to stay quick)
     for n in [(1u64 << 63) + 1, u64::MAX] {
-        assert!(strata::samplers::Pmj02Bn::new(strata::Seed(1), n, 0).is_ok());
+        assert!(strata_lab::samplers::Pmj02Bn::new(strata::Seed(1), n, 0).is_ok());
     }
     for spp in [u32::MAX, (1 << 31) + 1] {
         for name in strata::pixel::Sequence::NAMES {

@@ -3,8 +3,9 @@
 //! (every 1D projection into N strata, every 2D projection for Bose, every t-D one for Bush).
 
 use strata::SamplerNd;
-use strata::registry::{self, Params};
-use strata::samplers::{Bose, Bush, LatinHypercube, UncorrelatedJitter};
+use strata_lab::registry::{self, Params};
+use strata::samplers::{LatinHypercube, UncorrelatedJitter};
+use strata_lab::samplers::{Bose, Bush};
 
 fn points(s: &mut dyn SamplerNd, n: usize) -> Vec<Vec<f32>> {
     let d = s.dimensions() as usize;
