@@ -80,9 +80,6 @@ fn lloyd(c: &mut Criterion) {
     group.finish();
 }
 
-#[cfg(not(feature = "lloyd"))]
-fn lloyd(_: &mut Criterion) {}
-
 fn ccvt(c: &mut Criterion) {
     let mut group = c.benchmark_group("blue_noise/ccvt-N1024");
     group

@@ -3,7 +3,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use strata::samplers::lloyd::{relax, voronoi_cells};
+use strata_lab::samplers::lloyd::{relax, voronoi_cells};
 
 fuzz_target!(|data: &[u8]| {
     let mut pts: Vec<[f64; 2]> = data

@@ -16,7 +16,7 @@ fuzz_target!(|data: &[u8]| {
     let pixel = [w(10) as u32, (w(10) >> 32) as u32];
     let (index, dim) = (w(18), w(24) as u32);
     let v = s.sample_2d(pixel, index, dim);
-    assert!((0.0..1.0).contains(&v.x) && (0.0..1.0).contains(&v.y));
+    assert!((0.0..1.0).contains(&v[0]) && (0.0..1.0).contains(&v[1]));
     let mut t = s.clone();
     t.start_pixel_sample(pixel, index, dim);
     assert_eq!(t.get_2d(), v);

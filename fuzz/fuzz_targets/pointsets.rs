@@ -7,11 +7,11 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    let plain = strata::pointsets::parse(data);
+    let plain = strata_lab::pointsets::parse(data);
     let mut marked = b"\xef\xbb\xbf".to_vec();
     marked.extend_from_slice(data);
     if !data.starts_with(b"\xef\xbb\xbf") {
-        let with_mark = strata::pointsets::parse(&marked);
+        let with_mark = strata_lab::pointsets::parse(&marked);
         assert_eq!(plain.is_ok(), with_mark.is_ok());
         if let (Ok(a), Ok(b)) = (&plain, &with_mark) {
             assert_eq!(a, b);
@@ -21,9 +21,9 @@ fuzz_target!(|data: &[u8]| {
         let values: usize = sets.iter().map(|s| s.coords.len()).sum();
         assert!(values <= data.len(), "{values} values from {} bytes", data.len());
     }
-    let _ = strata::pointsets::parse_utk_bin(data);
+    let _ = strata_lab::pointsets::parse_utk_bin(data);
     if let Ok(text) = std::str::from_utf8(data) {
-        let _ = strata::pointsets::parse_csv(text);
-        let _ = strata::pointsets::parse_utk_text(text);
+        let _ = strata_lab::pointsets::parse_csv(text);
+        let _ = strata_lab::pointsets::parse_utk_text(text);
     }
 });

@@ -3,7 +3,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use strata::registry::{self, Params};
+use strata_lab::registry::{self, Params};
 
 fuzz_target!(|data: &[u8]| {
     if data.len() < 40 {
@@ -44,7 +44,7 @@ fuzz_target!(|data: &[u8]| {
     if let Ok(mut s) = entry.build(&p) {
         for _ in 0..n.min(64) {
             let q = s.next_sample();
-            assert!((0.0..1.0).contains(&q.x) && (0.0..1.0).contains(&q.y));
+            assert!((0.0..1.0).contains(&q[0]) && (0.0..1.0).contains(&q[1]));
         }
     }
     if let Ok(mut s) = entry.build_nd(&p, dims) {

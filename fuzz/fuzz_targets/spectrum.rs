@@ -3,19 +3,18 @@
 //! within 1e-6 of the direct sum on small sets.
 #![no_main]
 
-use glam::Vec2;
 use libfuzzer_sys::fuzz_target;
-use strata::spectrum;
+use strata_lab::spectrum;
 
 fuzz_target!(|data: &[u8]| {
     if data.len() < 2 {
         return;
     }
     let k = data[0] as u32 % 40;
-    let pts: Vec<Vec2> = data[1..]
+    let pts: Vec<[f32; 2]> = data[1..]
         .chunks_exact(8)
         .take(300)
-        .map(|c| Vec2::new(f32::from_le_bytes(c[..4].try_into().unwrap()), f32::from_le_bytes(c[4..].try_into().unwrap())))
+        .map(|c| [f32::from_le_bytes(c[..4].try_into().unwrap()), f32::from_le_bytes(c[4..].try_into().unwrap())])
         .collect();
     let fast = spectrum::periodogram(&pts, k);
     let direct = spectrum::periodogram_direct(&pts, k);

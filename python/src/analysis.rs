@@ -2,7 +2,6 @@
 //! mean and anisotropy), the PSA measures, nearest-neighbour distances, discrepancies and the
 //! convergence studies.
 
-use glam::Vec2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -14,7 +13,7 @@ use strata_lab::spectrum::{self, Spectrum};
 use crate::{input_slice, to_py_err, value_error};
 
 /// A `(n, 2)` C-contiguous float32 array as points, without copying.
-fn points_2d<'a>(a: &'a PyReadonlyArray2<'_, f32>, what: &str) -> PyResult<&'a [Vec2]> {
+fn points_2d<'a>(a: &'a PyReadonlyArray2<'_, f32>, what: &str) -> PyResult<&'a [[f32; 2]]> {
     if a.shape()[1] != 2 {
         return Err(value_error(format!(
             "{what}: points have shape {:?}; (n, 2) is needed",
@@ -27,7 +26,7 @@ fn points_2d<'a>(a: &'a PyReadonlyArray2<'_, f32>, what: &str) -> PyResult<&'a [
 
 /// Checks that every coordinate is finite and in `[0, 1)` (the rule of the crate's spectrum
 /// and point-set functions), with a message naming the first bad point.
-fn check_unit(points: &[Vec2], what: &str) -> PyResult<()> {
+fn check_unit(points: &[[f32; 2]], what: &str) -> PyResult<()> {
     if points.is_empty() {
         return Err(value_error(format!(
             "{what}: the point set is empty; at least one point is needed"
@@ -35,7 +34,7 @@ fn check_unit(points: &[Vec2], what: &str) -> PyResult<()> {
     }
     match points
         .iter()
-        .position(|p| !((0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y)))
+        .position(|p| !p.iter().all(|v| (0.0..1.0).contains(v)))
     {
         Some(i) => Err(value_error(format!(
             "{what}: point {i} is ({}, {}); coordinates must be finite and in [0, 1)",
@@ -88,7 +87,7 @@ fn expected_spectrum<'py>(
     let views = sets
         .iter()
         .map(|s| points_2d(s, "expected_spectrum"))
-        .collect::<PyResult<Vec<&[Vec2]>>>()?;
+        .collect::<PyResult<Vec<&[[f32; 2]]>>>()?;
     let count =
         u32::try_from(views.len()).map_err(|_| value_error("expected_spectrum: too many sets"))?;
     let s = py
@@ -122,7 +121,7 @@ fn sampler_spectrum<'py>(
         .detach(|| {
             spectrum::expected_spectrum(realizations, resolution, |r| {
                 let mut s = entry.build(&params.clone().seed(seed.wrapping_add(r as u64)))?;
-                let mut v = vec![Vec2::ZERO; n];
+                let mut v = vec![[0.0f32; 2]; n];
                 s.fill(&mut v);
                 Ok(v)
             })
@@ -186,8 +185,8 @@ fn psa<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let owned = sets
         .iter()
-        .map(|s| points_2d(s, "psa").map(<[Vec2]>::to_vec))
-        .collect::<PyResult<Vec<Vec<Vec2>>>>()?;
+        .map(|s| points_2d(s, "psa").map(<[[f32; 2]]>::to_vec))
+        .collect::<PyResult<Vec<Vec<[f32; 2]>>>>()?;
     let m = py
         .detach(|| spectrum::point_set_measures(&owned))
         .map_err(to_py_err)?;

@@ -3,8 +3,8 @@
 use rand::rngs::SmallRng;
 use rand::SeedableRng;
 use std::time::Instant;
-use strata::registry::{self, Params};
-use strata::spectrum::{nearest_neighbour_distances, relative_radius_max};
+use strata_lab::registry::{self, Params};
+use strata_lab::spectrum::{nearest_neighbour_distances, relative_radius_max};
 use strata::Point2;
 
 fn mean_nn(pts: &[Point2]) -> f64 {
@@ -85,7 +85,7 @@ fn main() {
         tp.push(b);
         ratio.push(a / b);
         nns += mean_nn(&buf);
-        let pv: Vec<Point2> = v.iter().map(|s| Point2::new(s.x(), s.y())).collect();
+        let pv: Vec<Point2> = v.iter().map(|s| [s.x(), s.y()]).collect();
         nnp += mean_nn(&pv);
     }
     let k = rounds as f64;
