@@ -122,7 +122,7 @@ fn pixel(c: &mut Criterion) {
     };
     let mut g = group(c, "pixel/get_2d", shape.values());
     for name in Sequence::NAMES {
-        let sequence = Sequence::by_name_at(name, [shape.side, shape.side]).unwrap();
+        let sequence = Sequence::by_name(name, [shape.side, shape.side]).unwrap();
         let mut s = PixelSampler::new(sequence, shape.spp, Seed(1)).unwrap();
         g.bench_function(BenchmarkId::from_parameter(name), |b| {
             b.iter(|| black_box(get_2d(&mut s, shape)))
@@ -160,7 +160,7 @@ fn pixel(c: &mut Criterion) {
         let mut g = group(c, label, shape.values());
         for name in ["sobol", "pmj02"] {
             let mut s =
-                PixelSampler::new(Sequence::by_name(name).unwrap(), shape.spp, Seed(1)).unwrap();
+                PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), shape.spp, Seed(1)).unwrap();
             g.bench_function(BenchmarkId::from_parameter(name), |b| {
                 b.iter(|| black_box(get_2d(&mut s, shape)))
             });

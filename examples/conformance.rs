@@ -148,7 +148,7 @@ fn pair_tests(args: &Args, failed: &mut bool) -> Result<(), CliError> {
         .map(|&s| (s.name().to_string(), Box::new(s) as Box<dyn Source>))
         .collect();
     for n in &args.samplers {
-        let source = SequenceSource::new(Sequence::by_name(n)?, study.samples)?;
+        let source = SequenceSource::new(Sequence::by_name(n, [256, 256])?, study.samples)?;
         candidates.push((format!("`{n}`"), Box::new(source)));
     }
     let mut table = format!(
@@ -232,7 +232,7 @@ fn main() -> ExitCode {
         let sequences = args
             .samplers
             .iter()
-            .map(|n| Ok((n.clone(), Sequence::by_name(n)?)))
+            .map(|n| Ok((n.clone(), Sequence::by_name(n, [256, 256])?)))
             .collect::<Result<Vec<_>, strata::Error>>()?;
         let mut summary = String::from(
             "| sequence | tests | cases | closest to its bound (statistic / bound) | verdict |\n|---|---|---|---|---|\n",

@@ -42,9 +42,10 @@ Options:
   -n N               number of samples, 1 to 67108864 (2^26)
   --seed S           seed of everything (u64, default 1); same arguments, same bytes
   --dims D           dimensions per sample (default 2)
-  --pixel X,Y        the values the path-tracer adapter gives pixel (X,Y)
-  --resolution WxH   the image of the Z-ordered adapter sequences zsobol, zpmj02, zquad and
-                     zjoint (default 256x256; the others ignore it)
+  --pixel X,Y        the values the path-tracer adapter gives pixel (X,Y); --sampler is then
+                     a sequence: {SEQUENCES}
+  --resolution WxH   the image of the Z-ordered adapter sequences {Z_SEQUENCES}
+                     (default 256x256; the others ignore it)
 {PARAMETERS}  --png FILE         also draw the points (with the strata grid) into FILE
   --format F         csv (default), utk (UTK text: space-separated, no header) or bin (UTK
                      binary: the magic UTK!, data type 4 = f32, counts, then the values)
@@ -75,7 +76,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         params: Params::new(1),
         dims: 2,
         pixel: None,
-        resolution: strata::pixel::DEFAULT_Z_RESOLUTION,
+        resolution: [256, 256],
         png: None,
         header: true,
         format: Format::Csv,
@@ -144,6 +145,8 @@ fn parse() -> Result<Option<Args>, CliError> {
                 outln!(
                     "{}",
                     HELP.replace("{PARAMETERS}", &common::parameter_help())
+                        .replace("{SEQUENCES}", &common::sequence_help(false, 33, 21, 95))
+                        .replace("{Z_SEQUENCES}", &common::sequence_help(true, 64, 21, 95))
                 )?;
                 return Ok(None);
             }
@@ -213,7 +216,7 @@ fn main() -> ExitCode {
         let mut grids = Vec::new();
         let mut projection_grids = Vec::new();
         if let Some((px, py)) = args.pixel {
-            let sequence = Sequence::by_name_at(&name, args.resolution)?;
+            let sequence = Sequence::by_name(&name, args.resolution)?;
             let spp = u32::try_from(n)
                 .map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
             let mut sampler = PixelSampler::new(sequence, spp, strata::Seed(args.params.seed))?;

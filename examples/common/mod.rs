@@ -182,6 +182,45 @@ pub fn sampler_param(
     Ok(())
 }
 
+/// The path-tracer sequences for `--help`, from their declarations (`Sequence::NAMES`): every
+/// name, and the Z-ordered ones (those that take the image's resolution), comma-separated and
+/// wrapped to `width` columns after an indent of `indent` spaces (the first line starts at
+/// column `first`).
+pub fn sequence_help(z_only: bool, first: usize, indent: usize, width: usize) -> String {
+    use strata::Sequence;
+    let names: Vec<String> = Sequence::NAMES
+        .iter()
+        .filter(|n| {
+            !z_only
+                || Sequence::by_name(n, [1, 1]).is_ok_and(|s| s.resolution().is_some())
+        })
+        .map(|n| {
+            if *n == "zjoint" && !z_only {
+                "zjoint, zjoint-G (groups of G dimensions)".to_string()
+            } else {
+                n.to_string()
+            }
+        })
+        .collect();
+    let text = names.join(", ");
+    let mut out = String::new();
+    let mut column = first;
+    for (i, word) in text.split(' ').enumerate() {
+        if i > 0 && column + 1 + word.len() > width {
+            out.push('\n');
+            out.push_str(&" ".repeat(indent));
+            column = indent;
+        } else if i > 0 {
+            out.push(' ');
+            column += 1;
+        }
+        out.push_str(word);
+        column += word.len();
+    }
+    out
+}
+
+
 /// The `--help` lines of the sampler parameters, from their declarations: a line per flag and
 /// one per sampler that takes it (its range, default and what it does).
 pub fn parameter_help() -> String {

@@ -22,9 +22,8 @@ Usage:
   cargo run --release --example render -- [options]
 
 Options:
-  --samplers a,b,..|all  samplers with a path-tracer adapter: random, jittered, pmj02, sobol,
-                         halton, lattice, zsobol, zpmj02, zquad, zjoint, and zjoint-G (groups
-                         of G dimensions) (default all; the Z-ordered ones for the image size)
+  --samplers a,b,..|all  path-tracer sequences (default all; the Z-ordered ones for the image
+                         size): {SEQUENCES}
   --spp N[,N,..]         samples per pixel, one to eight counts (default 4,16,64,256; each 1
                          to 65536; jittered needs squares)
   --size WxH             image size (default 128x128; each side 8 to 1024: every sequence and
@@ -128,7 +127,9 @@ pub fn parse() -> Result<Option<Args>, CliError> {
             Long("markdown") => a.markdown = Some(p.value()?.into()),
             Long("interactions") => a.interactions = true,
             Short('h') | Long("help") => {
-                outln!("{HELP}")?;
+                let help =
+                    HELP.replace("{SEQUENCES}", &common::sequence_help(false, 32, 25, 95));
+                outln!("{help}")?;
                 return Ok(None);
             }
             other => return Err(common::unexpected(other, USAGE)),

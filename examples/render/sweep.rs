@@ -49,13 +49,14 @@ pub fn sequences(args: &Args) -> Result<Vec<(String, Sequence)>, CliError> {
         .map(|n| {
             Ok((
                 n.clone(),
-                Sequence::by_name_at(n, [args.size.0, args.size.1])?,
+                Sequence::by_name(n, [args.size.0, args.size.1])?,
             ))
         })
         .collect::<Result<_, strata::Error>>()?;
     for (_, seq) in &sequences {
         for &spp in &args.spp {
-            seq.check_spp(spp)?;
+            // refused before any work: the sampler checks its count
+            strata::PixelSampler::new(seq.clone(), spp, strata::Seed(0))?;
         }
     }
     Ok(sequences)

@@ -29,7 +29,7 @@ fn assert_fails(report: &Report, test: &str, scope: &str, what: &str) {
 
 fn run(name: &str) -> Report {
     Suite::default()
-        .run_sequence(Sequence::by_name(name).unwrap())
+        .run_sequence(Sequence::by_name(name, [256, 256]).unwrap())
         .unwrap()
 }
 
@@ -393,7 +393,7 @@ fn the_pair_test_passes_every_sequence_and_fails_one_plain_round() {
     for name in [
         "sobol", "pmj02", "lattice", "zsobol", "zpmj02", "zquad", "zjoint", "random",
     ] {
-        let source = SequenceSource::new(Sequence::by_name(name).unwrap(), 4096).unwrap();
+        let source = SequenceSource::new(Sequence::by_name(name, [256, 256]).unwrap(), 4096).unwrap();
         let r = study.run(&source).unwrap();
         assert_eq!(r.pairs, 786_240);
         assert!(r.passed(), "{name}: {r}");

@@ -1,6 +1,8 @@
-//! The documents that state facts about the samplers agree with the registry, which each
-//! sampler's own file declares: the table in `docs/samplers.md` (included in the crate docs)
-//! and in the README. `STRATA_BLESS=1 cargo test --test docs` rewrites `docs/samplers.md`.
+//! The documents that state facts about the samplers and sequences agree with their one
+//! declaration: the registry's table in `docs/samplers.md` (included in the crate docs) and in
+//! the README, the sequence table (`strata::Sequence::table`) in `docs/cli.md` and the README,
+//! the parameter table in `docs/cli.md`. `STRATA_BLESS=1 cargo test --test lab docs` rewrites
+//! them.
 //! And the sources keep the layering `CONTRIBUTING.md` describes: the entry types are a leaf
 //! below the samplers, the registry above them.
 
@@ -11,6 +13,31 @@ use strata_lab::registry;
 fn read(path: &str) -> String {
     let p = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
     std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+/// Checks that the text of `file` between the lines `<!-- begin NAME -->` and `<!-- end NAME
+/// -->` is `content` (generated from the one place that states the facts); `STRATA_BLESS=1`
+/// rewrites it.
+fn section(file: &str, name: &str, content: &str) {
+    let (begin, end) = (
+        format!("<!-- begin {name} -->\n"),
+        format!("<!-- end {name} -->"),
+    );
+    let doc = read(file);
+    let (Some(a), Some(b)) = (doc.find(&begin), doc.find(&end)) else {
+        panic!("{file} lacks the markers of section {name}");
+    };
+    assert!(a < b, "{file}: the markers of {name} are out of order");
+    let inside = &doc[a + begin.len()..b];
+    if std::env::var_os("STRATA_BLESS").is_some() && inside != content {
+        let fresh = format!("{}{content}{}", &doc[..a + begin.len()], &doc[b..]);
+        std::fs::write(Path::new(env!("CARGO_MANIFEST_DIR")).join(file), fresh).unwrap();
+        return;
+    }
+    assert_eq!(
+        inside, content,
+        "{file}'s section {name} is stale (STRATA_BLESS=1 cargo test --test lab docs)"
+    );
 }
 
 #[test]
@@ -25,10 +52,7 @@ fn the_sampler_tables_are_the_registry() {
         table,
         "docs/samplers.md is stale (STRATA_BLESS=1)"
     );
-    assert!(
-        read("README.md").contains(&table),
-        "the README's sampler table differs from registry::table():\n{table}"
-    );
+    section("README.md", "samplers", &table);
     // every registered sampler has a row, and no row names an unregistered one
     let rows: Vec<&str> = table.lines().skip(2).collect();
     assert_eq!(rows.len(), registry::entries().len());
@@ -38,29 +62,19 @@ fn the_sampler_tables_are_the_registry() {
 }
 
 #[test]
+fn the_sequence_tables_are_the_declarations() {
+    // the crate docs include strata/docs/sequences.md (its own test keeps it); the programs'
+    // contract and the README show the same table
+    let table = strata::Sequence::table();
+    assert_eq!(read("strata/docs/sequences.md"), table);
+    section("docs/cli.md", "sequences", &table);
+    section("README.md", "sequences", &table);
+}
+
+#[test]
 fn the_parameter_table_in_the_cli_contract_is_the_declarations() {
-    // the section of docs/cli.md between its markers is registry::parameter_table()
-    let (begin, end) = ("<!-- begin parameters -->\n", "<!-- end parameters -->");
     let table = registry::parameter_table();
-    let doc = read("docs/cli.md");
-    let (Some(a), Some(b)) = (doc.find(begin), doc.find(end)) else {
-        panic!("docs/cli.md lacks the parameters section markers");
-    };
-    assert!(
-        a < b,
-        "docs/cli.md: the parameters markers are out of order"
-    );
-    let inside = &doc[a + begin.len()..b];
-    if std::env::var_os("STRATA_BLESS").is_some() && inside != table {
-        let fresh = format!("{}{table}{}", &doc[..a + begin.len()], &doc[b..]);
-        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/cli.md");
-        std::fs::write(p, fresh).unwrap();
-        return;
-    }
-    assert_eq!(
-        inside, table,
-        "docs/cli.md's parameter table is stale (STRATA_BLESS=1)"
-    );
+    section("docs/cli.md", "parameters", &table);
     // every declared parameter has its rows, and every row is a declaration
     let rows = table.lines().skip(2).count();
     assert_eq!(rows, registry::parameters().count());

@@ -229,7 +229,7 @@ fn huge_counts_never_overflow() {
     }
     for spp in [u32::MAX, (1 << 31) + 1] {
         for name in strata::pixel::Sequence::NAMES {
-            let seq = strata::pixel::Sequence::by_name(name).unwrap();
+            let seq = strata::pixel::Sequence::by_name(name, [256, 256]).unwrap();
             let _ = strata::PixelSampler::new(seq, spp, strata::Seed(2));
         }
     }

@@ -66,7 +66,7 @@
 //!
 //! # Sequences
 //!
-//! Every [`Sequence`], from the table [`Sequence::summary_table`] generates (`docs/sequences.md`):
+//! Every [`Sequence`], from the table [`Sequence::table`] generates (`docs/sequences.md`):
 //!
 #![doc = include_str!("../../docs/sequences.md")]
 //!
@@ -175,9 +175,7 @@ pub use kernel::DrawKeys;
 use kernel::Key;
 pub use rng::PixelRng;
 use sequence::SamplesPerPixel;
-pub use sequence::{
-    DEFAULT_JOINT_GROUP, DEFAULT_Z_RESOLUTION, MAX_JOINT_GROUP, MAX_Z_RESOLUTION, Sequence,
-};
+pub use sequence::Sequence;
 
 use crate::error::Result;
 use crate::prelude::*;
@@ -487,12 +485,6 @@ impl PixelSampler {
         self.spp.get()
     }
 
-    /// The sample count nearest above `n` at which the sequence is best stratified (a square
-    /// for jittered, a power of two for pmj02 and Sobol', `2^a 3^b` for Halton).
-    pub fn round_count(&self, n: u32) -> u32 {
-        self.sequence.round_count(n)
-    }
-
     /// The underlying sequence.
     pub fn sequence(&self) -> &Sequence {
         &self.sequence
@@ -530,7 +522,7 @@ impl PixelSampler {
         Some(GpuParameters {
             key: self.key.words(),
             resolution: self.sequence.resolution().unwrap_or([0, 0]),
-            sequence: self.sequence.kind().shader_id()?,
+            sequence: self.sequence.kind().row().shader?,
             z_bits: self.spp.z_bits(),
         })
     }

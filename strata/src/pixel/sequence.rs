@@ -137,7 +137,8 @@ impl SamplesPerPixel {
     }
 }
 
-/// What a sequence is, without its parameters.
+/// What a sequence is, without its parameters: the kernel's dispatch. The discriminant is the
+/// sequence's row in [`ROWS`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) enum Kind {
     Random,
@@ -152,129 +153,243 @@ pub(crate) enum Kind {
     ZJoint,
 }
 
+/// What the samples-per-pixel count does to a sequence.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SppUse {
+    /// Nothing: the sequence is progressive.
+    Ignored,
+    /// A square `s x s` is the size of each set (and must be a square).
+    Square,
+    /// Blocks of the smallest `2^a 3^b >= spp`.
+    HaltonBlocks,
+    /// Rounded up to a power of two: each pixel's block of the global sequence (Z order).
+    PixelBlock,
+}
+
+impl SppUse {
+    /// The words of the sequence table.
+    const fn words(self) -> &'static str {
+        match self {
+            SppUse::Ignored => "ignored (progressive)",
+            SppUse::Square => "a square `s x s`: the size of each set",
+            SppUse::HaltonBlocks => "blocks of the smallest `2^a 3^b >= spp`",
+            SppUse::PixelBlock => "rounded up to a power of two: each pixel's block",
+        }
+    }
+}
+
+/// One adapter sequence, declared once: its name, how it is built by name, what the
+/// samples-per-pixel count does to it, what each draw promises, its source, and its number in
+/// the kernel and the shader. [`Sequence::NAMES`], [`Sequence::name`], [`Sequence::by_name`],
+/// [`Sequence::table`] (the module docs' table, the programs' lists) read these rows; the draws
+/// dispatch on [`Kind`] (the kernel arm). Adding a sequence is its kernel arm, one row, its WGSL
+/// and a case in the GPU test.
+pub(crate) struct Row {
+    #[cfg_attr(not(test), allow(dead_code))] // (row k is Kind k: its test reads it)
+    pub(crate) kind: Kind,
+    pub(crate) name: &'static str,
+    /// The suffix the name takes (`zjoint-G`), in words; `""` for none.
+    suffix: &'static str,
+    /// The sequence for an image of `resolution` (the Z-ordered ones) and the suffix after
+    /// `name-` (`None` without one).
+    make: fn([u32; 2], Option<&str>) -> Result<Sequence>,
+    /// The constructor, as the docs write it.
+    build: &'static str,
+    pub(crate) spp: SppUse,
+    /// What each draw's samples promise.
+    promise: &'static str,
+    source: &'static str,
+    /// The kernel's and the shader's number (`None`: CPU only).
+    pub(crate) shader: Option<u32>,
+    /// Whether [`Padding::Uniform`](super::Padding::Uniform) changes it (the digital
+    /// sequences and the lattice).
+    pub(crate) pads: bool,
+}
+
+/// A row that takes no suffix: `make` for a constructor of the resolution alone.
+fn no_suffix(
+    name: &'static str,
+    suffix: Option<&str>,
+    build: impl FnOnce() -> Result<Sequence>,
+) -> Result<Sequence> {
+    match suffix {
+        None => build(),
+        Some(s) => Err(Error::input(
+            "Sequence::by_name",
+            format!("'{name}-{s}': {name} takes no suffix"),
+        )),
+    }
+}
+
+/// Every sequence, in the order of [`Sequence::NAMES`] (row `k` is the sequence of [`Kind`]
+/// `k`: a test checks it).
+pub(crate) const ROWS: [Row; 10] = [
+    Row {
+        kind: Kind::Random,
+        name: "random",
+        suffix: "",
+        make: |_, s| no_suffix("random", s, || Ok(Sequence::random())),
+        build: "`Sequence::random()`",
+        spp: SppUse::Ignored,
+        promise: "independent uniform values (hashed)",
+        source: "-",
+        shader: Some(0),
+        pads: false,
+    },
+    Row {
+        kind: Kind::Jittered,
+        name: "jittered",
+        suffix: "",
+        make: |_, s| no_suffix("jittered", s, || Ok(Sequence::jittered())),
+        build: "`Sequence::jittered()`",
+        spp: SppUse::Square,
+        promise: "one value per cell of `s x s` in each set of `spp`",
+        source: "Cook 1986",
+        shader: None,
+        pads: false,
+    },
+    Row {
+        kind: Kind::Pmj02,
+        name: "pmj02",
+        suffix: "",
+        make: |_, s| no_suffix("pmj02", s, || Ok(Sequence::pmj02())),
+        build: "`Sequence::pmj02()`",
+        spp: SppUse::Ignored,
+        promise: "every power-of-two prefix a (0,m,2)-net; Owen-scrambled",
+        source: "Christensen et al. 2018, Helmer et al. 2021",
+        shader: Some(2),
+        pads: true,
+    },
+    Row {
+        kind: Kind::Sobol,
+        name: "sobol",
+        suffix: "",
+        make: |_, s| no_suffix("sobol", s, || Ok(Sequence::sobol())),
+        build: "`Sequence::sobol()`",
+        spp: SppUse::Ignored,
+        promise: "every power-of-two prefix a (0,m,2)-net; Owen-scrambled",
+        source: "Sobol' 1967, Burley 2020",
+        shader: Some(1),
+        pads: true,
+    },
+    Row {
+        kind: Kind::Halton,
+        name: "halton",
+        suffix: "",
+        make: |_, s| no_suffix("halton", s, || Ok(Sequence::halton())),
+        build: "`Sequence::halton()`",
+        spp: SppUse::HaltonBlocks,
+        promise: "each block's `2^a x 3^b` strata, one value each",
+        source: "Halton 1960",
+        shader: None,
+        pads: false,
+    },
+    Row {
+        kind: Kind::Lattice,
+        name: "lattice",
+        suffix: "",
+        make: |_, s| no_suffix("lattice", s, || Ok(Sequence::lattice())),
+        build: "`Sequence::lattice()`",
+        spp: SppUse::Ignored,
+        promise: "`n x 1` and `1 x n` strata at every power of two; shifted",
+        source: "Cools, Kuo, Nuyens 2006",
+        shader: Some(3),
+        pads: true,
+    },
+    Row {
+        kind: Kind::ZSobol,
+        name: "zsobol",
+        suffix: "",
+        make: |r, s| no_suffix("zsobol", s, || Sequence::zsobol(r[0], r[1])),
+        build: "`Sequence::zsobol(width, height)`",
+        spp: SppUse::PixelBlock,
+        promise: "as `sobol` per pixel; pixels along a scrambled Z curve (blue-noise error)",
+        source: "Ahmed, Wonka 2020",
+        shader: Some(4),
+        pads: true,
+    },
+    Row {
+        kind: Kind::ZPmj02,
+        name: "zpmj02",
+        suffix: "",
+        make: |r, s| no_suffix("zpmj02", s, || Sequence::zpmj02(r[0], r[1])),
+        build: "`Sequence::zpmj02(width, height)`",
+        spp: SppUse::PixelBlock,
+        promise: "as `pmj02` per pixel; pixels along a scrambled Z curve",
+        source: "Ahmed, Wonka 2020",
+        shader: Some(5),
+        pads: true,
+    },
+    Row {
+        kind: Kind::ZQuad,
+        name: "zquad",
+        suffix: "",
+        make: |r, s| no_suffix("zquad", s, || Sequence::zquad(r[0], r[1])),
+        build: "`Sequence::zquad(width, height)`",
+        spp: SppUse::PixelBlock,
+        promise: "the Z order shared by a group of 4 draws, which read the dimensions of a \
+                  base-4 (0,4)-sequence: jointly a (0,k,4)-net at `4^k`",
+        source: "Ahmed, Wonka 2020; Faure 1982",
+        // the same shader as zjoint: the table says which matrices
+        shader: Some(6),
+        pads: true,
+    },
+    Row {
+        kind: Kind::ZJoint,
+        name: "zjoint",
+        suffix: "`zjoint-G`: groups of `G` dimensions, a power of two from 2 to 512 (default 8)",
+        make: |r, s| {
+            let group = match s {
+                None => DEFAULT_JOINT_GROUP,
+                Some(g) => g.parse::<u32>().map_err(|_| {
+                    Error::input(
+                        "Sequence::by_name",
+                        format!(
+                            "'zjoint-{g}': zjoint-G takes a group size G, a power of two from \
+                             2 to {MAX_JOINT_GROUP}"
+                        ),
+                    )
+                })?,
+            };
+            Sequence::zjoint(r[0], r[1], group)
+        },
+        build: "`Sequence::zjoint(width, height, group)`",
+        spp: SppUse::PixelBlock,
+        promise: "the Z order shared by a group's draws, which read distinct Sobol' dimensions",
+        source: "Ahmed, Wonka 2020; Joe, Kuo 2008",
+        shader: Some(6),
+        pads: true,
+    },
+];
+
+/// The names of [`ROWS`], in order.
+const NAMES: [&str; ROWS.len()] = {
+    let mut names = [""; ROWS.len()];
+    let mut k = 0;
+    while k < ROWS.len() {
+        names[k] = ROWS[k].name;
+        k += 1;
+    }
+    names
+};
+
 impl Kind {
-    /// The kernel's (and the shader's) number of the sequence; `None` for the CPU-only ones.
-    pub(crate) fn shader_id(self) -> Option<u32> {
-        Some(match self {
-            Kind::Random => 0,
-            Kind::Sobol => 1,
-            Kind::Pmj02 => 2,
-            Kind::Lattice => 3,
-            Kind::ZSobol => 4,
-            Kind::ZPmj02 => 5,
-            // the same shader as zjoint: the table says which matrices
-            Kind::ZJoint | Kind::ZQuad => 6,
-            Kind::Jittered | Kind::Halton => return None,
-        })
+    /// The sequence's row.
+    #[inline]
+    pub(crate) fn row(self) -> &'static Row {
+        &ROWS[self as usize]
     }
 
     /// Whether pixels read blocks of one global sequence (Z order).
     pub(crate) fn z_ordered(self) -> bool {
-        matches!(
-            self,
-            Kind::ZSobol | Kind::ZPmj02 | Kind::ZQuad | Kind::ZJoint
-        )
-    }
-
-    /// Every kind, in the order of [`Sequence::NAMES`] (`zjoint` last, whatever the features).
-    const ALL: [Kind; 10] = [
-        Kind::Random,
-        Kind::Jittered,
-        Kind::Pmj02,
-        Kind::Sobol,
-        Kind::Halton,
-        Kind::Lattice,
-        Kind::ZSobol,
-        Kind::ZPmj02,
-        Kind::ZQuad,
-        Kind::ZJoint,
-    ];
-
-    /// The row of the sequence table ([`Sequence::table`]): the name, how to build it, what the
-    /// samples-per-pixel count does to it, what each draw's samples promise, and the source.
-    /// One home for these facts: the pixel module docs include the table.
-    fn facts(self) -> [&'static str; 5] {
-        match self {
-            Kind::Random => [
-                "random",
-                "[`Sequence::random`]",
-                "ignored (progressive)",
-                "independent uniform values (hashed)",
-                "-",
-            ],
-            Kind::Jittered => [
-                "jittered",
-                "[`Sequence::jittered`]",
-                "a square `s x s`: the size of each set",
-                "one value per cell of `s x s` in each set of `spp`",
-                "Cook 1986",
-            ],
-            Kind::Pmj02 => [
-                "pmj02",
-                "[`Sequence::pmj02`]",
-                "ignored (progressive)",
-                "every power-of-two prefix a (0,m,2)-net; Owen-scrambled",
-                "Christensen et al. 2018, Helmer et al. 2021",
-            ],
-            Kind::Sobol => [
-                "sobol",
-                "[`Sequence::sobol`]",
-                "ignored (progressive)",
-                "every power-of-two prefix a (0,m,2)-net; Owen-scrambled",
-                "Sobol' 1967, Burley 2020",
-            ],
-            Kind::Halton => [
-                "halton",
-                "[`Sequence::halton`]",
-                "blocks of the smallest `2^a 3^b >= spp`",
-                "each block's `2^a x 3^b` strata, one value each",
-                "Halton 1960",
-            ],
-            Kind::Lattice => [
-                "lattice",
-                "[`Sequence::lattice`]",
-                "ignored (progressive)",
-                "`n x 1` and `1 x n` strata at every power of two; shifted",
-                "Cools, Kuo, Nuyens 2006",
-            ],
-            Kind::ZSobol => [
-                "zsobol",
-                "[`Sequence::zsobol`]`(width, height)`",
-                "rounded up to a power of two: each pixel's block",
-                "as `sobol` per pixel; pixels along a scrambled Z curve (blue-noise error)",
-                "Ahmed, Wonka 2020",
-            ],
-            Kind::ZPmj02 => [
-                "zpmj02",
-                "[`Sequence::zpmj02`]`(width, height)`",
-                "rounded up to a power of two: each pixel's block",
-                "as `pmj02` per pixel; pixels along a scrambled Z curve",
-                "Ahmed, Wonka 2020",
-            ],
-            Kind::ZQuad => [
-                "zquad",
-                "[`Sequence::zquad`]`(width, height)`",
-                "rounded up to a power of two: each pixel's block",
-                "the Z order shared by a group of 4 draws, which read the dimensions of a base-4 \
-                 (0,4)-sequence: jointly a (0,k,4)-net at `4^k`",
-                "Ahmed, Wonka 2020; Faure 1982",
-            ],
-            Kind::ZJoint => [
-                "zjoint",
-                "[`Sequence::zjoint`]`(width, height, group)`, `zjoint-G` by name (feature \
-                 `joe-kuo`)",
-                "rounded up to a power of two: each pixel's block",
-                "the Z order shared by a group's draws, which read distinct Sobol' dimensions",
-                "Ahmed, Wonka 2020; Joe, Kuo 2008",
-            ],
-        }
+        self.row().spp == SppUse::PixelBlock
     }
 }
 
 /// One of the adapter's sequences, chosen at run time: build it with a constructor
 /// ([`Sequence::sobol`], [`Sequence::zsobol`], ...) or by name ([`Sequence::by_name`]); every
 /// constructor validates its arguments, so a `Sequence` is always usable.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Sequence {
     kind: Kind,
     /// The image of a Z-ordered sequence (`[0, 0]` for the others).
@@ -285,9 +400,19 @@ pub struct Sequence {
     /// The dimensions of a group of `zjoint` (a power of two, at least 2) or `zquad` (4),
     /// whose draws share one index; 1 for the other sequences (every draw its own group).
     group: u32,
-    /// The byte tables `zjoint` (Sobol') and `zquad` (Faure, base 4) read (empty for the
-    /// others).
+    /// The byte tables `zjoint` (Sobol') and `zquad` (Faure, base 4) read, built when the
+    /// sequence is made and shared by its clones (empty for the others).
     joint: Arc<[ByteTables]>,
+}
+
+impl core::fmt::Debug for Sequence {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Sequence")
+            .field("name", &self.name())
+            .field("resolution", &self.resolution)
+            .field("group", &self.group)
+            .finish()
+    }
 }
 
 impl PartialEq for Sequence {
@@ -306,17 +431,14 @@ impl core::hash::Hash for Sequence {
 
 /// The dimensions of a group of [`Sequence::zjoint`] by name: the default
 /// [`DimensionLayout`](super::DimensionLayout)'s blocks (the camera's, each bounce's).
-pub const DEFAULT_JOINT_GROUP: u32 = 8;
+const DEFAULT_JOINT_GROUP: u32 = 8;
 
 /// The largest group of [`Sequence::zjoint`] (a path of 63 bounces at 8 dimensions each).
-pub const MAX_JOINT_GROUP: u32 = 512;
+const MAX_JOINT_GROUP: u32 = 512;
 
 /// The largest side of the image of a Z-ordered sequence (the Morton code of a pixel has 32
 /// bits).
-pub const MAX_Z_RESOLUTION: u32 = 1 << 16;
-
-/// The resolution the Z-ordered sequences take by name, without one given.
-pub const DEFAULT_Z_RESOLUTION: [u32; 2] = [256, 256];
+const MAX_Z_RESOLUTION: u32 = 1 << 16;
 
 impl Sequence {
     fn of(kind: Kind) -> Self {
@@ -361,9 +483,9 @@ impl Sequence {
     pub fn lattice() -> Self {
         Self::of(Kind::Lattice)
     }
-    /// Z-ordered Sobol' for an image of `width x height` pixels (each 1 to
-    /// [`MAX_Z_RESOLUTION`]): the image must be known up front, since neighbouring pixels take
-    /// neighbouring blocks of one sequence. Pixels outside it get independent values.
+    /// Z-ordered Sobol' for an image of `width x height` pixels (each 1 to 65536): the image
+    /// must be known up front, since neighbouring pixels take neighbouring blocks of one
+    /// sequence. Pixels outside it get independent values.
     pub fn zsobol(width: u32, height: u32) -> Result<Self> {
         Self::z(Kind::ZSobol, "Sequence::zsobol", width, height)
     }
@@ -384,17 +506,14 @@ impl Sequence {
             }
         }
         Ok(Sequence {
-            kind,
             resolution: [width, height],
-            digital: Self::digital_table(kind),
-            group: 1,
-            joint: Arc::from([]),
+            ..Self::of(kind)
         })
     }
 
     /// Jointly Z-ordered Sobol' for an image of `width x height` pixels (see
     /// [`Sequence::zsobol`]), its dimensions in groups of `group` (a power of two from 2 to
-    /// [`MAX_JOINT_GROUP`]; [`DEFAULT_JOINT_GROUP`] matches the default
+    /// 512; 8, the default by name, matches the default
     /// [`DimensionLayout`](super::DimensionLayout), one group per bounce): every draw of a
     /// group of a pixel sample reads the same Z-ordered index (one pixel order, one padding
     /// and one index shuffle per group), and the draws take *distinct* dimensions of the
@@ -406,10 +525,10 @@ impl Sequence {
     ///
     /// Within a group only Sobol' dimensions 0 and 1 (the first draw) are a `(0, 2)`-sequence;
     /// the others' pairs have the t-values of consecutive Joe-Kuo dimensions
-    /// (`docs/results.md` tabulates them), so a lone draw past the first is less finely
-    /// stratified than `zsobol`'s. Needs `group + 1` Sobol' dimensions: the `joe-kuo` feature
-    /// (without it the build has two, and this returns an error). On a GPU:
-    /// [`WGSL_ZJOINT`](super::WGSL_ZJOINT) with [`gpu_joint_table`](Self::gpu_joint_table).
+    /// ([`crate::samplers::sobol::projection_t_value`]), so a lone draw past the first is less
+    /// finely stratified than `zsobol`'s. Reads `group + 1` Sobol' dimensions, whose tables
+    /// (4 KiB each) it builds when it is made. On a GPU: [`WGSL_ZJOINT`](super::WGSL_ZJOINT)
+    /// with [`gpu_joint_table`](Self::gpu_joint_table).
     pub fn zjoint(width: u32, height: u32, group: u32) -> Result<Self> {
         let context = "Sequence::zjoint";
         if !group.is_power_of_two() || !(2..=MAX_JOINT_GROUP).contains(&group) {
@@ -438,8 +557,8 @@ impl Sequence {
     /// k` holds one), its dimensions 0-1 and 2-3 (the draws at the group's first and third
     /// dimension) are binary (0,2)-sequences as `zsobol`'s draws are, and the other pairs of
     /// the four have `t = 1`. A 2D draw at a group's last dimension pairs it with a fifth
-    /// matrix (`docs/results.md` tabulates every pair). Needs no `joe-kuo` feature; on a GPU as
-    /// `zjoint` ([`gpu_joint_table`](Self::gpu_joint_table)).
+    /// matrix ([`crate::samplers::sobol::projection_t_value`] gives every pair's t). On a GPU
+    /// as `zjoint` ([`gpu_joint_table`](Self::gpu_joint_table)).
     pub fn zquad(width: u32, height: u32) -> Result<Self> {
         let mut s = Self::z(Kind::ZQuad, "Sequence::zquad", width, height)?;
         s.group = 4;
@@ -447,92 +566,66 @@ impl Sequence {
         Ok(s)
     }
 
-    /// The names the adapter knows (`zjoint` also as `zjoint-G`, groups of `G` dimensions).
-    pub const NAMES: &'static [&'static str] = &[
-        "random", "jittered", "pmj02", "sobol", "halton", "lattice", "zsobol", "zpmj02", "zquad",
-        "zjoint",
-    ];
+    /// The names the adapter knows, in the order of [`Sequence::table`] (`zjoint` also as
+    /// `zjoint-G`, groups of `G` dimensions).
+    pub const NAMES: &'static [&'static str] = &NAMES;
 
     /// The table of every sequence (Markdown: name, constructor, what the samples-per-pixel
     /// count does, what each draw promises, whether the [`WGSL`](super::WGSL) shader has it, the
-    /// source), as the pixel module docs include it from `docs/sequences.md` (a test keeps the
-    /// two equal). Generated from the one place that states each sequence's facts.
-    pub fn summary_table() -> String {
+    /// source), as the [module docs](super#sequences) show it; generated from the one row
+    /// that declares each sequence.
+    pub fn table() -> String {
         let mut t = String::from(
             "| name | build | samples per pixel | each draw's samples | GPU | source |\n\
              |---|---|---|---|---|---|\n",
         );
-        for kind in Kind::ALL {
-            let [name, build, spp, promise, source] = kind.facts();
-            let gpu = match kind.shader_id() {
+        for row in &ROWS {
+            let gpu = match row.shader {
                 Some(id) => format!("sequence {id}"),
                 None => String::from("CPU only"),
             };
+            let name = if row.suffix.is_empty() {
+                format!("`{}`", row.name)
+            } else {
+                format!("`{}` ({})", row.name, row.suffix)
+            };
             t.push_str(&format!(
-                "| `{name}` | {build} | {spp} | {promise} | {gpu} | {source} |\n"
+                "| {name} | {} | {} | {} | {gpu} | {} |\n",
+                row.build,
+                row.spp.words(),
+                row.promise,
+                row.source
             ));
         }
         t
     }
 
-    /// The sequence registered under `name` (one of [`Sequence::NAMES`]); the Z-ordered ones
-    /// for an image of [`DEFAULT_Z_RESOLUTION`] (see [`Sequence::by_name_at`]).
-    pub fn by_name(name: &str) -> Result<Self> {
-        Self::by_name_at(name, DEFAULT_Z_RESOLUTION)
-    }
-
-    /// The sequence registered under `name`, the Z-ordered ones for an image of `resolution`
-    /// (`[width, height]`; the others ignore it).
-    pub fn by_name_at(name: &str, resolution: [u32; 2]) -> Result<Self> {
-        Ok(match name {
-            "random" => Self::random(),
-            "jittered" => Self::jittered(),
-            "pmj02" => Self::pmj02(),
-            "sobol" => Self::sobol(),
-            "halton" => Self::halton(),
-            "lattice" => Self::lattice(),
-            "zsobol" => Self::zsobol(resolution[0], resolution[1])?,
-            "zpmj02" => Self::zpmj02(resolution[0], resolution[1])?,
-            "zquad" => Self::zquad(resolution[0], resolution[1])?,
-            "zjoint" => Self::zjoint(resolution[0], resolution[1], DEFAULT_JOINT_GROUP)?,
-            other if other.starts_with("zjoint-") => {
-                let group = other["zjoint-".len()..].parse::<u32>().map_err(|_| {
-                    Error::input(
-                        "Sequence::by_name_at",
-                        format!(
-                            "'{other}': zjoint-G takes a group size G, a power of two from 2 \
-                             to {MAX_JOINT_GROUP}"
-                        ),
-                    )
-                })?;
-                Self::zjoint(resolution[0], resolution[1], group)?
-            }
-            other => {
-                return Err(Error::input(
-                    "Sequence::by_name_at",
-                    format!(
-                        "no path-tracer adapter for '{other}'; samplers with one: {}",
-                        Self::NAMES.join(", ")
-                    ),
-                ));
-            }
-        })
-    }
-
-    /// The registered name of the underlying sampler.
-    pub fn name(&self) -> &'static str {
-        match self.kind {
-            Kind::Random => "random",
-            Kind::Jittered => "jittered",
-            Kind::Pmj02 => "pmj02",
-            Kind::Sobol => "sobol",
-            Kind::Halton => "halton",
-            Kind::Lattice => "lattice",
-            Kind::ZSobol => "zsobol",
-            Kind::ZPmj02 => "zpmj02",
-            Kind::ZQuad => "zquad",
-            Kind::ZJoint => "zjoint",
+    /// The sequence named `name` (one of [`Sequence::NAMES`], or `zjoint-G`), the Z-ordered
+    /// ones for an image of `resolution` (`[width, height]`; the others ignore it).
+    pub fn by_name(name: &str, resolution: [u32; 2]) -> Result<Self> {
+        if let Some(row) = ROWS.iter().find(|r| r.name == name) {
+            return (row.make)(resolution, None);
         }
+        if let Some(row) = ROWS.iter().find(|r| {
+            !r.suffix.is_empty()
+                && name.len() > r.name.len() + 1
+                && name.starts_with(r.name)
+                && name.as_bytes()[r.name.len()] == b'-'
+        }) {
+            return (row.make)(resolution, Some(&name[row.name.len() + 1..]));
+        }
+        Err(Error::input(
+            "Sequence::by_name",
+            format!(
+                "no path-tracer sequence named '{name}'; the sequences: {}",
+                Self::NAMES.join(", ")
+            ),
+        ))
+    }
+
+    /// The name of the sequence (without the suffix: `zjoint` for every group size).
+    pub fn name(&self) -> &'static str {
+        self.kind.row().name
     }
 
     /// The dimensions of a group whose draws share one index: `zjoint`'s group size, 1 for
@@ -574,10 +667,10 @@ impl Sequence {
         self.kind.z_ordered().then_some(self.resolution)
     }
 
-    /// Whether the draws are the [kernel](super::kernel)'s 32-bit arithmetic, which the WGSL
-    /// shader also runs: every sequence but `jittered` and `halton`.
+    /// Whether the draws are the kernel's 32-bit arithmetic, which the WGSL shader also runs:
+    /// every sequence but `jittered` and `halton`.
     pub fn runs_on_gpu(&self) -> bool {
-        self.kind.shader_id().is_some()
+        self.kind.row().shader.is_some()
     }
 
     pub(crate) fn kind(&self) -> Kind {
@@ -586,7 +679,7 @@ impl Sequence {
 
     /// The digital sequence a kernel sequence reads.
     #[inline(always)]
-    fn table(&self) -> &'static PairTables {
+    fn pair_tables(&self) -> &'static PairTables {
         match self.kind {
             Kind::Pmj02 | Kind::ZPmj02 => &PMJ02,
             _ => &SOBOL01,
@@ -624,7 +717,7 @@ impl Sequence {
             }
             // (taken above, through `digital`)
             Kind::Sobol | Kind::Pmj02 | Kind::ZSobol | Kind::ZPmj02 => {
-                kernel::digital::<X2>(self.table(), &k(), index).unit_f32()
+                kernel::digital::<X2>(self.pair_tables(), &k(), index).unit_f32()
             }
         }
     }
@@ -679,7 +772,7 @@ impl Sequence {
         match self.kind {
             Kind::Random => join(kernel::random(&a, ia), kernel::random(&b, ib)).unit_f32(),
             Kind::Sobol | Kind::Pmj02 | Kind::ZSobol | Kind::ZPmj02 => {
-                let t = self.table();
+                let t = self.pair_tables();
                 let (p, q) = (
                     X2::new(t.point_rev(kernel::shuffled(&a, ia))),
                     X2::new(t.point_rev(kernel::shuffled(&b, ib))),
@@ -718,7 +811,7 @@ impl Sequence {
         Some(match self.kind {
             Kind::Random => kernel::random::<[u32; 2]>(&k, index),
             Kind::Sobol | Kind::Pmj02 | Kind::ZSobol | Kind::ZPmj02 => {
-                kernel::digital::<[u32; 2]>(self.table(), &k, index)
+                kernel::digital::<[u32; 2]>(self.pair_tables(), &k, index)
             }
             Kind::Lattice => kernel::lattice::<[u32; 2]>(&k, index),
             Kind::ZJoint | Kind::ZQuad => {
@@ -732,16 +825,7 @@ impl Sequence {
     /// digital sequences and the lattice).
     #[inline]
     pub(crate) fn pads_uniformly(&self) -> bool {
-        matches!(
-            self.kind,
-            Kind::Sobol
-                | Kind::Pmj02
-                | Kind::Lattice
-                | Kind::ZSobol
-                | Kind::ZPmj02
-                | Kind::ZQuad
-                | Kind::ZJoint
-        )
+        self.kind.row().pads
     }
 
     /// The sample count nearest above `n` at which the sequence is best stratified (a square
@@ -773,18 +857,19 @@ impl Sequence {
     }
 
     /// Checks a samples-per-pixel count: at least 1, a square for jittered.
-    pub fn check_spp(&self, spp: u32) -> Result<()> {
+    pub(crate) fn check_spp(&self, spp: u32) -> Result<()> {
+        let name = self.name();
         if spp == 0 {
-            return Err(Error::count(self.name(), 0, "at least 1 sample per pixel"));
+            return Err(Error::count(name, 0, "at least 1 sample per pixel"));
         }
-        if self.kind == Kind::Jittered {
+        if self.kind.row().spp == SppUse::Square {
             let s = spp.isqrt();
             if s * s != spp {
                 return Err(Error::count(
-                    "jittered",
+                    name,
                     spp as u64,
                     format!(
-                        "jittered needs a square number of samples per pixel (nearest allowed: {})",
+                        "{name} needs a square number of samples per pixel (nearest allowed: {})",
                         crate::counts::nearest_squares(spp as u64)
                     ),
                 ));
@@ -889,9 +974,63 @@ mod tests {
     }
 
     #[test]
+    fn row_k_is_the_sequence_of_kind_k_and_every_name_builds_it() {
+        for (k, row) in ROWS.iter().enumerate() {
+            assert_eq!(row.kind as usize, k, "{}", row.name);
+            let s = Sequence::by_name(row.name, [16, 16]).unwrap();
+            assert_eq!((s.kind, s.name()), (row.kind, row.name));
+            assert_eq!(s.runs_on_gpu(), row.shader.is_some());
+            // a suffix only where the row takes one
+            assert_eq!(
+                Sequence::by_name(&format!("{}-2", row.name), [16, 16]).is_ok(),
+                !row.suffix.is_empty(),
+                "{}",
+                row.name
+            );
+        }
+        assert_eq!(Sequence::NAMES.len(), ROWS.len());
+        let e = Sequence::by_name("zsobol", [0, 16]).unwrap_err().to_string();
+        assert!(e.contains("1 to 65536"), "{e}");
+        let e = Sequence::by_name("sobolx", [16, 16]).unwrap_err().to_string();
+        assert!(e.contains("zjoint"), "{e}");
+    }
+
+    #[test]
+    fn the_module_docs_table_is_the_generated_one() {
+        // the pixel module docs include docs/sequences.md: it must be `Sequence::table()`
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/sequences.md");
+        let table = Sequence::table();
+        if std::env::var_os("STRATA_BLESS").is_some() {
+            std::fs::write(path, &table).unwrap();
+        }
+        let docs = std::fs::read_to_string(path).unwrap();
+        assert_eq!(docs, table, "docs/sequences.md is stale (STRATA_BLESS=1 rewrites it)");
+        let module = include_str!("mod.rs");
+        assert!(module.contains("include_str!(\"../../docs/sequences.md\")"));
+        // one row per name, in order, and its GPU column as `gpu_parameters` says
+        let rows: Vec<&str> = table.lines().skip(2).collect();
+        assert_eq!(rows.len(), Sequence::NAMES.len());
+        for (row, name) in rows.iter().zip(Sequence::NAMES) {
+            assert!(row.starts_with(&format!("| `{name}`")), "{row}");
+            let spp = if *name == "jittered" { 16 } else { 8 };
+            let s = super::super::PixelSampler::new(
+                Sequence::by_name(name, [8, 8]).unwrap(),
+                spp,
+                crate::Seed(1),
+            )
+            .unwrap();
+            let gpu = s.gpu_parameters().map(|g| format!("sequence {}", g.sequence));
+            assert!(
+                row.contains(&format!("| {} |", gpu.as_deref().unwrap_or("CPU only"))),
+                "{row}"
+            );
+        }
+    }
+
+    #[test]
     fn round_counts_are_counts_the_sequence_accepts_over_the_whole_range() {
         for name in Sequence::NAMES {
-            let s = Sequence::by_name(name).unwrap();
+            let s = Sequence::by_name(name, [16, 16]).unwrap();
             for n in [
                 0u32,
                 1,

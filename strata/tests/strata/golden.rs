@@ -188,7 +188,7 @@ fn sequence_digests() -> Vec<(String, u64)> {
     Sequence::NAMES
         .iter()
         .map(|&name| {
-            let seq = Sequence::by_name_at(name, [64, 64]).unwrap();
+            let seq = Sequence::by_name(name, [64, 64]).unwrap();
             let s = PixelSampler::new(seq, 16, Seed(1)).unwrap();
             let mut d = Digest::default();
             for pixel in [[0u32, 0], [1, 0], [37, 11]] {

@@ -9,7 +9,7 @@ use strata::pixel::{PixelSampler, Sequence};
 fn all() -> Vec<Sequence> {
     Sequence::NAMES
         .iter()
-        .map(|n| Sequence::by_name(n).unwrap())
+        .map(|n| Sequence::by_name(n, [256, 256]).unwrap())
         .collect()
 }
 
@@ -93,7 +93,7 @@ fn each_pixel_gets_a_stratified_set_in_every_draw() {
     for name in ["pmj02", "sobol"] {
         for spp in [4u32, 16, 64, 256] {
             let s =
-                PixelSampler::new(Sequence::by_name(name).unwrap(), spp, strata::Seed(11)).unwrap();
+                PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), spp, strata::Seed(11)).unwrap();
             for pixel in [[0u32, 0], [7, 3], [1000, 999]] {
                 for dim in [0u32, 2, 9] {
                     let pts: Vec<_> = (0..spp as u64)
@@ -122,7 +122,7 @@ fn each_pixel_gets_a_stratified_set_in_every_draw() {
 fn halton_blocks_are_stratified_on_their_grid_in_every_draw() {
     // spp 100: blocks of 108 = 2^2 3^3, one point per cell of 4 x 27
     let s = PixelSampler::new(Sequence::halton(), 100, strata::Seed(4)).unwrap();
-    assert_eq!(s.round_count(100), 108);
+    assert_eq!(s.sequence().round_count(100), 108);
     for pixel in [[0u32, 0], [9, 4]] {
         for dim in [0u32, 2, 11] {
             for block in [0u64, 1, 7] {
@@ -138,7 +138,7 @@ fn halton_blocks_are_stratified_on_their_grid_in_every_draw() {
 #[test]
 fn past_two_to_the_32_the_draws_stay_stratified() {
     for name in ["pmj02", "sobol"] {
-        let s = PixelSampler::new(Sequence::by_name(name).unwrap(), 256, strata::Seed(8)).unwrap();
+        let s = PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), 256, strata::Seed(8)).unwrap();
         for start in [1u64 << 32, 5 << 32] {
             let pts: Vec<_> = (0..256u64)
                 .map(|i| s.sample_2d([3, 3], start + i, 4))
@@ -151,8 +151,8 @@ fn past_two_to_the_32_the_draws_stay_stratified() {
 #[test]
 fn progressive_sequences_ignore_the_samples_per_pixel() {
     for name in ["random", "pmj02", "sobol"] {
-        let a = PixelSampler::new(Sequence::by_name(name).unwrap(), 16, strata::Seed(2)).unwrap();
-        let b = PixelSampler::new(Sequence::by_name(name).unwrap(), 1000, strata::Seed(2)).unwrap();
+        let a = PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), 16, strata::Seed(2)).unwrap();
+        let b = PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), 1000, strata::Seed(2)).unwrap();
         for i in [0u64, 5, 999, 70_000] {
             assert_eq!(
                 a.sample_2d([1, 2], i, 6),
@@ -244,16 +244,17 @@ fn bad_counts_are_refused() {
     assert!(e.to_string().contains("9 or 16"), "{e}");
     assert!(PixelSampler::new(Sequence::sobol(), 0, strata::Seed(1)).is_err());
     assert!(
-        Sequence::by_name("cmj")
+        Sequence::by_name("cmj", [256, 256])
             .unwrap_err()
             .to_string()
             .contains("sobol")
     );
     let s = PixelSampler::new(Sequence::pmj02(), 10, strata::Seed(1)).unwrap();
-    assert_eq!(s.round_count(10), 16);
+    assert_eq!(s.sequence().round_count(10), 16);
     assert_eq!(
         PixelSampler::new(Sequence::jittered(), 9, strata::Seed(1))
             .unwrap()
+            .sequence()
             .round_count(10),
         16
     );
@@ -317,7 +318,7 @@ fn z_ordered_sequences_need_a_resolution_and_fall_back_outside_it() {
     assert!(e.contains("width") && e.contains("1 to 65536"), "{e}");
     // by name: the default resolution
     assert_eq!(
-        Sequence::by_name("zsobol").unwrap().name(),
+        Sequence::by_name("zsobol", [256, 256]).unwrap().name(),
         Sequence::zsobol(256, 256).unwrap().name()
     );
     for seq in [
@@ -447,7 +448,7 @@ fn any_order_of_draws_gives_the_stateless_values() {
         (state >> 33) % n
     };
     // (the Z-ordered sequences over a 3 x 2 image: x = 3 is outside it)
-    for seq in Sequence::NAMES.iter().map(|n| Sequence::by_name_at(n, [3, 2]).unwrap()) {
+    for seq in Sequence::NAMES.iter().map(|n| Sequence::by_name(n, [3, 2]).unwrap()) {
         for padding in [strata::Padding::Nested, strata::Padding::Uniform] {
             let mut s = PixelSampler::new(seq.clone(), 16, strata::Seed(5))
                 .unwrap()
@@ -499,7 +500,7 @@ fn any_order_of_draws_gives_the_stateless_values() {
 fn uniform_padding_keeps_each_block_and_reorders_it_per_draw() {
     use strata::Padding;
     for name in ["sobol", "pmj02", "lattice", "zsobol", "zpmj02"] {
-        let seq = Sequence::by_name_at(name, [16, 16]).unwrap();
+        let seq = Sequence::by_name(name, [16, 16]).unwrap();
         let nested = PixelSampler::new(seq.clone(), 16, strata::Seed(5)).unwrap();
         let uniform = nested.clone().with_padding(Padding::Uniform);
         assert_eq!(uniform.padding(), Padding::Uniform);
@@ -543,7 +544,7 @@ fn uniform_padding_keeps_each_block_and_reorders_it_per_draw() {
     }
     // the sequences that already pad by whole blocks are unchanged by it
     for name in ["random", "jittered", "halton"] {
-        let s = PixelSampler::new(Sequence::by_name(name).unwrap(), 16, strata::Seed(5)).unwrap();
+        let s = PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), 16, strata::Seed(5)).unwrap();
         let u = s.clone().with_padding(Padding::Uniform);
         assert_eq!(
             s.sample_2d([1, 2], 5, 4),
@@ -558,7 +559,7 @@ fn zjoint_in_groups_of_two_is_zsobol() {
     // with groups of two dimensions every draw is its own group: the same bits as zsobol at
     // every even dimension (inside the image, outside it, past the pixel's block, both paddings)
     let zsobol = Sequence::zsobol(5, 3).unwrap();
-    let joint = Sequence::by_name_at("zjoint-2", [5, 3]).unwrap();
+    let joint = Sequence::by_name("zjoint-2", [5, 3]).unwrap();
     assert_eq!(joint.group(), 2);
     for padding in [strata::Padding::Nested, strata::Padding::Uniform] {
         let a = PixelSampler::new(zsobol.clone(), 16, strata::Seed(3))
@@ -594,7 +595,7 @@ fn zjoint_stratifies_the_draws_of_a_group_jointly() {
             .collect();
         t_value(&pts, 6, 2)
     };
-    let joint = Sequence::by_name_at("zjoint", [8, 8]).unwrap();
+    let joint = Sequence::by_name("zjoint", [8, 8]).unwrap();
     let zsobol = Sequence::zsobol(8, 8).unwrap();
     let pixels: Vec<[u32; 2]> = (0..16).map(|k| [k % 8, k / 2 % 8]).collect();
     for (da, db) in [(0u32, 2u32), (0, 4), (1, 3), (2, 6), (3, 5)] {
@@ -699,7 +700,7 @@ fn a_filled_pixel_sample_is_the_stateless_draws() {
     // `fill_sample` is the row layout of `points --pixel`, the Python binding and the
     // conformance suite: pairs from `get_2d`, a last `get_1d` for an odd width, from any
     // starting dimension; every value must be the stateless draw at its dimension
-    for seq in Sequence::NAMES.iter().map(|n| Sequence::by_name_at(n, [3, 2]).unwrap()) {
+    for seq in Sequence::NAMES.iter().map(|n| Sequence::by_name(n, [3, 2]).unwrap()) {
         for padding in [strata::Padding::Nested, strata::Padding::Uniform] {
             let mut s = PixelSampler::new(seq.clone(), 16, strata::Seed(9))
                 .unwrap()
