@@ -187,11 +187,11 @@ pub fn read_file(path: impl AsRef<Path>) -> Result<Vec<PointSet>> {
     let path = path.as_ref();
     let too_large = || {
         Error::io(
-            path,
+            path.display().to_string(),
             format!("more than {MAX_FILE_BYTES} bytes, the most a point file may hold"),
         )
     };
-    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path.display().to_string(), e))?;
     if file
         .metadata()
         .is_ok_and(|m| m.is_file() && m.len() > MAX_FILE_BYTES)
@@ -201,7 +201,7 @@ pub fn read_file(path: impl AsRef<Path>) -> Result<Vec<PointSet>> {
     let mut bytes = Vec::new();
     file.take(MAX_FILE_BYTES + 1)
         .read_to_end(&mut bytes)
-        .map_err(|e| Error::io(path, e))?;
+        .map_err(|e| Error::io(path.display().to_string(), e))?;
     if bytes.len() as u64 > MAX_FILE_BYTES {
         return Err(too_large());
     }

@@ -9,7 +9,7 @@ use crate::stats::chi_square_upper;
 /// The worst p-value, over dimensions and index pairs that share their first `k` digits,
 /// of a chi-square test that the pair's digits below the shared ones and the one after
 /// them (distinct digits under one permutation) are independent across seeds.
-fn sibling_independence_p(value: impl Fn(usize, u64, u64) -> f32) -> f64 {
+fn sibling_independence_p(value: impl Fn(u64, usize, u64) -> f32) -> f64 {
     let (seeds, g) = (12_000u64, 8usize);
     let mut worst = 1.0f64;
     for dim in [1usize, 2, 4, 15] {
@@ -23,8 +23,8 @@ fn sibling_independence_p(value: impl Fn(usize, u64, u64) -> f32) -> f64 {
                 let mut counts = vec![0u32; g * g];
                 let below = |x: f32| ((x as f64 * (bk * b) as f64).fract() * g as f64) as usize;
                 for s in 0..seeds {
-                    let cx = below(value(dim, i, s)).min(g - 1);
-                    let cy = below(value(dim, j, s)).min(g - 1);
+                    let cx = below(value(i, dim, s)).min(g - 1);
+                    let cy = below(value(j, dim, s)).min(g - 1);
                     counts[cx * g + cy] += 1;
                 }
                 let e = seeds as f64 / (g * g) as f64;
@@ -49,7 +49,7 @@ fn sibling_digits_are_scrambled_independently() {
 fn a_random_shift_fails_the_sibling_test() {
     // Cranley-Patterson rotation of the plain radical inverse: uniform points whose deeper
     // digits are tied across indices, the flaw the nested scramble exists to remove
-    let shifted = |dim: usize, mut i: u64, seed: u64| {
+    let shifted = |mut i: u64, dim: usize, seed: u64| {
         let b = PRIMES[dim] as u64;
         let (mut x, mut w) = (0f64, 1f64);
         while i > 0 {

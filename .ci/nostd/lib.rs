@@ -56,7 +56,7 @@ pub extern "C" fn strata_pmj02(index: u32, seed: u64) -> f32 {
 /// Scrambled Halton by dimension, index and seed.
 #[unsafe(no_mangle)]
 pub extern "C" fn strata_halton(dim: u32, index: u64, seed: u64) -> f32 {
-    halton::scrambled_radical_inverse(dim as usize % halton::MAX_DIMENSIONS, index, seed)
+    halton::scrambled_radical_inverse(index, dim as usize % halton::MAX_DIMENSIONS, seed)
 }
 
 /// Hashing, Kensler's permutation and float conversion.

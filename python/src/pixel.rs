@@ -92,7 +92,7 @@ impl PyPixelSampler {
 
     /// The sample count nearest above `n` at which the sequence is best stratified.
     fn round_count(&self, n: u32) -> u32 {
-        self.inner.round_count(n)
+        self.inner.sequence().round_count(n)
     }
 
     /// The grids `(columns, rows)` on which the first `n` samples of every draw lie, each cell

@@ -163,7 +163,7 @@ def test_analysis_arguments(call, exc, match):
 @pytest.mark.parametrize(
     "call,exc,match",
     [
-        (lambda: ss.PixelSampler("pmj", 16), ValueError, "no path-tracer adapter for 'pmj'; samplers with one: random, jittered"),
+        (lambda: ss.PixelSampler("pmj", 16), ValueError, "no path-tracer sequence named 'pmj'; the sequences: random, jittered"),
         (lambda: ss.PixelSampler("jittered", 10), ValueError, r"square number of samples per pixel \(nearest allowed: 9 or 16\)"),
         (lambda: ss.PixelSampler("sobol", 0), ValueError, "at least 1 sample per pixel"),
         (lambda: ss.PixelSampler("sobol", 16, -3), ValueError, "seed = -3"),

@@ -66,8 +66,8 @@
 //!     seeds: vec![1, 2, 3, 4],
 //!     ..Suite::default()
 //! };
-//! // the renderer's sampler behind a closure (seed, pixel, index, dimension) -> value
-//! let report = suite.run(&|seed: u64, pixel: [u32; 2], index: u64, dim: u32| {
+//! // the renderer's sampler behind a closure (pixel, index, dimension, seed) -> value
+//! let report = suite.run(&|pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
 //!     let s = PixelSampler::new(Sequence::sobol(), 256, Seed(seed)).unwrap();
 //!     s.sample_2d(pixel, index, dim & !1)[(dim & 1) as usize]
 //! })?;
@@ -90,23 +90,23 @@ use crate::stats;
 
 /// What the suite draws values from.
 ///
-/// Closures `Fn(seed, pixel, index, dim) -> f32` implement it; for a [`Sequence`] use
+/// Closures `Fn(pixel, index, dim, seed) -> f32` implement it; for a [`Sequence`] use
 /// [`SequenceSource`] (which also states the sequence's promised stratification).
 pub trait Source: Sync {
     /// Dimension `dim` of sample `index` of `pixel`, under `seed`, in `[0, 1)`. Dimensions
     /// `2k` and `2k + 1` are the `k`-th 2D draw.
-    fn value(&self, seed: u64, pixel: [u32; 2], index: u64, dim: u32) -> f32;
+    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: u64) -> f32;
 
     /// Writes samples `0..spp`, dimensions `0..dims` of `pixel` under `seed` into `out`,
     /// sample-major (`out[i * dims + d]`). The default calls [`value`](Source::value).
-    fn fill(&self, seed: u64, pixel: [u32; 2], spp: u32, dims: u32, out: &mut [f32]) {
+    fn fill(&self, pixel: [u32; 2], spp: u32, dims: u32, seed: u64, out: &mut [f32]) {
         for (i, row) in out
             .chunks_exact_mut(dims as usize)
             .take(spp as usize)
             .enumerate()
         {
             for (d, v) in row.iter_mut().enumerate() {
-                *v = self.value(seed, pixel, i as u64, d as u32);
+                *v = self.value(pixel, i as u64, d as u32, seed);
             }
         }
     }
@@ -119,9 +119,9 @@ pub trait Source: Sync {
     }
 }
 
-impl<F: Fn(u64, [u32; 2], u64, u32) -> f32 + Sync> Source for F {
-    fn value(&self, seed: u64, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
-        self(seed, pixel, index, dim)
+impl<F: Fn([u32; 2], u64, u32, u64) -> f32 + Sync> Source for F {
+    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: u64) -> f32 {
+        self(pixel, index, dim, seed)
     }
 }
 
@@ -154,11 +154,11 @@ impl SequenceSource {
 }
 
 impl Source for SequenceSource {
-    fn value(&self, seed: u64, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
+    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: u64) -> f32 {
         self.seeded(seed).sample_2d(pixel, index, dim & !1)[(dim & 1) as usize]
     }
 
-    fn fill(&self, seed: u64, pixel: [u32; 2], spp: u32, dims: u32, out: &mut [f32]) {
+    fn fill(&self, pixel: [u32; 2], spp: u32, dims: u32, seed: u64, out: &mut [f32]) {
         let mut s = self.seeded(seed);
         for (i, row) in out
             .chunks_exact_mut(dims as usize)
@@ -594,7 +594,7 @@ impl Suite {
         let (n, dims) = (self.spp as usize, self.dimensions as usize);
         let values: Vec<Vec<f32>> = parallel_map(instances, |&(seed, pixel)| {
             let mut v = vec![0.0f32; n * dims];
-            source.fill(seed, pixel, self.spp, self.dimensions, &mut v);
+            source.fill(pixel, self.spp, self.dimensions, seed, &mut v);
             v
         });
         if let Some((k, bad)) = values

@@ -128,7 +128,7 @@ impl PairStudy {
             let pixel = [k % 64, k / 64];
             let dims = 2 * self.draws;
             let mut values = vec![0f32; n * dims as usize];
-            source.fill(self.seed, pixel, self.samples, dims, &mut values);
+            source.fill(pixel, self.samples, dims, self.seed, &mut values);
             let mut cells = vec![0u8; d * n];
             for (i, row) in values.chunks_exact(dims as usize).enumerate() {
                 for a in 0..d {
@@ -242,16 +242,16 @@ impl Shuffle {
 impl Source for Shuffle {
     /// Dimension `2k` is the first coordinate of draw `k`: van der Corput at the shuffled
     /// index, Owen-scrambled; odd dimensions are 0.
-    fn value(&self, seed: u64, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
+    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: u64) -> f32 {
         if dim % 2 == 1 {
             return 0.0;
         }
-        self.draw(&DrawKeys::of(strata::Seed(seed), pixel, dim), index as u32)
+        self.draw(&DrawKeys::of(pixel, dim, strata::Seed(seed)), index as u32)
     }
 
-    fn fill(&self, seed: u64, pixel: [u32; 2], spp: u32, dims: u32, out: &mut [f32]) {
+    fn fill(&self, pixel: [u32; 2], spp: u32, dims: u32, seed: u64, out: &mut [f32]) {
         let draws: Vec<DrawKeys> = (0..dims)
-            .map(|d| DrawKeys::of(strata::Seed(seed), pixel, d))
+            .map(|d| DrawKeys::of(pixel, d, strata::Seed(seed)))
             .collect();
         for (i, row) in out
             .chunks_exact_mut(dims as usize)

@@ -34,7 +34,7 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
             canvas.height(),
             image::ExtendedColorType::Rgb8,
         )
-        .map_err(|e| strata::Error::io(path, e))?;
+        .map_err(|e| strata::Error::io(path.display().to_string(), e))?;
     write_file(path, &bytes)
 }
 
@@ -62,17 +62,17 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
 pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     let path = path.as_ref();
     if path.as_os_str().is_empty() {
-        return Err(Error::io(path, "an empty file name"));
+        return Err(Error::io(path.display().to_string(), "an empty file name"));
     }
     let meta = std::fs::metadata(path);
     match &meta {
         Ok(m) if !m.is_file() && !m.is_dir() => return write_in_place(path, bytes),
-        Ok(m) if m.is_dir() => return Err(Error::io(path, "a directory, not a file")),
+        Ok(m) if m.is_dir() => return Err(Error::io(path.display().to_string(), "a directory, not a file")),
         _ => {}
     }
     // follow a symbolic link to the file it names
     let target = if meta.is_ok() {
-        std::fs::canonicalize(path).map_err(|e| Error::io(path, e))?
+        std::fs::canonicalize(path).map_err(|e| Error::io(path.display().to_string(), e))?
     } else {
         path.to_path_buf()
     };
@@ -83,7 +83,7 @@ pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     };
     let name = target
         .file_name()
-        .ok_or_else(|| Error::io(path, "not a file name"))?
+        .ok_or_else(|| Error::io(path.display().to_string(), "not a file name"))?
         .to_string_lossy()
         .into_owned();
     static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
@@ -104,7 +104,7 @@ pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     })();
     result.map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
-        Error::io(path, e)
+        Error::io(path.display().to_string(), e)
     })
 }
 
@@ -113,17 +113,17 @@ fn write_in_place(path: &Path, bytes: &[u8]) -> Result<()> {
     let mut f = std::fs::OpenOptions::new()
         .write(true)
         .open(path)
-        .map_err(|e| Error::io(path, e))?;
+        .map_err(|e| Error::io(path.display().to_string(), e))?;
     f.write_all(bytes)
         .and_then(|()| f.flush())
-        .map_err(|e| Error::io(path, e))
+        .map_err(|e| Error::io(path.display().to_string(), e))
 }
 
 /// Creates the directory `path` will be written into, if it has one and it is missing.
 pub(crate) fn create_parent(path: &Path) -> Result<()> {
     match path.parent() {
         Some(dir) if !dir.as_os_str().is_empty() => {
-            std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))
+            std::fs::create_dir_all(dir).map_err(|e| Error::io(dir.display().to_string(), e))
         }
         _ => Ok(()),
     }
@@ -272,7 +272,7 @@ pub fn write_spectrum_exr(path: impl AsRef<Path>, spectrum: &Spectrum) -> Result
     Image::from_layer(layer)
         .write()
         .to_buffered(&mut bytes)
-        .map_err(|e| strata::Error::io(path, e))?;
+        .map_err(|e| strata::Error::io(path.display().to_string(), e))?;
     write_file(path, &bytes.into_inner())
 }
 
@@ -288,7 +288,7 @@ pub fn read_exr_y(path: impl AsRef<Path>) -> Result<(usize, usize, Vec<f32>)> {
         .first_valid_layer()
         .all_attributes()
         .from_file(path)
-        .map_err(|e| strata::Error::io(path, e))?;
+        .map_err(|e| strata::Error::io(path.display().to_string(), e))?;
     let layer = &image.layer_data;
     let size = layer.size;
     let channel = layer
@@ -296,7 +296,7 @@ pub fn read_exr_y(path: impl AsRef<Path>) -> Result<(usize, usize, Vec<f32>)> {
         .list
         .iter()
         .find(|c| c.name.eq("Y"))
-        .ok_or_else(|| strata::Error::io(path, "no channel named Y"))?;
+        .ok_or_else(|| strata::Error::io(path.display().to_string(), "no channel named Y"))?;
     let values = channel.sample_data.values_as_f32().collect();
     Ok((size.width(), size.height(), values))
 }

@@ -53,7 +53,7 @@ pub(crate) const ENTRY: Entry = Entry {
     any_dims: false,
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
-        Ok(Built::two(BestCandidate::new(p.sampler_seed(), k)?))
+        Ok(Built::two(BestCandidate::new(k, p.sampler_seed())?))
     },
 };
 
@@ -62,7 +62,7 @@ pub(crate) const ENTRY: Entry = Entry {
 /// ```
 /// use strata::{Sampler, Seed};
 /// use strata_lab::samplers::BestCandidate;
-/// let mut s = BestCandidate::new(Seed(1), 1).unwrap();
+/// let mut s = BestCandidate::new(1, Seed(1)).unwrap();
 /// let a = s.next_sample();
 /// let b = s.next_sample();
 /// let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
@@ -79,7 +79,7 @@ pub struct BestCandidate {
 impl BestCandidate {
     /// The sequence seeded by `seed` with `factor` (1 to [`MAX_FACTOR`]) candidates per existing
     /// point.
-    pub fn new(seed: Seed, factor: u32) -> Result<Self> {
+    pub fn new(factor: u32, seed: Seed) -> Result<Self> {
         if factor == 0 || factor > MAX_FACTOR {
             return Err(Error::parameter(
                 ENTRY.name,
@@ -88,7 +88,7 @@ impl BestCandidate {
                 format!("1 to {MAX_FACTOR} candidates per existing point"),
             ));
         }
-        let epochs = Epochs::new(seed, MAX_LEN as u64);
+        let epochs = Epochs::new(MAX_LEN as u64, seed);
         let rng = Self::rng(epochs.key(0));
         Ok(BestCandidate {
             factor,

@@ -259,7 +259,7 @@ impl Bose {
             strata: Strata::new(count),
             keys: Vec::new(),
             key: 0,
-            cursor: BlockCursor::new(seed, count as u32),
+            cursor: BlockCursor::new(count as u32, seed),
         })
     }
 
@@ -360,7 +360,7 @@ impl Bush {
             strata: Strata::new(count),
             keys: Vec::new(),
             key: 0,
-            cursor: BlockCursor::new(seed, count as u32),
+            cursor: BlockCursor::new(count as u32, seed),
         })
     }
 

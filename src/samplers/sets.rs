@@ -37,7 +37,7 @@ pub struct Sets<G: SetGenerator> {
 impl<G: SetGenerator> Sets<G> {
     /// Sets from `generator` seeded by `seed`; generates (and checks) the first set.
     pub fn new(generator: G, seed: Seed) -> Result<Self> {
-        let cursor = BlockCursor::new(seed, generator.count());
+        let cursor = BlockCursor::new(generator.count(), seed);
         // the key of block 0, as the cursor derives it
         let first_key = stream_seed(seed.0, 0);
         let first = to_points(&generator.generate(first_key)?);

@@ -167,15 +167,14 @@ impl Error {
         }
     }
 
-    /// Shorthand for [`Error::Io`]: `source` is the underlying error (an `std::io::Error`, an
-    /// encoder's error, or a message).
-    #[cfg(feature = "std")]
+    /// Shorthand for [`Error::Io`]: `path` names the file (`path.display()` of a `Path`),
+    /// `source` is the underlying error (an `std::io::Error`, an encoder's error, or a message).
     pub fn io(
-        path: impl AsRef<std::path::Path>,
-        source: impl Into<Box<dyn std::error::Error + Send + Sync>>,
+        path: impl Into<String>,
+        source: impl Into<Box<dyn core::error::Error + Send + Sync>>,
     ) -> Self {
         Error::Io {
-            path: path.as_ref().display().to_string(),
+            path: path.into(),
             source: Arc::from(source.into()),
         }
     }

@@ -274,7 +274,7 @@ fn conformance_passes_a_sequence_and_refuses_bad_input() {
     assert!(out.contains("| chi-square | across draws |"), "{out}");
     assert!(out.contains("PASS: 256 samples per pixel"), "{out}");
     for (args, says) in [
-        (vec!["--sampler", "cmj"], "samplers with one: random"),
+        (vec!["--sampler", "cmj"], "the sequences: random"),
         (vec!["--sampler", "sobol", "--spp", "0"], "allowed: 16 to"),
         (vec!["--spp", "64"], "--sampler is required"),
         (
@@ -343,7 +343,7 @@ fn render_sweeps_counts_and_refuses_bad_input() {
             vec!["--scene", "teapot"],
             "cornell, spheres, cornell-direct",
         ),
-        (vec!["--samplers", "cmj"], "samplers with one"),
+        (vec!["--samplers", "cmj"], "the sequences: random"),
         (vec!["--interactions"], "direct-lighting"),
     ] {
         let (code, _, err) = run_example("render", &args);

@@ -225,7 +225,7 @@ fn huge_counts_never_overflow() {
     // u64, and pmj02bn's prefix length overflowed; it now optimises its longest prefix (with
     // 0 sweeps here, to stay quick)
     for n in [(1u64 << 63) + 1, u64::MAX] {
-        assert!(strata_lab::samplers::Pmj02Bn::new(strata::Seed(1), n, 0).is_ok());
+        assert!(strata_lab::samplers::Pmj02Bn::new(n, 0, strata::Seed(1)).is_ok());
     }
     for spp in [u32::MAX, (1 << 31) + 1] {
         for name in strata::pixel::Sequence::NAMES {

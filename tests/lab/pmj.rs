@@ -81,11 +81,11 @@ fn pmj02_stochastic_prefixes_and_aligned_blocks_are_nets() {
 fn pmj02bn_prefixes_and_aligned_blocks_are_nets() {
     // optimised up to 2^10 and continued with random deeper flags to 2^14
     for seed in [3u64, 4] {
-        let s = Pmj02Bn::new(strata::Seed(seed), 1 << 10, 4).unwrap();
+        let s = Pmj02Bn::new(1 << 10, 4, strata::Seed(seed)).unwrap();
         let pts: Vec<[u32; 2]> = (0..1 << 14).map(|i| s.sample_u32(i)).collect();
         assert_nets(&pts, &format!("pmj02bn seed {seed}"));
     }
-    let mut again = Pmj02Bn::new(strata::Seed(5), 1 << 12, 4).unwrap();
+    let mut again = Pmj02Bn::new(1 << 12, 4, strata::Seed(5)).unwrap();
     assert_nets(&fixed_points(&mut again, 1 << 12), "pmj02bn (f32)");
 }
 
@@ -232,7 +232,7 @@ fn best_candidate_spreads_points_further() {
         // pmjbn: PMJ leaves about sqrt(N)/4 free strata per axis, so best candidate has room.
         let mut pmj = Pmj::new(strata::Seed(seed));
         pmj.reserve(n).unwrap();
-        let mut pmjbn = Pmj::pmjbn(strata::Seed(seed), 100).unwrap();
+        let mut pmjbn = Pmj::pmjbn(100, strata::Seed(seed)).unwrap();
         pmjbn.reserve(n).unwrap();
         let (c, d) = (
             mean_nn_distance(pmj.generated()),
@@ -266,7 +266,7 @@ fn pmj02bn_is_bluer_than_pmj02_at_every_checked_prefix() {
     };
     let bn = |sweeps: u32| {
         move |s: u64| {
-            let p = Pmj02Bn::new(strata::Seed(s), 1 << 10, sweeps).unwrap();
+            let p = Pmj02Bn::new(1 << 10, sweeps, strata::Seed(s)).unwrap();
             (0..1 << 10).map(|i| p.sample_u32(i)).collect::<Vec<_>>()
         }
     };
@@ -300,7 +300,7 @@ fn sequences_are_progressive_and_reproducible() {
 #[test]
 fn bad_input_is_refused() {
     assert!(
-        Pmj::pmjbn(strata::Seed(1), 0)
+        Pmj::pmjbn(0, strata::Seed(1))
             .unwrap_err()
             .to_string()
             .contains("candidates")

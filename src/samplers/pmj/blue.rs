@@ -104,7 +104,7 @@ pub(crate) const ENTRY: Entry = Entry {
     any_dims: false,
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
-        Ok(Built::two(Pmj02Bn::new(p.sampler_seed(), p.count, k)?))
+        Ok(Built::two(Pmj02Bn::new(p.count, k, p.sampler_seed())?))
     },
 };
 
@@ -169,7 +169,7 @@ impl Flags {
 /// ```
 /// use strata::{Sampler, Seed};
 /// use strata_lab::samplers::Pmj02Bn;
-/// let mut s = Pmj02Bn::new(Seed(3), 256, 4)?;
+/// let mut s = Pmj02Bn::new(256, 4, Seed(3))?;
 /// let pts: Vec<_> = (0..16).map(|_| s.next_sample()).collect();
 /// let mut cells = [0; 16]; // a (0,4,2)-net: one point in each 4 x 4 cell
 /// for p in &pts {
@@ -190,7 +190,7 @@ impl Pmj02Bn {
     /// The sequence seeded by `seed`, optimised for the prefixes up to `count` points (rounded
     /// up to a power of two, at least 16; above `2^16` the optimisation covers `2^16`), with at
     /// most `sweeps` sweeps (0 to [`MAX_SWEEPS`]; 0 leaves a random Owen scrambling).
-    pub fn new(seed: Seed, count: u64, sweeps: u32) -> Result<Self> {
+    pub fn new(count: u64, sweeps: u32, seed: Seed) -> Result<Self> {
         if sweeps > MAX_SWEEPS {
             return Err(Error::parameter(
                 ENTRY.name,
@@ -205,7 +205,7 @@ impl Pmj02Bn {
             .checked_next_power_of_two()
             .map_or(64, u64::trailing_zeros)
             .clamp(FIRST_PREFIX_LOG2, MAX_OPTIMIZED_LOG2);
-        let epochs = Epochs::new(seed, MAX_SEQUENCE_LEN);
+        let epochs = Epochs::new(MAX_SEQUENCE_LEN, seed);
         let flags = optimize(epochs.key(0), log2, sweeps);
         Ok(Pmj02Bn {
             epochs,
@@ -228,14 +228,6 @@ impl Pmj02Bn {
         [unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1])]
     }
 
-    /// The old name of [`sample_u32`](Self::sample_u32).
-    #[deprecated(
-        since = "0.1.0",
-        note = "renamed `sample_u32` (the `_u32` suffix for 32-bit fixed point)"
-    )]
-    pub fn sample_fixed(&self, index: u32) -> [u32; 2] {
-        self.sample_u32(index)
-    }
 }
 
 impl Sampler for Pmj02Bn {
@@ -625,13 +617,13 @@ mod tests {
 
     #[test]
     fn zero_sweeps_is_a_random_owen_scrambling_and_sweeps_change_it() {
-        let a = Pmj02Bn::new(Seed(1), 256, 0).unwrap();
-        let b = Pmj02Bn::new(Seed(1), 256, 2).unwrap();
+        let a = Pmj02Bn::new(256, 0, Seed(1)).unwrap();
+        let b = Pmj02Bn::new(256, 2, Seed(1)).unwrap();
         assert_ne!(
             (0..256).map(|i| a.sample_u32(i)).collect::<Vec<_>>(),
             (0..256).map(|i| b.sample_u32(i)).collect::<Vec<_>>()
         );
-        assert!(Pmj02Bn::new(Seed(1), 256, MAX_SWEEPS + 1).is_err());
+        assert!(Pmj02Bn::new(256, MAX_SWEEPS + 1, Seed(1)).is_err());
     }
 
     #[test]

@@ -101,7 +101,7 @@ pub(crate) const PMJBN: Entry = Entry {
     any_dims: false,
     build: |p| {
         let k = CANDIDATES.read_whole(p);
-        Ok(Built::two(Pmj::pmjbn(p.sampler_seed(), k)?))
+        Ok(Built::two(Pmj::pmjbn(k, p.sampler_seed())?))
     },
 };
 
@@ -159,7 +159,7 @@ pub struct Pmj {
 
 impl Pmj {
     fn with_variant(variant: Variant, seed: Seed) -> Self {
-        let epochs = Epochs::new(seed, MAX_SEQUENCE_LEN);
+        let epochs = Epochs::new(MAX_SEQUENCE_LEN, seed);
         Pmj {
             construction: Construction::new(variant, epochs.key(0)),
             epochs,
@@ -180,7 +180,7 @@ impl Pmj {
     }
 
     /// pmj with best-candidate placement among `candidates` (>= 1) per point.
-    pub fn pmjbn(seed: Seed, candidates: u32) -> Result<Self> {
+    pub fn pmjbn(candidates: u32, seed: Seed) -> Result<Self> {
         Ok(Self::with_variant(
             Variant::Pmj {
                 candidates: check_candidates(PMJBN.name, candidates)?,
@@ -218,24 +218,6 @@ impl Pmj {
     pub fn generate(&mut self, index: u32) -> Point2 {
         let p = self.generate_u32(index);
         [unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1])]
-    }
-
-    /// The old name of [`generate_u32`](Self::generate_u32).
-    #[deprecated(
-        since = "0.1.0",
-        note = "renamed `generate_u32` (it generates, so it takes `&mut self`)"
-    )]
-    pub fn sample_fixed(&mut self, index: u32) -> [u32; 2] {
-        self.generate_u32(index)
-    }
-
-    /// The old name of [`generate`](Self::generate).
-    #[deprecated(
-        since = "0.1.0",
-        note = "renamed `generate` (it generates, so it takes `&mut self`)"
-    )]
-    pub fn sample(&mut self, index: u32) -> Point2 {
-        self.generate(index)
     }
 
     /// The samples generated so far, as 32-bit fixed point.

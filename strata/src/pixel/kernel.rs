@@ -243,7 +243,7 @@ impl DrawKeys {
     /// The keys of the draw at `dim` of `pixel` for `seed`, in the first `2^32` samples: the
     /// keys [`PixelSampler`](super::PixelSampler) gives the draws of the sequences that are
     /// not Z-ordered.
-    pub fn of(seed: Seed, pixel: [u32; 2], dim: u32) -> Self {
+    pub fn of(pixel: [u32; 2], dim: u32, seed: Seed) -> Self {
         DrawKeys::new(&pixel_keys(&Key::new(seed), pixel), dim)
     }
 

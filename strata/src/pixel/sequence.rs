@@ -711,8 +711,8 @@ impl Sequence {
                 let g = halton_index(&k, index.get(), spp);
                 let s = k.stream();
                 [
-                    halton::scrambled_radical_inverse(0, g, s),
-                    halton::scrambled_radical_inverse(1, g, s),
+                    halton::scrambled_radical_inverse(g, 0, s),
+                    halton::scrambled_radical_inverse(g, 1, s),
                 ]
             }
             // (taken above, through `digital`)
@@ -735,7 +735,7 @@ impl Sequence {
             // the second coordinate (base 3) is most of the cost: skip it
             Kind::Halton => {
                 let k = DrawKeys::new(keys, dim);
-                halton::scrambled_radical_inverse(0, halton_index(&k, index.get(), spp), k.stream())
+                halton::scrambled_radical_inverse(halton_index(&k, index.get(), spp), 0, k.stream())
             }
             _ => self.sample_2d(keys, index, dim, spp)[0],
         }

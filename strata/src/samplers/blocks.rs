@@ -24,7 +24,7 @@ pub struct BlockCursor {
 
 impl BlockCursor {
     /// The start of the stream of blocks of `count` samples seeded by `seed`.
-    pub fn new(seed: Seed, count: u32) -> Self {
+    pub fn new(count: u32, seed: Seed) -> Self {
         BlockCursor {
             seed: seed.0,
             count,

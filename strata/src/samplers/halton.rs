@@ -167,7 +167,7 @@ const PAIRS_3: [[u8; 9]; 1296] = {
 /// the resolution of the crate's other samplers) and include the index's leading zero digits,
 /// so that the points are uniform. Base 3 draws two digits per hash.
 /// Integer arithmetic and one rounding to `f32`: the same bits on every platform.
-pub fn scrambled_radical_inverse(dim: usize, index: u64, seed: u64) -> f32 {
+pub fn scrambled_radical_inverse(index: u64, dim: usize, seed: u64) -> f32 {
     let key = dimension_key(seed, dim);
     if dim == 0 {
         return base_2(key, index);
@@ -521,7 +521,7 @@ mod tests {
             for start in [0, 7 * n] {
                 let mut seen = vec![false; n as usize];
                 for i in start..start + n {
-                    let x = scrambled_radical_inverse(dim, i, 17);
+                    let x = scrambled_radical_inverse(i, dim, 17);
                     let cell = (x as f64 * n as f64) as usize;
                     assert!(!seen[cell], "dim {dim}: cell {cell} twice");
                     seen[cell] = true;
@@ -545,7 +545,7 @@ mod tests {
             for &d in &dims {
                 assert_eq!(
                     out[d],
-                    scrambled_radical_inverse(d, i, 5),
+                    scrambled_radical_inverse(i, d, 5),
                     "dim {d} index {i}"
                 );
             }

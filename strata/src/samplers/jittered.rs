@@ -42,7 +42,7 @@ impl Jittered {
             side: DivMod::new(s).expect("side >= 1"),
             strata: Strata::new(s as u64),
             key: 0,
-            cursor: BlockCursor::new(seed, n),
+            cursor: BlockCursor::new(n, seed),
         })
     }
 

@@ -55,7 +55,7 @@ impl NRooks {
             px: identity,
             py: identity,
             key: 0,
-            cursor: BlockCursor::new(seed, n),
+            cursor: BlockCursor::new(n, seed),
         })
     }
 
@@ -128,7 +128,7 @@ impl LatinHypercube {
             strata: Strata::new(n as u64),
             perms: Vec::new(),
             key: 0,
-            cursor: BlockCursor::new(seed, n),
+            cursor: BlockCursor::new(n, seed),
         })
     }
 

@@ -83,7 +83,7 @@ pub struct Lattice {
 impl Lattice {
     /// The lattice sequence shifted by `seed`.
     pub fn new(seed: Seed) -> Self {
-        let epochs = Epochs::new(seed, 1 << 32);
+        let epochs = Epochs::new(1 << 32, seed);
         Lattice {
             key: epochs.key(0),
             epochs,
@@ -149,7 +149,7 @@ impl LatticeNd {
             GENERATOR.len() as u32,
             " (the published generating vector's components)",
         )?;
-        let epochs = Epochs::new(seed, 1 << 32);
+        let epochs = Epochs::new(1 << 32, seed);
         Ok(LatticeNd {
             key: epochs.key(0),
             epochs,
@@ -217,7 +217,7 @@ impl Fibonacci {
             n,
             z,
             shift: [0, 0],
-            cursor: BlockCursor::new(seed, n),
+            cursor: BlockCursor::new(n, seed),
         })
     }
 }

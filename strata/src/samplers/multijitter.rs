@@ -97,7 +97,7 @@ impl MultiJittered {
             key: 0,
             key_x: 0,
             key_y: 0,
-            cursor: BlockCursor::new(seed, n * n),
+            cursor: BlockCursor::new(n * n, seed),
         })
     }
 
@@ -191,7 +191,7 @@ impl Cmj {
             shuffle_x: identity(n),
             shuffle_y: identity(m),
             key: 0,
-            cursor: BlockCursor::new(seed, count),
+            cursor: BlockCursor::new(count, seed),
         })
     }
 

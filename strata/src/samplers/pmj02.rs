@@ -58,7 +58,7 @@ const NAME: &str = "pmj02-stochastic";
 impl Pmj02Stochastic {
     /// The sequence seeded by `seed`.
     pub fn new(seed: Seed) -> Self {
-        let epochs = Epochs::new(seed, MAX_SEQUENCE_LEN);
+        let epochs = Epochs::new(MAX_SEQUENCE_LEN, seed);
         Pmj02Stochastic {
             key: epochs.key(0),
             epochs,
@@ -120,24 +120,6 @@ impl Pmj02Stochastic {
         [unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1])]
     }
 
-    /// The old name of [`generate_u32`](Self::generate_u32).
-    #[deprecated(
-        since = "0.1.0",
-        note = "renamed `generate_u32` (it generates, so it takes `&mut self`)"
-    )]
-    pub fn sample_fixed(&mut self, index: u32) -> [u32; 2] {
-        self.generate_u32(index)
-    }
-
-    /// The old name of [`generate`](Self::generate).
-    #[deprecated(
-        since = "0.1.0",
-        note = "renamed `generate` (it generates, so it takes `&mut self`)"
-    )]
-    pub fn sample(&mut self, index: u32) -> Point2 {
-        self.generate(index)
-    }
-
     /// The samples generated so far, as 32-bit fixed point.
     pub fn generated(&self) -> &[[u32; 2]] {
         &self.points
@@ -149,18 +131,6 @@ impl Pmj02Stochastic {
     pub fn point(index: u32, seed: Seed) -> Point2 {
         let p = Self::point_u32(index, seed);
         [unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1])]
-    }
-
-    /// The old form of [`point`](Self::point), the seed first.
-    #[deprecated(since = "0.1.0", note = "use `point(index, seed)`: the seed last")]
-    pub fn point_at(seed: Seed, index: u32) -> Point2 {
-        Self::point(index, seed)
-    }
-
-    /// The old form of [`point_u32`](Self::point_u32), the seed first.
-    #[deprecated(since = "0.1.0", note = "use `point_u32(index, seed)`: the seed last")]
-    pub fn point_at_fixed(seed: Seed, index: u32) -> [u32; 2] {
-        Self::point_u32(index, seed)
     }
 
     /// [`point`](Pmj02Stochastic::point) as 32-bit fixed point.

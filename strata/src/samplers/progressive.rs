@@ -24,7 +24,7 @@ pub struct Epochs {
 
 impl Epochs {
     /// The start of the stream.
-    pub fn new(seed: Seed, len: u64) -> Self {
+    pub fn new(len: u64, seed: Seed) -> Self {
         Epochs {
             seed: seed.0,
             len,
@@ -49,7 +49,7 @@ impl Epochs {
     /// Moves `n` samples on, as `n` calls of [`advance`](Epochs::advance) would. Returns the
     /// epoch it ends in when that differs from the one it started in (the sampler must then
     /// re-key: epoch 0 with its initial key, a later one with [`key`](Epochs::key)).
-    pub fn skip(&mut self, n: u64) -> Option<u64> {
+    pub(crate) fn skip(&mut self, n: u64) -> Option<u64> {
         // absolute position, in samples taken; a full epoch stays "exhausted" (next == len)
         // so that the next take starts the following epoch with its key, as advance does
         let p = (self.epoch as u128) * (self.len as u128) + self.next as u128 + n as u128;
@@ -69,7 +69,7 @@ impl Epochs {
     /// Up to `max` (>= 1) next samples inside one sequence: the first index, how many, and the
     /// key of the new epoch when they start one.
     #[inline]
-    pub fn take(&mut self, max: u64) -> (u64, u64, Option<u64>) {
+    pub(crate) fn take(&mut self, max: u64) -> (u64, u64, Option<u64>) {
         let mut key = None;
         if self.next == self.len {
             self.epoch += 1;
@@ -89,14 +89,14 @@ mod tests {
 
     #[test]
     fn epochs_restart_with_fresh_keys() {
-        let mut e = Epochs::new(Seed(5), 3);
+        let mut e = Epochs::new(3, Seed(5));
         let got: Vec<_> = (0..7).map(|_| e.advance()).collect();
         assert_eq!(got[..3], [(0, None), (1, None), (2, None)]);
         assert_eq!(got[3], (0, Some(stream_seed(5, 1))));
         assert_eq!(got[6], (0, Some(stream_seed(5, 2))));
         // skipping equals taking, across epochs
         for n in 0..25u64 {
-            let (mut a, mut b) = (Epochs::new(Seed(5), 3), Epochs::new(Seed(5), 3));
+            let (mut a, mut b) = (Epochs::new(3, Seed(5)), Epochs::new(3, Seed(5)));
             let mut last = 0;
             for _ in 0..n {
                 if let (_, Some(_)) = a.advance() {
@@ -110,7 +110,7 @@ mod tests {
                 (i, key)
             });
         }
-        let mut e = Epochs::new(Seed(5), 10);
+        let mut e = Epochs::new(10, Seed(5));
         assert_eq!(e.take(4), (0, 4, None));
         assert_eq!(e.take(100), (4, 6, None));
         assert_eq!(e.take(100), (0, 10, Some(stream_seed(5, 1))));

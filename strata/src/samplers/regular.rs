@@ -39,7 +39,7 @@ impl Regular {
         Ok(Regular {
             side: DivMod::new(s).expect("side >= 1"),
             strata: Strata::new(s as u64),
-            cursor: BlockCursor::new(Seed(0), n),
+            cursor: BlockCursor::new(n, Seed(0)),
         })
     }
 

@@ -365,7 +365,7 @@ impl Sobol {
     fn with(matrices: Matrices, seed: Seed) -> Self {
         let seed = matrices.seed(seed);
         Sobol {
-            epochs: Epochs::new(seed, MAX_SEQUENCE_LEN),
+            epochs: Epochs::new(MAX_SEQUENCE_LEN, seed),
             seed: seed.0,
             scramble: Scramble::new(seed.0),
             matrices,
@@ -375,15 +375,6 @@ impl Sobol {
     /// Point `index` (2D) as 32-bit fixed point, without changing the stream position.
     pub fn sample_u32(&self, index: u32) -> [u32; 2] {
         self.scramble.sample2_u32(self.matrices, index)
-    }
-
-    /// The old name of [`sample_u32`](Self::sample_u32).
-    #[deprecated(
-        since = "0.1.0",
-        note = "renamed `sample_u32` (the `_u32` suffix for 32-bit fixed point)"
-    )]
-    pub fn sample_fixed(&self, index: u32) -> [u32; 2] {
-        self.sample_u32(index)
     }
 
     /// Point `index` (2D), without changing the stream position.
@@ -470,7 +461,7 @@ impl SobolNd {
             )?,
         }
         Ok(SobolNd {
-            epochs: Epochs::new(seed, MAX_SEQUENCE_LEN),
+            epochs: Epochs::new(MAX_SEQUENCE_LEN, seed),
             dims,
             seed: seed.0,
             scramble: Scramble::new(seed.0),

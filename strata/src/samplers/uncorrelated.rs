@@ -59,7 +59,7 @@ impl UncorrelatedJitter {
             single: Strata::new(n as u64),
             perms: Vec::new(),
             key: 0,
-            cursor: BlockCursor::new(seed, n),
+            cursor: BlockCursor::new(n, seed),
         })
     }
 

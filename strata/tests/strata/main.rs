@@ -6,3 +6,4 @@ mod common;
 mod golden;
 mod no_alloc;
 mod pixel;
+mod public_api;
