@@ -13,7 +13,7 @@ use strata::samplers::Epochs;
 use super::poisson::uniform;
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
 use strata::counts::{CountRule};
-use strata::{Error, Result};
+use strata::Result;
 use strata::float::unit_f32_from_f64;
 use crate::grid::TorusGrid;
 use strata::hash::stream_seed;
@@ -29,6 +29,15 @@ pub const MAX_FACTOR: u32 = 1024;
 /// `k n` candidates).
 pub const MAX_LEN: usize = 1 << 24;
 
+/// `--candidates`: candidates per existing point.
+const CANDIDATES: ParameterSpec = ParameterSpec::whole(
+    "candidates",
+    1,
+    MAX_FACTOR,
+    DEFAULT_FACTOR,
+    "candidates per point, in units of the points placed so far (k n for the next point)",
+);
+
 /// The registry entry of `best-candidate`.
 pub(crate) const ENTRY: Entry = Entry {
     name: "best-candidate",
@@ -37,13 +46,7 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::BlueNoise,
     progressive: true,
     counts: CountRule::Any,
-    parameters: &[ParameterSpec::whole(
-        "candidates",
-        1,
-        MAX_FACTOR,
-        DEFAULT_FACTOR,
-        "candidates per point, in units of the points placed so far (k n for the next point)",
-    )],
+    parameters: &[CANDIDATES],
     promise: "farthest of `k n` candidates",
     rates: Rates::NONE,
     expensive: true,
@@ -80,14 +83,7 @@ impl BestCandidate {
     /// The sequence seeded by `seed` with `factor` (1 to [`MAX_FACTOR`]) candidates per existing
     /// point.
     pub fn new(factor: u32, seed: Seed) -> Result<Self> {
-        if factor == 0 || factor > MAX_FACTOR {
-            return Err(Error::parameter(
-                ENTRY.name,
-                "candidates",
-                factor,
-                format!("1 to {MAX_FACTOR} candidates per existing point"),
-            ));
-        }
+        CANDIDATES.check(ENTRY.name, factor as f64)?;
         let epochs = Epochs::new(MAX_LEN as u64, seed);
         let rng = Self::rng(epochs.key(0));
         Ok(BestCandidate {

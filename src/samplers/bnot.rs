@@ -79,6 +79,15 @@ const FINAL_TOLERANCE: f64 = 1e-6;
 /// Newton steps per capacity solve.
 const NEWTON_STEPS: u32 = 50;
 
+/// `--iterations`: the cap on the Lloyd steps.
+const ITERATIONS: ParameterSpec = ParameterSpec::whole(
+    "iterations",
+    0,
+    MAX_ITERATIONS,
+    DEFAULT_ITERATIONS,
+    "the most Lloyd steps on the power diagram (a stopping rule usually ends them first)",
+);
+
 /// The registry entry of `bnot`.
 pub(crate) const ENTRY: Entry = Entry {
     name: "bnot",
@@ -87,13 +96,7 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
-    parameters: &[ParameterSpec::whole(
-        "iterations",
-        0,
-        MAX_ITERATIONS,
-        DEFAULT_ITERATIONS,
-        "the most Lloyd steps on the power diagram (a stopping rule usually ends them first)",
-    )],
+    parameters: &[ITERATIONS],
     promise: "equal-area power cells (blue noise)",
     rates: Rates::NONE,
     expensive: true,
@@ -145,14 +148,7 @@ impl Bnot {
     /// [`Error::InvalidCount`] or [`Error::InvalidParameter`], saying what is allowed.
     pub fn new(count: u64, iterations: u32) -> Result<Self> {
         super::check_count(ENTRY.name, count, MAX_BNOT_COUNT)?;
-        if iterations > MAX_ITERATIONS {
-            return Err(Error::parameter(
-                ENTRY.name,
-                "iterations",
-                iterations,
-                format!("0 to {MAX_ITERATIONS}"),
-            ));
-        }
+        ITERATIONS.check(ENTRY.name, iterations as f64)?;
         Ok(Bnot {
             count: count as u32,
             iterations,

@@ -142,15 +142,10 @@ impl Ccvt {
     /// `count * capacity` at most [`MAX_POINTS`]).
     pub fn with_capacity(count: u64, iterations: u32, capacity: u32) -> Result<Self> {
         super::check_count(ENTRY.name, count, MAX_CCVT_COUNT)?;
-        if iterations == 0 || iterations > MAX_ITERATIONS {
-            return Err(Error::parameter(
-                ENTRY.name,
-                "iterations",
-                iterations,
-                format!("1 to {MAX_ITERATIONS}"),
-            ));
-        }
-        if capacity == 0 || capacity > MAX_CAPACITY || count * capacity as u64 > MAX_POINTS {
+        ITERATIONS.check(ENTRY.name, iterations as f64)?;
+        CAPACITY.check(ENTRY.name, capacity as f64)?;
+        // the limit the range cannot say (the declaration's note)
+        if count * capacity as u64 > MAX_POINTS {
             return Err(Error::parameter(
                 ENTRY.name,
                 "capacity",

@@ -45,6 +45,15 @@ pub const DUPLICATE: f64 = 1e-10;
 /// The most points per relaxed set.
 pub const MAX_LLOYD_COUNT: u64 = 1 << 22;
 
+/// `--iterations`: the cap on the Lloyd steps.
+const ITERATIONS: ParameterSpec = ParameterSpec::whole(
+    "iterations",
+    0,
+    MAX_ITERATIONS,
+    DEFAULT_ITERATIONS,
+    "the most Lloyd steps (they stop earlier once no site moves more than the tolerance)",
+);
+
 /// The registry entry of `lloyd`.
 pub(crate) const ENTRY: Entry = Entry {
     name: "lloyd",
@@ -53,13 +62,7 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::Any,
-    parameters: &[ParameterSpec::whole(
-        "iterations",
-        0,
-        MAX_ITERATIONS,
-        DEFAULT_ITERATIONS,
-        "the most Lloyd steps (they stop earlier once no site moves more than the tolerance)",
-    )],
+    parameters: &[ITERATIONS],
     promise: "a centroidal Voronoi tessellation (near-hexagonal), converged",
     rates: Rates::NONE,
     expensive: true,
@@ -319,14 +322,7 @@ impl Lloyd {
     /// steps (0 to [`MAX_ITERATIONS`]).
     pub fn new(count: u64, iterations: u32) -> Result<Self> {
         super::check_count(ENTRY.name, count, MAX_LLOYD_COUNT)?;
-        if iterations > MAX_ITERATIONS {
-            return Err(Error::parameter(
-                ENTRY.name,
-                "iterations",
-                iterations,
-                format!("0 to {MAX_ITERATIONS}"),
-            ));
-        }
+        ITERATIONS.check(ENTRY.name, iterations as f64)?;
         Ok(Lloyd {
             count: count as u32,
             iterations,

@@ -47,6 +47,16 @@ pub const MAX_SWEEPS: u32 = 10_000;
 /// The largest `m` (`N = 2^m` points).
 pub const MAX_LOG2_COUNT: u32 = 20;
 
+/// `--sweeps`: the cap on the sweeps of swaps.
+const SWEEPS: ParameterSpec = ParameterSpec::whole(
+    "sweeps",
+    0,
+    MAX_SWEEPS,
+    DEFAULT_SWEEPS,
+    "the most sweeps of the net-preserving swaps (a stopping rule usually ends them first)",
+)
+.with_alias("iterations");
+
 /// The registry entry of `net02bn`.
 pub(crate) const ENTRY: Entry = Entry {
     name: "net02bn",
@@ -55,14 +65,7 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::BlueNoise,
     progressive: false,
     counts: CountRule::PowerOfTwo,
-    parameters: &[ParameterSpec::whole(
-        "sweeps",
-        0,
-        MAX_SWEEPS,
-        DEFAULT_SWEEPS,
-        "the most sweeps of the net-preserving swaps (a stopping rule usually ends them first)",
-    )
-    .with_alias("iterations")],
+    parameters: &[SWEEPS],
     promise: "a (0,m,2)-net with blue-noise spacing",
     rates: Rates {
         discontinuous: Some(-1.5),
@@ -116,14 +119,7 @@ impl Net02Bn {
                 format!("at most 2^{MAX_LOG2_COUNT} points"),
             ));
         }
-        if sweeps > MAX_SWEEPS {
-            return Err(Error::parameter(
-                ENTRY.name,
-                "sweeps",
-                sweeps,
-                format!("0 to {MAX_SWEEPS} sweeps"),
-            ));
-        }
+        SWEEPS.check(ENTRY.name, sweeps as f64)?;
         Ok(Net02Bn {
             log2: count.trailing_zeros(),
             sweeps,

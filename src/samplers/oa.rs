@@ -26,7 +26,7 @@
 use strata::samplers::{BlockCursor, Blocks, check_dims};
 use crate::entry::{Built, Entry, Family, ParameterSpec, Params, Rates};
 use strata::counts::{CountRule, prime_power};
-use strata::{Error, Result};
+use strata::Result;
 use strata::float::Strata;
 use strata::hash::{DivMod, Permutation, hash_u64, hash32, key32, stream_seed};
 use strata::{Seed, StrataGrid};
@@ -346,9 +346,7 @@ pub struct Bush {
 impl Bush {
     /// `count = q^strength` samples in `dims` dimensions (`dims <= q`), strength `>= 2`.
     pub fn new(count: u64, strength: u32, dims: u32, seed: Seed) -> Result<Self> {
-        if !(2..=16).contains(&strength) {
-            return Err(Error::parameter(BUSH.name, "strength", strength, "2 to 16"));
-        }
+        STRENGTH.check(BUSH.name, strength as f64)?;
         let q = symbols(BUSH.name, count, strength)?;
         check_dims(BUSH.name, dims, q, " (a Bush array has at most q columns)")?;
         Ok(Bush {

@@ -44,7 +44,8 @@ const DART_RADIUS: ParameterSpec = ParameterSpec::real(
     Bound::Closed(MAX_DART_RHO),
     DEFAULT_RHO,
     "the smallest distance between two points, relative to r_max(N) (dart throwing jams near 0.77)",
-);
+)
+.with_note("random dart throwing jams near 0.77 (random sequential adsorption)");
 
 /// Bridson's radius parameter (capped as dart throwing's: the top-up throws darts).
 const BRIDSON_RADIUS: ParameterSpec = ParameterSpec::real(
@@ -53,7 +54,8 @@ const BRIDSON_RADIUS: ParameterSpec = ParameterSpec::real(
     Bound::Closed(MAX_DART_RHO),
     DEFAULT_RHO,
     "the smallest distance between two points, relative to r_max(N)",
-);
+)
+.with_note("the top-up by dart throwing jams near 0.77 (random sequential adsorption)");
 
 /// Poisson disk: random sampling's rate (Pilleboue et al. 2015), for 2D integrands.
 const POISSON_RATES: Rates = Rates {
@@ -144,28 +146,10 @@ pub(crate) fn below(rng: &mut Pcg32, len: usize) -> usize {
     ((rng.next_u32() as u64 * len as u64) >> 32) as usize
 }
 
-/// Validates the count and the relative radius shared by the Poisson-disk samplers.
-fn check(name: &'static str, count: u64, rho: f64, max_rho: f64) -> Result<u32> {
+/// Validates the count and the relative radius (by its declaration) of a Poisson-disk sampler.
+fn check(name: &'static str, count: u64, rho: f64, radius: &ParameterSpec) -> Result<u32> {
     super::check_count(name, count, MAX_POISSON_COUNT)?;
-    if !(rho > 0.0 && rho < 1.0) {
-        return Err(Error::parameter(
-            name,
-            "radius",
-            rho,
-            "a relative radius 0 < rho < 1 (r = rho * r_max(N))",
-        ));
-    }
-    if rho > max_rho {
-        return Err(Error::parameter(
-            name,
-            "radius",
-            rho,
-            format!(
-                "at most {max_rho}: random dart throwing jams near rho = 0.77 (random sequential \
-                 adsorption), so {count} points at this radius cannot be placed"
-            ),
-        ));
-    }
+    radius.check(name, rho)?;
     Ok(count as u32)
 }
 
@@ -179,7 +163,7 @@ pub struct DartThrowing {
 impl DartThrowing {
     /// `count` points (1 to [`MAX_POISSON_COUNT`]) at relative radius `0 < rho <= MAX_DART_RHO`.
     pub fn new(count: u64, rho: f64) -> Result<Self> {
-        let count = check(POISSON.name, count, rho, MAX_DART_RHO)?;
+        let count = check(POISSON.name, count, rho, &DART_RADIUS)?;
         Ok(DartThrowing { count, rho })
     }
 
@@ -351,7 +335,7 @@ pub struct Bridson {
 impl Bridson {
     /// `count` points (1 to [`MAX_POISSON_COUNT`]) at relative radius `0 < rho <= MAX_DART_RHO`.
     pub fn new(count: u64, rho: f64) -> Result<Self> {
-        let count = check(BRIDSON.name, count, rho, MAX_DART_RHO)?;
+        let count = check(BRIDSON.name, count, rho, &BRIDSON_RADIUS)?;
         Ok(Bridson {
             count,
             rho,

@@ -52,7 +52,7 @@
 use strata::samplers::MAX_SEQUENCE_LEN;
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
 use strata::counts::{CountRule};
-use strata::{Error, Result};
+use strata::Result;
 use strata::float::unit_f32_from_u32;
 use crate::grid::relative_radius_max;
 use strata::hash::{hash_u64, stream_seed};
@@ -79,6 +79,16 @@ pub const MAX_SWEEPS: u32 = 1000;
 /// The largest optimised prefix, `2^16` points.
 pub const MAX_OPTIMIZED_LOG2: u32 = 16;
 
+/// `--sweeps`: the cap on the sweeps over the flags.
+const SWEEPS: ParameterSpec = ParameterSpec::whole(
+    "sweeps",
+    0,
+    MAX_SWEEPS,
+    DEFAULT_SWEEPS,
+    "the most sweeps over the scrambling flags (they stop earlier when a sweep keeps no flip)",
+)
+.with_alias("iterations");
+
 /// The registry entry of `pmj02bn`.
 pub(crate) const ENTRY: Entry = Entry {
     name: "pmj02bn",
@@ -87,14 +97,7 @@ pub(crate) const ENTRY: Entry = Entry {
     family: Family::Pmj,
     progressive: true,
     counts: CountRule::Any,
-    parameters: &[ParameterSpec::whole(
-        "sweeps",
-        0,
-        MAX_SWEEPS,
-        DEFAULT_SWEEPS,
-        "the most sweeps over the scrambling flags (they stop earlier when a sweep keeps no flip)",
-    )
-    .with_alias("iterations")],
+    parameters: &[SWEEPS],
     promise: "(0,m,2)-net at every `2^m` prefix and aligned block, blue noise up to `N`",
     rates: Rates::NETS,
     expensive: false,
@@ -191,14 +194,7 @@ impl Pmj02Bn {
     /// up to a power of two, at least 16; above `2^16` the optimisation covers `2^16`), with at
     /// most `sweeps` sweeps (0 to [`MAX_SWEEPS`]; 0 leaves a random Owen scrambling).
     pub fn new(count: u64, sweeps: u32, seed: Seed) -> Result<Self> {
-        if sweeps > MAX_SWEEPS {
-            return Err(Error::parameter(
-                ENTRY.name,
-                "sweeps",
-                sweeps,
-                format!("0 to {MAX_SWEEPS} sweeps"),
-            ));
-        }
+        SWEEPS.check(ENTRY.name, sweeps as f64)?;
         // (a count past 2^63 has no next power of two in u64: it optimises the longest prefix)
         let log2 = count
             .max(1)

@@ -227,14 +227,7 @@ impl Pmj {
 }
 
 fn check_candidates(name: &'static str, candidates: u32) -> Result<u32> {
-    if candidates == 0 || candidates > MAX_CANDIDATES {
-        return Err(Error::parameter(
-            name,
-            "candidates",
-            candidates,
-            format!("1 to {MAX_CANDIDATES} (1 means no best-candidate search)"),
-        ));
-    }
+    CANDIDATES.check(name, candidates as f64)?;
     Ok(candidates)
 }
 
