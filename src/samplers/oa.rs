@@ -23,7 +23,7 @@
 //! permutation of `i / q`, the index without its lowest digit (for fixed high digits the column
 //! is a bijection of the lowest one). Everything is computed sample by sample, as in the paper.
 
-use strata::samplers::{BlockCursor, Blocks, check_dims};
+use strata::samplers::{Blocks, Fixed, check_dims};
 use crate::entry::{Built, Entry, Family, ParameterSpec, Params, Rates};
 use strata::counts::{CountRule, prime_power};
 use strata::Result;
@@ -89,7 +89,7 @@ pub(crate) const BUSH: Entry = Entry {
 };
 
 /// The Bush array the registry builds: strength from the parameters (default 3).
-fn bush(p: &Params, dims: u32) -> Result<Bush> {
+fn bush(p: &Params, dims: u32) -> Result<Fixed<Bush>> {
     let strength = STRENGTH.read_whole(p);
     Bush::new(p.count, strength, dims, p.sampler_seed())
 }
@@ -238,12 +238,11 @@ pub struct Bose {
     /// Per dimension: the block's stratum permutation and its sub-stratum key.
     keys: Vec<(Permutation, u32)>,
     key: u64,
-    cursor: BlockCursor,
 }
 
 impl Bose {
     /// `count = q^2` samples in `dims` dimensions (`dims <= q + 1`), seeded by `seed`.
-    pub fn new(count: u64, dims: u32, seed: Seed) -> Result<Self> {
+    pub fn new(count: u64, dims: u32, seed: Seed) -> Result<Fixed<Self>> {
         let q = symbols(BOSE.name, count, 2)?;
         check_dims(
             BOSE.name,
@@ -252,15 +251,17 @@ impl Bose {
             " (a Bose array has at most q + 1 columns)",
         )?;
         let field = Field::new(q).expect("checked");
-        Ok(Bose {
+        Ok(Fixed::new(
+            Bose {
             field,
             q: DivMod::new(q).expect("q >= 2"),
             dims,
             strata: Strata::new(count),
             keys: Vec::new(),
             key: 0,
-            cursor: BlockCursor::new(count as u32, seed),
-        })
+            },
+            seed,
+        ))
     }
 
     /// Samples per set.
@@ -290,9 +291,6 @@ impl Blocks for Bose {
         self.dims
     }
 
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
-    }
 
     /// Every pair of dimensions is stratified on the `q x q` grid (strength 2).
     fn pair_strata(&self, _x: u32, _y: u32) -> Option<StrataGrid> {
@@ -340,16 +338,16 @@ pub struct Bush {
     /// Per dimension: the block's stratum and sub-stratum permutations.
     keys: Vec<(Permutation, Permutation)>,
     key: u64,
-    cursor: BlockCursor,
 }
 
 impl Bush {
     /// `count = q^strength` samples in `dims` dimensions (`dims <= q`), strength `>= 2`.
-    pub fn new(count: u64, strength: u32, dims: u32, seed: Seed) -> Result<Self> {
+    pub fn new(count: u64, strength: u32, dims: u32, seed: Seed) -> Result<Fixed<Self>> {
         STRENGTH.check(BUSH.name, strength as f64)?;
         let q = symbols(BUSH.name, count, strength)?;
         check_dims(BUSH.name, dims, q, " (a Bush array has at most q columns)")?;
-        Ok(Bush {
+        Ok(Fixed::new(
+            Bush {
             field: Field::new(q).expect("checked"),
             q: DivMod::new(q).expect("q >= 2"),
             t: strength,
@@ -358,8 +356,9 @@ impl Bush {
             strata: Strata::new(count),
             keys: Vec::new(),
             key: 0,
-            cursor: BlockCursor::new(count as u32, seed),
-        })
+            },
+            seed,
+        ))
     }
 
     /// Samples per set.
@@ -379,9 +378,6 @@ impl Blocks for Bush {
         self.dims
     }
 
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
-    }
 
     /// Every pair of dimensions is stratified on the `q x q` grid (`q^(t-2)` points per cell:
     /// strength `t >= 2`).

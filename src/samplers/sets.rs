@@ -4,7 +4,7 @@
 
 use strata::float::unit_f32_from_f64;
 use strata::hash::stream_seed;
-use strata::samplers::{BlockCursor, Blocks};
+use strata::samplers::{Blocks, Fixed};
 use strata::{Point2, Result, Seed};
 
 /// A generator of whole point sets (Poisson disk, relaxation): each set is built at once from a
@@ -31,23 +31,23 @@ pub struct Sets<G: SetGenerator> {
     first_key: u64,
     first: Vec<Point2>,
     current: Vec<Point2>,
-    cursor: BlockCursor,
 }
 
 impl<G: SetGenerator> Sets<G> {
     /// Sets from `generator` seeded by `seed`; generates (and checks) the first set.
-    pub fn new(generator: G, seed: Seed) -> Result<Self> {
-        let cursor = BlockCursor::new(generator.count(), seed);
-        // the key of block 0, as the cursor derives it
+    pub fn new(generator: G, seed: Seed) -> Result<Fixed<Self>> {
+        // the key of block 0, as `Fixed` derives it
         let first_key = stream_seed(seed.0, 0);
         let first = to_points(&generator.generate(first_key)?);
-        Ok(Sets {
-            generator,
-            first_key,
-            current: first.clone(),
-            first,
-            cursor,
-        })
+        Ok(Fixed::new(
+            Sets {
+                generator,
+                first_key,
+                current: first.clone(),
+                first,
+            },
+            seed,
+        ))
     }
 
     /// The set of the current block.
@@ -66,10 +66,6 @@ impl<G: SetGenerator> Blocks for Sets<G> {
 
     fn set_len(&self) -> u32 {
         self.generator.count()
-    }
-
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
     }
 
     fn begin_block(&mut self, key: u64) {

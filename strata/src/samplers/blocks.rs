@@ -1,13 +1,13 @@
 //! The one piece of machinery every fixed-count sampler shares: a stream of independent sets
 //! of `N` points, block after block.
 //!
-//! A fixed-count sampler implements [`Blocks`]: how to set up a block from its key, and point
-//! `i` of the current block. Blanket implementations turn every [`Blocks`] into a
-//! [`Sampler`] (the first two coordinates) and a [`SamplerNd`] (all of them), walking through
-//! the blocks with a [`BlockCursor`]; block `b` is keyed by `stream_seed(seed, b)`. Samplers
-//! whose sets are computed point by point (jittered, multi-jittered, orthogonal arrays) answer
-//! [`Blocks::point`] on demand; samplers that build a whole set at once (Poisson disk,
-//! relaxation, in the lab) keep the set of the current block.
+//! A fixed-count sampler's construction implements [`Blocks`]: how to set up a block from its
+//! key, and point `i` of the current block. [`Fixed`] owns the position in the stream (which
+//! block, which sample) once for all of them and is the [`Sampler`] (the first two
+//! coordinates) and the [`SamplerNd`] (all of them); block `b` is keyed by
+//! `stream_seed(seed, b)`. Constructions computed point by point (jittered, multi-jittered,
+//! orthogonal arrays) answer [`Blocks::point`] on demand; those that build a whole set at once
+//! (Poisson disk, relaxation, in the lab) keep the set of the current block.
 
 use crate::hash::stream_seed;
 use crate::prelude::*;
@@ -15,7 +15,7 @@ use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 
 /// Where a fixed-count sampler is in its stream: which block, which sample inside it.
 #[derive(Clone, Debug)]
-pub struct BlockCursor {
+struct BlockCursor {
     seed: u64,
     count: u32,
     block: u64,
@@ -24,7 +24,7 @@ pub struct BlockCursor {
 
 impl BlockCursor {
     /// The start of the stream of blocks of `count` samples seeded by `seed`.
-    pub fn new(count: u32, seed: Seed) -> Self {
+    fn new(count: u32, seed: Seed) -> Self {
         BlockCursor {
             seed: seed.0,
             count,
@@ -59,9 +59,8 @@ impl BlockCursor {
     }
 }
 
-/// A fixed-count sampler: a stream of independent sets of [`set_len`](Blocks::set_len) points,
-/// each computed from its block's key. Implemented by this crate's fixed-count samplers;
-/// [`Sampler`] and [`SamplerNd`] come with it.
+/// The construction of a fixed-count sampler: sets of [`set_len`](Blocks::set_len) points, each
+/// computed from its block's key. [`Fixed`] streams them.
 pub trait Blocks: Clone + Send {
     /// The registered name.
     const NAME: &'static str;
@@ -73,9 +72,6 @@ pub trait Blocks: Clone + Send {
     fn set_dims(&self) -> u32 {
         2
     }
-
-    /// The stream position.
-    fn cursor(&mut self) -> &mut BlockCursor;
 
     /// Sets up the block keyed by `key` (a well-mixed seed).
     fn begin_block(&mut self, key: u64);
@@ -121,80 +117,105 @@ pub trait Blocks: Clone + Send {
     }
 }
 
-impl<B: Blocks> Sampler for B {
+/// A fixed-count sampler: the stream of sets of its construction `B`, block after block (block
+/// `b` keyed by `stream_seed(seed, b)`), as a [`Sampler`] and a [`SamplerNd`]. It dereferences
+/// to the construction (`Jittered::new(16, seed)?.count()`).
+#[derive(Clone, Debug)]
+pub struct Fixed<B: Blocks> {
+    blocks: B,
+    cursor: BlockCursor,
+}
+
+impl<B: Blocks> Fixed<B> {
+    /// The stream of the sets of `blocks`, seeded by `seed`.
+    pub fn new(blocks: B, seed: Seed) -> Self {
+        let cursor = BlockCursor::new(blocks.set_len(), seed);
+        Fixed { blocks, cursor }
+    }
+}
+
+impl<B: Blocks> core::ops::Deref for Fixed<B> {
+    type Target = B;
+
+    fn deref(&self) -> &B {
+        &self.blocks
+    }
+}
+
+impl<B: Blocks> Sampler for Fixed<B> {
     fn name(&self) -> &'static str {
         B::NAME
     }
 
     fn progression(&self) -> Progression {
         Progression::FixedCount {
-            count: self.set_len() as u64,
+            count: self.blocks.set_len() as u64,
         }
     }
 
     #[inline]
     fn next_sample(&mut self) -> Point2 {
-        if let Some(key) = self.cursor().starting_block() {
-            self.begin_block(key);
+        if let Some(key) = self.cursor.starting_block() {
+            self.blocks.begin_block(key);
         }
-        let i = self.cursor().position().0;
-        let p = self.point(i);
-        self.cursor().advance(1);
+        let i = self.cursor.position().0;
+        let p = self.blocks.point(i);
+        self.cursor.advance(1);
         p
     }
 
     fn fill(&mut self, mut out: &mut [Point2]) {
         while !out.is_empty() {
-            if let Some(key) = self.cursor().starting_block() {
-                self.begin_block(key);
+            if let Some(key) = self.cursor.starting_block() {
+                self.blocks.begin_block(key);
             }
-            let (start, remaining) = self.cursor().position();
+            let (start, remaining) = self.cursor.position();
             let k = remaining.min(u32::try_from(out.len()).unwrap_or(u32::MAX));
             let (head, tail) = out.split_at_mut(k as usize);
-            self.fill_run(start, head);
-            self.cursor().advance(k);
+            self.blocks.fill_run(start, head);
+            self.cursor.advance(k);
             out = tail;
         }
     }
 
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
-        if n == self.set_len() as u64 {
-            self.grids()
+        if n == self.blocks.set_len() as u64 {
+            self.blocks.grids()
         } else {
             Vec::new()
         }
     }
 }
 
-impl<B: Blocks> SamplerNd for B {
+impl<B: Blocks> SamplerNd for Fixed<B> {
     fn name(&self) -> &'static str {
         B::NAME
     }
 
     fn dimensions(&self) -> u32 {
-        self.set_dims()
+        self.blocks.set_dims()
     }
 
     fn progression(&self) -> Progression {
         Progression::FixedCount {
-            count: self.set_len() as u64,
+            count: self.blocks.set_len() as u64,
         }
     }
 
     fn next_point(&mut self, out: &mut [f32]) {
-        if let Some(key) = self.cursor().starting_block() {
-            self.begin_block(key);
+        if let Some(key) = self.cursor.starting_block() {
+            self.blocks.begin_block(key);
         }
-        let i = self.cursor().position().0;
-        let d = (self.set_dims() as usize).min(out.len());
-        self.point_into(i, &mut out[..d]);
-        self.cursor().advance(1);
+        let i = self.cursor.position().0;
+        let d = (self.blocks.set_dims() as usize).min(out.len());
+        self.blocks.point_into(i, &mut out[..d]);
+        self.cursor.advance(1);
     }
 
     fn projection_strata(&self, x: u32, y: u32) -> Option<StrataGrid> {
-        if x == y || x >= self.set_dims() || y >= self.set_dims() {
+        if x == y || x >= self.blocks.set_dims() || y >= self.blocks.set_dims() {
             return None;
         }
-        self.pair_strata(x, y)
+        self.blocks.pair_strata(x, y)
     }
 }

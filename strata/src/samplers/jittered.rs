@@ -6,7 +6,7 @@
 //! `1 - sinc^2(u/s) sinc^2(v/s)` away from the lattice of multiples of `s` (Subr and Kautz 2013):
 //! low power near DC, no peaks. The cost is a count fixed in advance, and a square one.
 
-use super::{BlockCursor, Blocks};
+use super::{Blocks, Fixed};
 use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::{DivMod, hash_u64};
@@ -30,20 +30,21 @@ pub struct Jittered {
     side: DivMod,
     strata: Strata,
     key: u64,
-    cursor: BlockCursor,
 }
 
 impl Jittered {
     /// Jittered sets of `count` points seeded by `seed`; `count` must be a perfect square.
-    pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
+    pub fn new(count: u64, seed: Seed) -> crate::Result<Fixed<Self>> {
         let n = CountRule::Square.check(NAME, count)?;
         let s = n.isqrt();
-        Ok(Jittered {
+        Ok(Fixed::new(
+            Jittered {
             side: DivMod::new(s).expect("side >= 1"),
             strata: Strata::new(s as u64),
             key: 0,
-            cursor: BlockCursor::new(n, seed),
-        })
+            },
+            seed,
+        ))
     }
 
     /// The number of points in a set.
@@ -59,9 +60,6 @@ impl Blocks for Jittered {
         self.count()
     }
 
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
-    }
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;

@@ -6,7 +6,7 @@
 //! stratified for any `N`, but 2D can show large gaps; its spectrum has the dark cross along the
 //! axes (low power at `u = 0` or `v = 0`) and is white elsewhere.
 
-use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
+use super::{Blocks, Fixed, MAX_DIMENSIONS, block_permutations, check_dims};
 use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::{Permutation, Stream, hash_u64};
@@ -41,22 +41,23 @@ pub struct NRooks {
     px: Permutation,
     py: Permutation,
     key: u64,
-    cursor: BlockCursor,
 }
 
 impl NRooks {
     /// N-rooks sets of `count >= 1` points seeded by `seed`.
-    pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
+    pub fn new(count: u64, seed: Seed) -> crate::Result<Fixed<Self>> {
         let n = CountRule::Any.check(NROOKS, count)?;
         let identity = Permutation::new(n, 0).expect("n >= 1");
-        Ok(NRooks {
+        Ok(Fixed::new(
+            NRooks {
             count: n,
             strata: Strata::new(n as u64),
             px: identity,
             py: identity,
             key: 0,
-            cursor: BlockCursor::new(n, seed),
-        })
+            },
+            seed,
+        ))
     }
 
     /// The number of points in a set.
@@ -72,9 +73,6 @@ impl Blocks for NRooks {
         self.count()
     }
 
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
-    }
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
@@ -114,22 +112,23 @@ pub struct LatinHypercube {
     strata: Strata,
     perms: Vec<Permutation>,
     key: u64,
-    cursor: BlockCursor,
 }
 
 impl LatinHypercube {
     /// Sets of `count >= 1` points in `dims` (1 to [`MAX_DIMENSIONS`]) dimensions.
-    pub fn new(count: u64, dims: u32, seed: Seed) -> crate::Result<Self> {
+    pub fn new(count: u64, dims: u32, seed: Seed) -> crate::Result<Fixed<Self>> {
         let n = CountRule::Any.check(LATIN, count)?;
         check_dims(LATIN, dims, MAX_DIMENSIONS, "")?;
-        Ok(LatinHypercube {
+        Ok(Fixed::new(
+            LatinHypercube {
             count: n,
             dims,
             strata: Strata::new(n as u64),
             perms: Vec::new(),
             key: 0,
-            cursor: BlockCursor::new(n, seed),
-        })
+            },
+            seed,
+        ))
     }
 
     /// Points per set.
@@ -149,9 +148,6 @@ impl Blocks for LatinHypercube {
         self.dims
     }
 
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
-    }
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;

@@ -18,7 +18,7 @@
 //! Screen-Space Samplers with Blue-Noise Error Distribution", 2021) report lattices on par
 //! with Owen-scrambled Sobol' for rendering once padded: `render` measures it.
 
-use super::{BlockCursor, Blocks, Epochs, check_dims};
+use super::{Blocks, Fixed, Epochs, check_dims};
 use crate::counts::{CountRule, fibonacci_numbers};
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
@@ -202,23 +202,24 @@ pub struct Fibonacci {
     n: u32,
     z: u32,
     shift: [u64; 2],
-    cursor: BlockCursor,
 }
 
 impl Fibonacci {
     /// Sets of `count` points, a Fibonacci number (1, 2, 3, 5, 8, ..., at most `2^31`).
-    pub fn new(count: u64, seed: Seed) -> Result<Self> {
+    pub fn new(count: u64, seed: Seed) -> Result<Fixed<Self>> {
         let n = CountRule::Fibonacci.check(FIBONACCI, count)?;
         let z = fibonacci_numbers()
             .take_while(|&f| f < n as u64)
             .last()
             .unwrap_or(1) as u32;
-        Ok(Fibonacci {
+        Ok(Fixed::new(
+            Fibonacci {
             n,
             z,
             shift: [0, 0],
-            cursor: BlockCursor::new(n, seed),
-        })
+            },
+            seed,
+        ))
     }
 }
 
@@ -229,9 +230,6 @@ impl Blocks for Fibonacci {
         self.n
     }
 
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
-    }
 
     fn begin_block(&mut self, key: u64) {
         self.shift = [stream_seed(key, 0) >> 32, stream_seed(key, 1) >> 32];

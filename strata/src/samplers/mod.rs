@@ -5,10 +5,10 @@
 //! samplers (the constructed PMJ sequences, blue noise, orthogonal arrays) are the lab's
 //! (`strata-lab`), which also lists every sampler by name.
 //!
-//! Fixed-count samplers share one piece of machinery, [`Blocks`]: a cursor walks through blocks
-//! of `N` samples and gives each block its own key, `stream_seed(seed, block)`; every point is a
-//! function of (block key, index in block), computed on demand with hashing and
-//! [`Permutation`]s (no tables, no allocation, O(1) per point). Progressive samplers share
+//! Fixed-count samplers share one piece of machinery, [`Fixed`] over their [`Blocks`]: it walks
+//! through blocks of `N` samples and gives each block its own key, `stream_seed(seed, block)`;
+//! every point is a function of (block key, index in block), computed on demand with hashing
+//! and [`Permutation`]s (no tables, no allocation, O(1) per point). Progressive samplers share
 //! another, [`Epochs`]: when a sequence of `2^32` points is exhausted, a new, independent one
 //! starts.
 
@@ -25,7 +25,7 @@ mod regular;
 pub mod sobol;
 mod uncorrelated;
 
-pub use blocks::{BlockCursor, Blocks};
+pub use blocks::{Blocks, Fixed};
 pub use halton::{Halton, HaltonNd};
 pub use jittered::Jittered;
 pub use latin::{LatinHypercube, NRooks};

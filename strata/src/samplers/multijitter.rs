@@ -13,7 +13,7 @@
 //!
 //! Both are computed point by point from hashed permutations ([`Permutation`]), with no tables.
 
-use super::{BlockCursor, Blocks};
+use super::{Blocks, Fixed};
 use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, Stream, hash_u64, hash32};
@@ -83,22 +83,23 @@ pub struct MultiJittered {
     key: u64,
     key_x: u32,
     key_y: u32,
-    cursor: BlockCursor,
 }
 
 impl MultiJittered {
     /// Multi-jittered sets of `count` points seeded by `seed`; `count` must be a perfect square.
-    pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
+    pub fn new(count: u64, seed: Seed) -> crate::Result<Fixed<Self>> {
         let n = CountRule::Square.check(MULTIJITTERED, count)?
             .isqrt();
-        Ok(MultiJittered {
+        Ok(Fixed::new(
+            MultiJittered {
             side: DivMod::new(n).expect("side >= 1"),
             fine: Strata::new(n as u64 * n as u64),
             key: 0,
             key_x: 0,
             key_y: 0,
-            cursor: BlockCursor::new(n * n, seed),
-        })
+            },
+            seed,
+        ))
     }
 
     /// The number of points in a set.
@@ -114,9 +115,6 @@ impl Blocks for MultiJittered {
         self.count()
     }
 
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
-    }
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
@@ -172,17 +170,17 @@ pub struct Cmj {
     shuffle_x: Permutation,
     shuffle_y: Permutation,
     key: u64,
-    cursor: BlockCursor,
 }
 
 impl Cmj {
     /// Correlated multi-jittered sets of `count >= 1` points seeded by `seed`.
-    pub fn new(count: u64, seed: Seed) -> crate::Result<Self> {
+    pub fn new(count: u64, seed: Seed) -> crate::Result<Fixed<Self>> {
         let count = CountRule::Any.check(CMJ, count)?;
         let m = (count as u64).isqrt() as u32;
         let n = count.div_ceil(m);
         let identity = |len| Permutation::new(len, 0).expect("len >= 1");
-        Ok(Cmj {
+        Ok(Fixed::new(
+            Cmj {
             count,
             columns: DivMod::new(m).expect("m >= 1"),
             rows: n,
@@ -191,8 +189,9 @@ impl Cmj {
             shuffle_x: identity(n),
             shuffle_y: identity(m),
             key: 0,
-            cursor: BlockCursor::new(count, seed),
-        })
+            },
+            seed,
+        ))
     }
 
     /// The number of points in a set.
@@ -246,9 +245,6 @@ impl Blocks for Cmj {
         self.count()
     }
 
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
-    }
 
     fn begin_block(&mut self, key: u64) {
         let (m, n) = self.grid();

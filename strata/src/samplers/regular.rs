@@ -5,7 +5,7 @@
 //! the multiples of `s = sqrt(N)` in each axis (aliasing). It is here as the lecture's reference
 //! point, not as a sampler to render with.
 
-use super::{BlockCursor, Blocks};
+use super::{Blocks, Fixed};
 use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::DivMod;
@@ -28,19 +28,20 @@ const NAME: &str = "regular";
 pub struct Regular {
     side: DivMod,
     strata: Strata,
-    cursor: BlockCursor,
 }
 
 impl Regular {
     /// A regular grid of `count` points; `count` must be a perfect square.
-    pub fn new(count: u64) -> crate::Result<Self> {
+    pub fn new(count: u64) -> crate::Result<Fixed<Self>> {
         let n = CountRule::Square.check(NAME, count)?;
         let s = n.isqrt();
-        Ok(Regular {
+        Ok(Fixed::new(
+            Regular {
             side: DivMod::new(s).expect("side >= 1"),
             strata: Strata::new(s as u64),
-            cursor: BlockCursor::new(n, Seed(0)),
-        })
+            },
+            Seed(0),
+        ))
     }
 
     /// The number of points in a set.
@@ -56,9 +57,6 @@ impl Blocks for Regular {
         self.count()
     }
 
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
-    }
 
     fn begin_block(&mut self, _key: u64) {}
 

@@ -8,7 +8,7 @@
 //! trailing dimension stratified; across pairs the samples are uncorrelated, like Latin
 //! hypercube sampling (of which this is a special case).
 
-use super::{BlockCursor, Blocks, MAX_DIMENSIONS, block_permutations, check_dims};
+use super::{Blocks, Fixed, MAX_DIMENSIONS, block_permutations, check_dims};
 use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, hash_u64};
@@ -37,13 +37,12 @@ pub struct UncorrelatedJitter {
     single: Strata,
     perms: Vec<Permutation>,
     key: u64,
-    cursor: BlockCursor,
 }
 
 impl UncorrelatedJitter {
     /// Sets of `count` points in `dims` (1 to [`MAX_DIMENSIONS`]) dimensions; `count` must be a
     /// perfect square when `dims >= 2`.
-    pub fn new(count: u64, dims: u32, seed: Seed) -> crate::Result<Self> {
+    pub fn new(count: u64, dims: u32, seed: Seed) -> crate::Result<Fixed<Self>> {
         check_dims(NAME, dims, MAX_DIMENSIONS, "")?;
         let (n, side) = if dims >= 2 {
             let n = CountRule::Square.check(NAME, count)?;
@@ -51,7 +50,8 @@ impl UncorrelatedJitter {
         } else {
             (CountRule::Any.check(NAME, count)?, 1)
         };
-        Ok(UncorrelatedJitter {
+        Ok(Fixed::new(
+            UncorrelatedJitter {
             count: n,
             side: DivMod::new(side).expect("side >= 1"),
             dims,
@@ -59,8 +59,9 @@ impl UncorrelatedJitter {
             single: Strata::new(n as u64),
             perms: Vec::new(),
             key: 0,
-            cursor: BlockCursor::new(n, seed),
-        })
+            },
+            seed,
+        ))
     }
 
     /// Points per set.
@@ -80,9 +81,6 @@ impl Blocks for UncorrelatedJitter {
         self.dims
     }
 
-    fn cursor(&mut self) -> &mut BlockCursor {
-        &mut self.cursor
-    }
 
     /// The pairs (0,1), (2,3), ... are jittered on the `s x s` grid; other pairs are not
     /// stratified together.
