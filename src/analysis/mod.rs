@@ -1,6 +1,6 @@
-//! Measuring the trade between speed and accuracy: test integrands with exact values (always
-//! available) and, behind the `spectrum` feature, convergence studies over seeds and counts,
-//! slopes, generation time, discrepancy, and the variance predicted from spectra.
+//! Measuring the trade between speed and accuracy: test integrands with exact values,
+//! convergence studies over seeds and counts, slopes, generation time, discrepancy, and the
+//! variance predicted from spectra.
 //!
 //! The study ([`study::run`]): for each sampler, integrand and allowed count `N` between two
 //! bounds, the estimate `(1/N) sum f(x_k)` over `K` seeds (seed `s` uses exactly the points that

@@ -1,4 +1,4 @@
-//! Pictures and files (behind the `io` feature): PNG drawings of point sets and spectra, EXR and
+//! Pictures and files: PNG drawings of point sets and spectra, EXR and
 //! CSV files, and plots with axes and labels.
 //!
 //! Raster pictures come from a small software rasterizer on an RGB8 [`Canvas`]; plots are drawn

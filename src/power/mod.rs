@@ -1,4 +1,4 @@
-//! Periodic power diagrams with exact predicates (behind the `std` feature): the cells of
+//! Periodic power diagrams with exact predicates: the cells of
 //! weighted sites on the unit torus, the machinery under the [`bnot`](crate::samplers::bnot)
 //! sampler.
 //!

@@ -1,4 +1,4 @@
-//! Lloyd relaxation on the periodic Voronoi diagram (behind the `lloyd` feature).
+//! Lloyd relaxation on the periodic Voronoi diagram.
 //!
 //! Lloyd, "Least Squares Quantization in PCM" (IEEE Trans. Inf. Theory 1982). Each iteration
 //! moves every point to the centroid of its Voronoi cell on the unit torus; the energy

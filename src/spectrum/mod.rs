@@ -1,5 +1,5 @@
 //! Power spectra of point sets: periodogram, expected spectrum, radial mean, anisotropy, and
-//! the PSA point-set measures (behind the `spectrum` feature).
+//! the PSA point-set measures.
 //!
 //! # Definitions
 //!

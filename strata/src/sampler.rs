@@ -91,7 +91,7 @@ impl StrataGrid {
 /// A source of 2D sample points in `[0,1)^2`.
 ///
 /// The trait is object safe, so samplers can be chosen at run time
-/// (`Box<dyn Sampler>`, see [`crate::registry`]).
+/// (`Box<dyn Sampler>`; the lab's registry builds every sampler by name).
 ///
 /// [`next_sample`](Sampler::next_sample) is an endless stream. A progressive sampler
 /// ([`Progression::Progressive`]) is well distributed at every prefix it documents; a fixed-count
@@ -212,7 +212,7 @@ impl core::fmt::Debug for dyn Sampler {
     }
 }
 
-/// A boxed sampler (from [`crate::registry`]) is a sampler.
+/// A boxed sampler is a sampler.
 impl Sampler for Box<dyn Sampler> {
     fn name(&self) -> &'static str {
         (**self).name()

@@ -20,7 +20,7 @@
 //!   steps (an addition and a multiplication) are affine modulo `2^k`, so the shuffles of two
 //!   seeds are often close relatives. The seeded XOR-multiply in front is not affine, and a
 //!   second, independent key enters there; measured with the pair test
-//!   ([`crate::conformance::PairStudy`]), one such round is as good as an ideal random nested
+//!   (the lab's `conformance::PairStudy`), one such round is as good as an ideal random nested
 //!   shuffle, where the plain round fails.
 //! * `owen_scramble_base4_rev`: the base-4 variant (each aligned pair of bits, a base-4
 //!   digit, permuted by the digits below), Vegdahl's hash as in Blender Cycles.

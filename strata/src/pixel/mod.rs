@@ -14,24 +14,25 @@
 //!
 //! # On a GPU
 //!
-//! The draws of `random`, `sobol`, `pmj02`, `lattice`, `zsobol` and `zpmj02` are the
-//! [`kernel`]'s 32-bit integer arithmetic, and [`WGSL`] is the same kernel as a WGSL shader
-//! module (`shaders/strata.wgsl` in the repository): include it in a compute or fragment
-//! shader, upload [`PixelSampler::gpu_parameters`] as a uniform, and call
-//! `strata_get_2d(params, pixel, index, dim)` for the `f32` pair or `strata_draw` for the
-//! 32-bit fixed-point values. The repository's GPU test runs the shader through `wgpu` on the
-//! Vulkan adapter present (Mesa's lavapipe CPU driver in CI) and compares `2^22` draws of every
-//! one of the six sequences bit for bit with [`PixelSampler::sample_2d_u32`]; that is what is
-//! claimed, nothing more. The shader's domain is sample indices below `2^32`: at and past
-//! `2^32` the CPU draws from a fresh key per block of `2^32` ([`Key::epoch`]), which a renderer
-//! that goes that far computes on the CPU and uploads. `jittered` and `halton` divide by their
-//! block sizes in 64-bit arithmetic and are CPU-only. `zjoint` reads up to 513 Sobol'
-//! dimensions, too many for a uniform: its draws are [`WGSL_ZJOINT`]'s `strata_joint_draw`
-//! (`shaders/strata_zjoint.wgsl`, included after [`WGSL`]), which reads the generator columns
-//! from a storage buffer `strata_joint` that the including shader declares and fills with
-//! [`Sequence::gpu_joint_table`]; the GPU test compares `2^22` draws of it too, at groups of
-//! 2, 8 and 512, and of `zquad`, which is the same shader with its own table (the base-4
-//! Faure matrices).
+//! This is the one place that says what runs on a GPU. The draws of every sequence whose row in
+//! the [table](#sequences) has a GPU number are 32-bit wrapping integer arithmetic (no 64-bit
+//! integers, no per-thread tables; the crate's `kernel` module), and [`WGSL`] is the same kernel
+//! as a WGSL module (`shaders/strata.wgsl`): include it in a compute or fragment shader, upload
+//! [`PixelSampler::gpu_parameters`] (eight `u32`, [`GpuParameters::words`]) as a uniform, and
+//! call `strata_get_2d(params, pixel, index, dim)` for the `f32` pair or `strata_draw` for the
+//! 32-bit fixed-point values. `zjoint` and `zquad` (sequence 6) read more generator columns than
+//! a uniform holds: include [`WGSL_ZJOINT`] after [`WGSL`], declare a storage buffer
+//! `strata_joint: array<u32>` filled with [`Sequence::gpu_joint_table`], and call
+//! `strata_joint_get_2d` instead.
+//!
+//! What is tested, and nothing more: the repository's GPU test (`gpu/`) validates both modules
+//! with `naga` and runs them through `wgpu` on the Vulkan adapter present (Mesa's lavapipe CPU
+//! driver in CI), comparing `2^22` draws of every GPU sequence (of `zjoint` at groups of 2, 8
+//! and 512) bit for bit with [`PixelSampler::sample_2d_u32`]: half a renderer's grid, half
+//! hashed over the whole `u32` range of pixel, index and dimension. No hardware GPU and no
+//! rust-gpu build have been tested. The shader's domain is sample indices below `2^32` (past
+//! them the CPU draws from a fresh key per block of `2^32`); `jittered` and `halton` divide by
+//! their block sizes in 64-bit arithmetic and are CPU-only.
 //!
 //! # Guarantees
 //!
@@ -39,7 +40,7 @@
 //!   comes from its own independently randomized copy of a 2D sequence, keyed by
 //!   `hash(seed, p, d)`: padding (Kollig and Keller 2002), Cook's uncorrelated jitter
 //!   generalized. Within a pixel, the values of different draws are statistically independent,
-//!   and so are those of different pixels and seeds; [`crate::conformance`] tests it per pixel
+//!   and so are those of different pixels and seeds; the lab's conformance suite tests it per pixel
 //!   and per pair of dimensions. The one exception is by design: `zjoint`'s draws of one
 //!   *group* of dimensions are distinct dimensions of one multi-dimensional Sobol' sequence,
 //!   stratified jointly rather than independent (its groups are independent of each other),
@@ -85,21 +86,10 @@
 //! ([`PixelSampler::with_padding`]) also reorders each aligned block of `spp` samples
 //! (rounded up to a power of two) per draw by a random `x -> a x + b` over GF(2^m): a sharply
 //! 2-transitive family, so two draws meet as under independent uniform permutations, while
-//! each whole block stays the net it was (its prefixes do not). Measured with `render --padding
-//! nested|uniform` at 128x128, RMSE (16 seeds in direct lighting, `--scene spheres`; 8 seeds
-//! with every bounce, `--scene cornell`):
+//! each whole block stays the net it was (its prefixes do not). `render --padding nested|uniform` measures
+//! the two (the repository's `docs/results.md`, section "Padding").
 //!
-//! | scene | spp | `sobol` nested | `sobol` uniform | `pmj02` nested | `pmj02` uniform | `jittered` | `halton` |
-//! |---|---|---|---|---|---|---|---|
-//! | spheres | 4 | 0.01626 | 0.01575 | 0.01613 | 0.01583 | 0.01904 | 0.01776 |
-//! | spheres | 16 | 0.00692 | 0.00655 | 0.00694 | 0.00663 | 0.00749 | 0.00704 |
-//! | spheres | 64 | 0.00345 | 0.00321 | 0.00346 | 0.00324 | 0.00340 | 0.00329 |
-//! | cornell | 4 | 0.1199 | 0.1147 | 0.1175 | 0.1172 | 0.1377 | 0.1392 |
-//! | cornell | 16 | 0.0511 | 0.0480 | 0.0493 | 0.0481 | 0.0556 | 0.0516 |
-//! | cornell | 64 | 0.0237 | 0.0242 | 0.0248 | 0.0239 | 0.0254 | 0.0249 |
-//!
-//! Uniform padding is 3-7% lower in direct lighting at every count; with every bounce it is
-//! lower at 4 and 16 spp and within the seed noise at 64. The default stays `Nested` because
+//! The default stays `Nested` because
 //! it is the one that keeps every prefix a net (progressive and adaptive renderers stop
 //! anywhere) and the one the [`WGSL`] shader computes ([`PixelSampler::gpu_parameters`] is
 //! `None` under `Uniform`); a renderer that always takes its `spp` samples should choose
@@ -182,7 +172,7 @@ use crate::prelude::*;
 use crate::sampler::Seed;
 use kernel::{PixelKeys, ZPixel};
 
-/// The WGSL port of the [`kernel`] (`shaders/strata.wgsl`): a shader module to include, with
+/// The WGSL port of the draw kernel (`shaders/strata.wgsl`): a shader module to include, with
 /// `strata_get_2d`, `strata_draw` and the parameter struct `StrataParameters` (see the
 /// [module docs](self#on-a-gpu)).
 pub const WGSL: &str = include_str!("../../shaders/strata.wgsl");
@@ -267,7 +257,7 @@ impl DimensionLayout {
 /// `StrataParameters`, in this field order, eight `u32` words: [`words`](Self::words)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct GpuParameters {
-    /// The image's [`Key`].
+    /// The image's key: four words expanded from the seed.
     pub key: [u32; 4],
     /// The image of a Z-ordered sequence (`[0, 0]` for the others).
     pub resolution: [u32; 2],
@@ -708,7 +698,7 @@ impl PixelSampler {
         self.four(&c, dim)
     }
 
-    /// Stateless: the 2D draw at `dim` for `(pixel, index)` as the [`kernel`]'s 32-bit
+    /// Stateless: the 2D draw at `dim` for `(pixel, index)` as the kernel's 32-bit
     /// fixed-point values (`value / 2^32`; [`get_2d`](Self::get_2d) is their top 24 bits), the
     /// values the [`WGSL`] shader computes; `None` for `jittered` and `halton`.
     pub fn sample_2d_u32(&self, pixel: [u32; 2], index: u64, dim: u32) -> Option<[u32; 2]> {
