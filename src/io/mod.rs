@@ -20,21 +20,20 @@ use strata::{Error, Result};
 use strata::{Point2, StrataGrid};
 use crate::spectrum::{RadialBin, Spectrum};
 
-/// Writes `canvas` as an 8-bit RGB PNG (through `image`), as [`write_file`] writes: never half
-/// written, every byte checked.
+/// Writes `canvas` as an 8-bit RGB PNG (the `png` crate: balanced compression, adaptive
+/// filters), as [`write_file`] writes: never half written, every byte checked.
 pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
-    use image::ImageEncoder;
-    use image::codecs::png::{CompressionType, FilterType, PngEncoder};
     let path = path.as_ref();
+    let fail = |e: png::EncodingError| strata::Error::io(path.display().to_string(), e);
     let mut bytes = Vec::new();
-    PngEncoder::new_with_quality(&mut bytes, CompressionType::Default, FilterType::Adaptive)
-        .write_image(
-            canvas.data(),
-            canvas.width(),
-            canvas.height(),
-            image::ExtendedColorType::Rgb8,
-        )
-        .map_err(|e| strata::Error::io(path.display().to_string(), e))?;
+    let mut encoder = png::Encoder::new(&mut bytes, canvas.width(), canvas.height());
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_compression(png::Compression::Balanced);
+    encoder.set_filter(png::Filter::Adaptive);
+    let mut writer = encoder.write_header().map_err(fail)?;
+    writer.write_image_data(canvas.data()).map_err(fail)?;
+    writer.finish().map_err(fail)?;
     write_file(path, &bytes)
 }
 

@@ -961,3 +961,32 @@ fn measure() {
         println!("{n:>5} mean  {rho:.4}   {nn:.4}   {worst:.2e}  {time:.3}");
     }
 }
+
+#[test]
+fn lloyds_voronoi_cells_on_spade_are_the_power_diagram_with_zero_weights() {
+    // Lloyd relaxes on spade's Delaunay triangulation (its dual); BNOT and CCVT on the exact
+    // power diagram. With zero weights the power diagram is the Voronoi diagram: the two engines
+    // must give every site the same cell (area and centroid), near the seams too.
+    use strata_lab::samplers::lloyd::voronoi_cells;
+    for seed in 20..24 {
+        let mut g = Pcg32::new(seed);
+        let sites = g.points(200);
+        let spade = voronoi_cells(&sites).unwrap();
+        let exact = PowerDiagram::voronoi(&sites).unwrap();
+        for (i, (a, b)) in spade.iter().zip(exact.cells()).enumerate() {
+            let a = a.as_ref().expect("distinct random sites all have cells");
+            assert!(
+                (a.area - b.area()).abs() < 1e-9,
+                "seed {seed} site {i}: area {} vs {}",
+                a.area,
+                b.area()
+            );
+            let c = b.centroid_unwrapped().unwrap();
+            // both in the site's unwrapped coordinates, up to a whole turn of the torus
+            for k in 0..2 {
+                let d = (a.centroid[k] - c[k]).rem_euclid(1.0);
+                assert!(d.min(1.0 - d) < 1e-9, "seed {seed} site {i}: {a:?} vs {c:?}");
+            }
+        }
+    }
+}

@@ -122,11 +122,9 @@
 //! `random::<f64>()`, `random_bool(p)`, `random_range` over floats. Calls that consume a
 //! variable number (rejection sampling: `rand_distr`'s `UnitDisc`, `UnitSphere`, `UnitCircle`,
 //! `Normal`, `Exp`, `Gamma`; integer `random_range`, which draws again in rare cases) shift
-//! every later dimension of that sample: replace them with mappings of one draw, in [`warp`]
-//! ([`concentric_disk`](warp::concentric_disk) for `UnitDisc`,
-//! [`uniform_sphere`](warp::uniform_sphere) for `UnitSphere`,
-//! [`normal_pair`](warp::normal_pair) for two normals, [`pick`](warp::pick) for an integer
-//! below `n`).
+//! every later dimension of that sample: replace them with mappings of one draw, in `warp` (with
+//! the `std` feature: `concentric_disk` for `UnitDisc`, `uniform_sphere` for `UnitSphere`,
+//! `normal_pair` for two normals, `pick` for an integer below `n`).
 //!
 //! ```
 //! use strata::{PixelSampler, Seed, Sequence};
