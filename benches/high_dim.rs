@@ -12,9 +12,9 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use strata::float::{f32_in_stratum, unit_f32_from_u32};
 use strata::hash::{GOLDEN_GAMMA, Permutation, hash32, mix64, stream_seed};
-use strata_lab::registry::{self, Params};
 use strata::samplers::halton::PRIMES;
 use strata::scramble::owen_scramble;
+use strata_lab::registry::{self, Params};
 
 /// The previous scrambled radical inverse (until the Halton speed work): per digit, a node hash
 /// and a Kensler permutation of the base, 64-bit division, digits to `2^-32`.

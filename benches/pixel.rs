@@ -159,8 +159,12 @@ fn pixel(c: &mut Criterion) {
     ] {
         let mut g = group(c, label, shape.values());
         for name in ["sobol", "pmj02"] {
-            let mut s =
-                PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), shape.spp, Seed(1)).unwrap();
+            let mut s = PixelSampler::new(
+                Sequence::by_name(name, [256, 256]).unwrap(),
+                shape.spp,
+                Seed(1),
+            )
+            .unwrap();
             g.bench_function(BenchmarkId::from_parameter(name), |b| {
                 b.iter(|| black_box(get_2d(&mut s, shape)))
             });

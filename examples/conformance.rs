@@ -12,8 +12,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use common::{CliError, cli_error, parse_int, parse_open_float, string_value};
-use strata_lab::conformance::{PairStudy, SequenceSource, Shuffle, Source, Suite};
 use strata::pixel::Sequence;
+use strata_lab::conformance::{PairStudy, SequenceSource, Shuffle, Source, Suite};
 
 const USAGE: &str = "conformance --sampler NAME|all [--spp N] [--dims D] [--pixels K] [--seeds K] \
 [--false-alarm A] [--markdown FILE] | conformance --pairs [--sampler NAME|all] [--seeds K] \

@@ -16,7 +16,6 @@ use strata::counts::CountRule;
 use strata::{Error, Result};
 use strata::{Sampler, SamplerNd, Seed};
 
-
 /// The families of samplers, as the lecture groups them (one panel each in `tradeoff`'s plots).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[non_exhaustive]
@@ -603,4 +602,3 @@ impl Params {
         Seed(self.seed)
     }
 }
-

@@ -43,7 +43,6 @@
 //! published rates `N^r` of the estimate's variance on discontinuous / smooth 2D integrands.
 //!
 #![doc = include_str!("../docs/samplers.md")]
-
 #![warn(missing_docs, missing_debug_implementations)]
 #![warn(clippy::undocumented_unsafe_blocks)]
 

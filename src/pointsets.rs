@@ -21,8 +21,8 @@
 use std::io::Write;
 use std::path::Path;
 
-use strata::{Error, Result};
 use strata::Point2;
+use strata::{Error, Result};
 
 /// Who reports the errors.
 const CONTEXT: &str = "pointsets";

@@ -1,7 +1,8 @@
-//! The stateless core of strata in a `#![no_std]` library: Sobol' and Z-ordered Sobol' by
-//! (index, dimension, seed), stochastic pmj02 by index, Halton, hashing, Kensler's permutation
-//! and float conversion, and a classic sampler (jittered), exported so that the linker keeps
-//! them.
+//! The renderer's crate in a `#![no_std]` library: Sobol' and Z-ordered Sobol' by (index,
+//! dimension, seed), the jointly Z-ordered `zjoint` (the default sequence, whose tables are built
+//! at construction), stochastic pmj02 by index, Halton, hashing, Kensler's permutation and float
+//! conversion, and a classic sampler (jittered), exported so that the linker keeps them. Built,
+//! not run: it links only if nothing brings `std`.
 
 #![no_std]
 
@@ -15,7 +16,8 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
     loop {}
 }
 
-/// An allocator that has nothing to give: the functions below never ask.
+/// An allocator that has nothing to give: the functions below never ask, but `zjoint`'s
+/// construction (its tables), which then fails to allocate: the link is what is checked.
 struct NoAlloc;
 
 // SAFETY: alloc returns null (an allocation failure), which GlobalAlloc allows; dealloc is
@@ -42,7 +44,16 @@ pub extern "C" fn strata_zsobol(x: u32, y: u32, index: u64, dim: u32, seed: u64)
     match Sequence::zsobol(1920, 1080)
         .and_then(|z| PixelSampler::new(z, 64, Seed(seed)))
     {
-        Ok(s) => s.sample_2d([x, y], index, dim).x,
+        Ok(s) => s.sample_2d([x, y], index, dim)[0],
+        Err(_) => -1.0,
+    }
+}
+
+/// Jointly Z-ordered Sobol' (groups of 8 dimensions) for pixel (x, y) of a 1920 x 1080 image.
+#[unsafe(no_mangle)]
+pub extern "C" fn strata_zjoint(x: u32, y: u32, index: u64, dim: u32, seed: u64) -> f32 {
+    match Sequence::zjoint(1920, 1080, 8).and_then(|z| PixelSampler::new(z, 64, Seed(seed))) {
+        Ok(s) => s.sample_2d([x, y], index, dim)[0],
         Err(_) => -1.0,
     }
 }
@@ -50,12 +61,12 @@ pub extern "C" fn strata_zsobol(x: u32, y: u32, index: u64, dim: u32, seed: u64)
 /// Stochastic pmj02 by index.
 #[unsafe(no_mangle)]
 pub extern "C" fn strata_pmj02(index: u32, seed: u64) -> f32 {
-    Pmj02Stochastic::point(index, Seed(seed)).x
+    Pmj02Stochastic::point(index, Seed(seed))[0]
 }
 
-/// Scrambled Halton by dimension, index and seed.
+/// Scrambled Halton by index, dimension and seed.
 #[unsafe(no_mangle)]
-pub extern "C" fn strata_halton(dim: u32, index: u64, seed: u64) -> f32 {
+pub extern "C" fn strata_halton(index: u64, dim: u32, seed: u64) -> f32 {
     halton::scrambled_radical_inverse(index, dim as usize % halton::MAX_DIMENSIONS, seed)
 }
 
@@ -75,7 +86,7 @@ pub extern "C" fn strata_jittered(count: u64, index: u32, seed: u64) -> f32 {
             for _ in 0..index {
                 s.next_sample();
             }
-            s.next_sample().x
+            s.next_sample()[0]
         }
         Err(_) => -1.0,
     }

@@ -190,10 +190,7 @@ pub fn sequence_help(z_only: bool, first: usize, indent: usize, width: usize) ->
     use strata::Sequence;
     let names: Vec<String> = Sequence::NAMES
         .iter()
-        .filter(|n| {
-            !z_only
-                || Sequence::by_name(n, [1, 1]).is_ok_and(|s| s.resolution().is_some())
-        })
+        .filter(|n| !z_only || Sequence::by_name(n, [1, 1]).is_ok_and(|s| s.resolution().is_some()))
         .map(|n| {
             if *n == "zjoint" && !z_only {
                 "zjoint, zjoint-G (groups of G dimensions)".to_string()
@@ -219,7 +216,6 @@ pub fn sequence_help(z_only: bool, first: usize, indent: usize, width: usize) ->
     }
     out
 }
-
 
 /// The `--help` lines of the sampler parameters, from their declarations: a line per flag and
 /// one per sampler that takes it (its range, default and what it does).

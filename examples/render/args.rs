@@ -127,8 +127,7 @@ pub fn parse() -> Result<Option<Args>, CliError> {
             Long("markdown") => a.markdown = Some(p.value()?.into()),
             Long("interactions") => a.interactions = true,
             Short('h') | Long("help") => {
-                let help =
-                    HELP.replace("{SEQUENCES}", &common::sequence_help(false, 32, 25, 95));
+                let help = HELP.replace("{SEQUENCES}", &common::sequence_help(false, 32, 25, 95));
                 outln!("{help}")?;
                 return Ok(None);
             }

@@ -4,9 +4,9 @@
 
 use std::path::Path;
 
+use strata::pixel::Sequence;
 use strata_lab::analysis::study;
 use strata_lab::io::{self, LinePlot, Marker, Rgb, Series};
-use strata::pixel::Sequence;
 
 use crate::args::{Args, markdown_section};
 use crate::common::{self, CliError};

@@ -3,8 +3,8 @@
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use strata_lab::io::{self, Rgb};
 use strata::pixel::{DimensionLayout, PixelSampler, Sequence};
+use strata_lab::io::{self, Rgb};
 use strata_lab::spectrum::ErrorImage;
 
 use crate::args::Args;

@@ -5,8 +5,8 @@
 use std::time::Instant;
 
 use glam::Vec3;
-use strata_lab::io;
 use strata::pixel::{Padding, PixelSampler, Sequence};
+use strata_lab::io;
 use strata_lab::spectrum::{self, ErrorImage};
 
 use crate::args::Args;
@@ -46,12 +46,7 @@ pub fn sequences(args: &Args) -> Result<Vec<(String, Sequence)>, CliError> {
     let sequences: Vec<(String, Sequence)> = args
         .samplers
         .iter()
-        .map(|n| {
-            Ok((
-                n.clone(),
-                Sequence::by_name(n, [args.size.0, args.size.1])?,
-            ))
-        })
+        .map(|n| Ok((n.clone(), Sequence::by_name(n, [args.size.0, args.size.1])?)))
         .collect::<Result<_, strata::Error>>()?;
     for (_, seq) in &sequences {
         for &spp in &args.spp {

@@ -47,18 +47,18 @@ fn the_gpu_computes_the_cpu_bits() {
         Err(why) => panic!("{why}"),
     };
     eprintln!("adapter: {}", gpu.name);
-    let sequences = [
-        Sequence::random(),
-        Sequence::sobol(),
-        Sequence::pmj02(),
-        Sequence::lattice(),
-        Sequence::zsobol(64, 48).unwrap(),
-        Sequence::zpmj02(64, 64).unwrap(),
-        Sequence::zjoint(64, 48, 8).unwrap(),
-        Sequence::zjoint(64, 64, 2).unwrap(),
-        Sequence::zjoint(48, 64, 512).unwrap(),
-        Sequence::zquad(64, 48).unwrap(),
-    ];
+    // every sequence the kernel has, from the declarations (so a new one is tested as soon as
+    // its row says it runs on the GPU), and zjoint's smallest and largest groups
+    let sequences: Vec<Sequence> = Sequence::NAMES
+        .iter()
+        .map(|n| Sequence::by_name(n, [64, 48]).unwrap())
+        .filter(Sequence::runs_on_gpu)
+        .chain([
+            Sequence::zjoint(64, 64, 2).unwrap(),
+            Sequence::zjoint(48, 64, 512).unwrap(),
+        ])
+        .collect();
+    assert!(sequences.len() >= 10, "{sequences:?}");
     let grid = COUNT / 2;
     for (k, sequence) in sequences.into_iter().enumerate() {
         let name = match sequence.group() {

@@ -87,7 +87,10 @@ fn _strata(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_RESOLUTION", strata_lab::spectrum::MAX_RESOLUTION)?;
     m.add("MAX_DIMENSIONS", strata::samplers::MAX_DIMENSIONS)?;
     m.add("MAX_FIXED_COUNT", strata::counts::MAX_FIXED_COUNT)?;
-    m.add("MAX_STUDY_COUNT", strata_lab::analysis::study::MAX_STUDY_COUNT)?;
+    m.add(
+        "MAX_STUDY_COUNT",
+        strata_lab::analysis::study::MAX_STUDY_COUNT,
+    )?;
     m.add("MAX_SEEDS", strata_lab::analysis::study::MAX_SEEDS)?;
     Ok(())
 }

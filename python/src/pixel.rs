@@ -25,8 +25,7 @@ impl PyPixelSampler {
     #[new]
     #[pyo3(signature = (sequence, spp, seed, resolution=(256, 256)))]
     fn new(sequence: &str, spp: u32, seed: u64, resolution: (u32, u32)) -> PyResult<Self> {
-        let seq =
-            Sequence::by_name(sequence, [resolution.0, resolution.1]).map_err(to_py_err)?;
+        let seq = Sequence::by_name(sequence, [resolution.0, resolution.1]).map_err(to_py_err)?;
         let inner = PixelSampler::new(seq, spp, Seed(seed)).map_err(to_py_err)?;
         Ok(PyPixelSampler { inner })
     }

@@ -4,7 +4,6 @@
 //! the Pareto front of cost against error. Pure functions of their inputs; `study` runs the
 //! measurements and re-exports these.
 
-
 use super::study::BOOTSTRAP;
 
 /// Least-squares slope of `log y` against `log x` over the pairs with `y > 0`.

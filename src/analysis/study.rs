@@ -18,9 +18,9 @@ pub use super::fit::{
     MAX_PROJECTED_COUNT, bootstrap_interval, count_to_reach, fit_slope, pareto_front, power_law_at,
 };
 use super::fourier::{integrand_power, predicted_variance};
-use strata::{Error, Result};
 use crate::registry::{CountRule, Entry, Params};
 use crate::spectrum::expected_spectrum;
+use strata::{Error, Result};
 
 /// The largest count a study accepts.
 pub const MAX_STUDY_COUNT: u64 = 1 << 20;

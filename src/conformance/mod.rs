@@ -82,11 +82,11 @@ use std::fmt;
 pub use pairs::{PairReport, PairStudy, Shuffle};
 
 use crate::analysis::Integrand;
-use strata::{Error, Result};
-use strata::pixel::{PixelSampler, Sequence};
+use crate::stats;
 use strata::Seed;
 use strata::StrataGrid;
-use crate::stats;
+use strata::pixel::{PixelSampler, Sequence};
+use strata::{Error, Result};
 
 /// What the suite draws values from.
 ///

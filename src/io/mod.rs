@@ -16,9 +16,9 @@ pub use plot::{
 use std::io::Write;
 use std::path::Path;
 
+use crate::spectrum::{RadialBin, Spectrum};
 use strata::{Error, Result};
 use strata::{Point2, StrataGrid};
-use crate::spectrum::{RadialBin, Spectrum};
 
 /// Writes `canvas` as an 8-bit RGB PNG (the `png` crate: balanced compression, adaptive
 /// filters), as [`write_file`] writes: never half written, every byte checked.
@@ -66,7 +66,12 @@ pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     let meta = std::fs::metadata(path);
     match &meta {
         Ok(m) if !m.is_file() && !m.is_dir() => return write_in_place(path, bytes),
-        Ok(m) if m.is_dir() => return Err(Error::io(path.display().to_string(), "a directory, not a file")),
+        Ok(m) if m.is_dir() => {
+            return Err(Error::io(
+                path.display().to_string(),
+                "a directory, not a file",
+            ));
+        }
         _ => {}
     }
     // follow a symbolic link to the file it names

@@ -104,8 +104,8 @@
 
 use core::cmp::Ordering;
 
-use strata::{Error, Result};
 use crate::grid::wrap_unit;
+use strata::{Error, Result};
 
 mod exact;
 mod linalg;

@@ -17,7 +17,9 @@
 //! assert!(err.to_string().contains("jittered")); // the error lists the known names
 //! ```
 
-pub use crate::entry::{BlueNoise, Bound, Built, Entry, Family, Kind, ParameterSpec, Params, Rates};
+pub use crate::entry::{
+    BlueNoise, Bound, Built, Entry, Family, Kind, ParameterSpec, Params, Rates,
+};
 pub use strata::counts::CountRule;
 
 mod strata_entries;

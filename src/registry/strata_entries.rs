@@ -5,14 +5,13 @@
 
 use strata::counts::CountRule;
 use strata::samplers::{
-    Cmj, Fibonacci, Halton, HaltonNd, Jittered, LatinHypercube, Lattice, LatticeNd,
-    MultiJittered, NRooks, Pmj02Stochastic, Random, RandomNd, Regular, Sobol, SobolNd,
-    UncorrelatedJitter,
+    Cmj, Fibonacci, Halton, HaltonNd, Jittered, LatinHypercube, Lattice, LatticeNd, MultiJittered,
+    NRooks, Pmj02Stochastic, Random, RandomNd, Regular, Sobol, SobolNd, UncorrelatedJitter,
 };
 
-use crate::entry::{Built, Entry, Family, Rates};
 #[allow(unused_imports)]
 use crate::entry::Params;
+use crate::entry::{Built, Entry, Family, Rates};
 
 /// The registry entry of `random`.
 pub(crate) const RANDOM: Entry = Entry {
@@ -291,4 +290,3 @@ pub(crate) const PMJ02_STOCHASTIC: Entry = Entry {
     any_dims: false,
     build: |p| Ok(Built::two(Pmj02Stochastic::new(p.sampler_seed()))),
 };
-

@@ -9,14 +9,14 @@
 
 use rand_pcg::Pcg32;
 
-use strata::samplers::Epochs;
 use super::poisson::uniform;
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
-use strata::counts::{CountRule};
-use strata::Result;
-use strata::float::unit_f32_from_f64;
 use crate::grid::TorusGrid;
+use strata::Result;
+use strata::counts::CountRule;
+use strata::float::unit_f32_from_f64;
 use strata::hash::stream_seed;
+use strata::samplers::Epochs;
 use strata::{Point2, Progression, Sampler, Seed};
 
 /// The default candidate factor `k`.

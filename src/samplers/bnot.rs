@@ -49,12 +49,12 @@ use rand_pcg::Pcg32;
 use super::poisson::uniform;
 use super::{SetGenerator, Sets};
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
-use strata::counts::{CountRule};
-use strata::{Error, Result};
 use crate::grid::{relative_radius_max, wrap_unit};
-use strata::hash::{mix64, stream_seed};
 use crate::power::transport::{TransportOptions, TransportReport, TransportSolver};
 use crate::power::{MIN_MAGNITUDE, check_coincident, find_coincident, validate_sites};
+use strata::counts::CountRule;
+use strata::hash::{mix64, stream_seed};
+use strata::{Error, Result};
 
 /// The default cap on the Lloyd steps: high enough that the stopping rule ends the loop (it
 /// takes about 30 steps from uniform random points).

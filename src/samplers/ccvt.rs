@@ -33,10 +33,10 @@ use rand_pcg::Pcg32;
 use super::poisson::{below, uniform};
 use super::{SetGenerator, Sets};
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
-use strata::counts::{CountRule};
-use strata::{Error, Result};
 use crate::grid::{TorusGrid, torus_distance_squared, wrap_unit};
+use strata::counts::CountRule;
 use strata::hash::stream_seed;
+use strata::{Error, Result};
 
 /// Discrete points per site.
 pub const DEFAULT_CAPACITY: u32 = 256;

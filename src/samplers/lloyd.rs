@@ -17,11 +17,11 @@ use spade::{DelaunayTriangulation, HasPosition, Point2 as SPoint, Triangulation}
 
 use super::{SetGenerator, Sets};
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
-use strata::counts::{CountRule};
-use strata::{Error, Result};
-use strata::float::{unit_f64_from_u32, unit_f64_from_u64};
 use crate::grid::{relative_radius_max, wrap_unit as wrap};
+use strata::counts::CountRule;
+use strata::float::{unit_f64_from_u32, unit_f64_from_u64};
 use strata::hash::{hash_u64, stream_seed};
+use strata::{Error, Result};
 
 /// The stream of the jitter that separates coincident points.
 const JITTER_STREAM: u64 = 0x110d;

@@ -25,12 +25,12 @@
 //! low-frequency band than `pmj02` or Sobol'.
 
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
-use strata::counts::{CountRule};
-use strata::{Error, Result};
 use crate::grid::relative_radius_max;
-use strata::hash::{hash_u64, stream_seed};
 use crate::samplers::{SetGenerator, Sets};
+use strata::counts::CountRule;
+use strata::hash::{hash_u64, stream_seed};
 use strata::samplers::sobol;
+use strata::{Error, Result};
 
 /// The kernel width relative to `r_max(N)`.
 pub(crate) const SIGMA: f64 = 0.5;

@@ -23,12 +23,12 @@
 //! permutation of `i / q`, the index without its lowest digit (for fixed high digits the column
 //! is a bijection of the lowest one). Everything is computed sample by sample, as in the paper.
 
-use strata::samplers::{Blocks, Fixed, check_dims};
 use crate::entry::{Built, Entry, Family, ParameterSpec, Params, Rates};
-use strata::counts::{CountRule, prime_power};
 use strata::Result;
+use strata::counts::{CountRule, prime_power};
 use strata::float::Strata;
 use strata::hash::{DivMod, Permutation, hash_u64, hash32, key32, stream_seed};
+use strata::samplers::{Blocks, Fixed, check_dims};
 use strata::{Seed, StrataGrid};
 
 /// The stream of a block key from which the sub-stratum permutations are keyed.
@@ -253,12 +253,12 @@ impl Bose {
         let field = Field::new(q).expect("checked");
         Ok(Fixed::new(
             Bose {
-            field,
-            q: DivMod::new(q).expect("q >= 2"),
-            dims,
-            strata: Strata::new(count),
-            keys: Vec::new(),
-            key: 0,
+                field,
+                q: DivMod::new(q).expect("q >= 2"),
+                dims,
+                strata: Strata::new(count),
+                keys: Vec::new(),
+                key: 0,
             },
             seed,
         ))
@@ -290,7 +290,6 @@ impl Blocks for Bose {
     fn set_dims(&self) -> u32 {
         self.dims
     }
-
 
     /// Every pair of dimensions is stratified on the `q x q` grid (strength 2).
     fn pair_strata(&self, _x: u32, _y: u32) -> Option<StrataGrid> {
@@ -348,14 +347,14 @@ impl Bush {
         check_dims(BUSH.name, dims, q, " (a Bush array has at most q columns)")?;
         Ok(Fixed::new(
             Bush {
-            field: Field::new(q).expect("checked"),
-            q: DivMod::new(q).expect("q >= 2"),
-            t: strength,
-            sub_count: (count / q as u64) as u32,
-            dims,
-            strata: Strata::new(count),
-            keys: Vec::new(),
-            key: 0,
+                field: Field::new(q).expect("checked"),
+                q: DivMod::new(q).expect("q >= 2"),
+                t: strength,
+                sub_count: (count / q as u64) as u32,
+                dims,
+                strata: Strata::new(count),
+                keys: Vec::new(),
+                key: 0,
             },
             seed,
         ))
@@ -377,7 +376,6 @@ impl Blocks for Bush {
     fn set_dims(&self) -> u32 {
         self.dims
     }
-
 
     /// Every pair of dimensions is stratified on the `q x q` grid (`q^(t-2)` points per cell:
     /// strength `t >= 2`).

@@ -28,11 +28,11 @@ use rand_pcg::Pcg32;
 
 use super::{SetGenerator, Sets};
 use crate::entry::{BlueNoise, Bound, Built, Entry, Family, ParameterSpec, Rates};
-use strata::counts::{CountRule};
-use strata::{Error, Result};
-use strata::float::unit_f64_from_u64;
 use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared, wrap_unit as wrap};
+use strata::counts::CountRule;
+use strata::float::unit_f64_from_u64;
 use strata::hash::stream_seed;
+use strata::{Error, Result};
 
 /// The default relative radius.
 pub const DEFAULT_RHO: f64 = 0.7;

@@ -23,9 +23,9 @@
 use std::f64::consts::PI;
 
 use super::check_points;
-use strata::{Error, Result};
 use crate::grid::{TorusGrid, relative_radius_max};
 use strata::Point2;
+use strata::{Error, Result};
 
 /// The largest point count per set for which [`point_set_measures`] computes the spectral
 /// measures (the pair counting is quadratic).

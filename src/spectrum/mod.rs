@@ -43,8 +43,8 @@ pub use measures::{PointSetMeasures, nearest_neighbour_distances, point_set_meas
 
 use rayon::prelude::*;
 
-use strata::{Error, Result};
 use strata::Point2;
+use strata::{Error, Result};
 
 /// The largest resolution `K` accepted (the fast path's grid then needs about 300 MB).
 pub const MAX_RESOLUTION: u32 = 2048;

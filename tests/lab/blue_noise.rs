@@ -1,7 +1,6 @@
 //! Blue noise: minimum distances checked pair by pair (toroidal), exact counts, Lloyd's energy
 //! and centroids, CCVT's capacities and areas, best candidate's spacing, and the errors.
 
-
 use crate::common::torus_distance_squared;
 use strata_lab::registry::{self, Params};
 use strata_lab::samplers::{Bridson, Ccvt, DartThrowing, SetGenerator};

@@ -4,7 +4,7 @@
 //! determinism, tiny counts, and bad input. Ported from the BNOT prototype's tests.
 //!
 //! The quality targets (mean of 8 seeds) run at N = 1024 (about 2 s in the test profile); at
-//! N = 4096 the test is `#[ignore]`d: `cargo test --release --test bnot -- --ignored`.
+//! N = 4096 the test is `#[ignore]`d: `cargo test --release -p strata-lab --test lab bnot -- --ignored`.
 
 #![allow(clippy::needless_range_loop)] // index loops read better in these checks
 
@@ -924,7 +924,7 @@ fn targets_at_1024() {
 }
 
 #[test]
-#[ignore = "about 8 s in the test profile, 3 s in release; run with cargo test --release --test bnot -- --ignored"]
+#[ignore = "about 8 s in the test profile, 3 s in release; run with cargo test --release -p strata-lab --test lab bnot -- --ignored"]
 fn targets_at_4096() {
     targets(4096);
 }
@@ -985,7 +985,10 @@ fn lloyds_voronoi_cells_on_spade_are_the_power_diagram_with_zero_weights() {
             // both in the site's unwrapped coordinates, up to a whole turn of the torus
             for k in 0..2 {
                 let d = (a.centroid[k] - c[k]).rem_euclid(1.0);
-                assert!(d.min(1.0 - d) < 1e-9, "seed {seed} site {i}: {a:?} vs {c:?}");
+                assert!(
+                    d.min(1.0 - d) < 1e-9,
+                    "seed {seed} site {i}: {a:?} vs {c:?}"
+                );
             }
         }
     }

@@ -1,8 +1,6 @@
 //! The `points` program's command-line contract (`docs/cli.md`): CSV that parses back to
 //! the library's values, `--list`, and one-line errors with a non-zero exit status.
 
-
-
 use crate::common::example_bin;
 use std::path::PathBuf;
 use std::process::Command;

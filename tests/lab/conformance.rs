@@ -2,10 +2,10 @@
 //! sequence on the row that names its fault: a test that cannot fail proves nothing.
 
 use strata::StrataGrid;
-use strata_lab::conformance::{PairStudy, Report, SequenceSource, Shuffle, Source, Suite};
 use strata::hash::{GOLDEN_GAMMA, hash_u64, hash32, mix64, stream_seed};
 use strata::pixel::{PixelSampler, Sequence};
 use strata::samplers::{Pmj02Stochastic, halton};
+use strata_lab::conformance::{PairStudy, Report, SequenceSource, Shuffle, Source, Suite};
 
 fn assert_passes(report: &Report, what: &str) {
     assert!(report.passed(), "{what} should pass:\n{report}");
@@ -393,7 +393,8 @@ fn the_pair_test_passes_every_sequence_and_fails_one_plain_round() {
     for name in [
         "sobol", "pmj02", "lattice", "zsobol", "zpmj02", "zquad", "zjoint", "random",
     ] {
-        let source = SequenceSource::new(Sequence::by_name(name, [256, 256]).unwrap(), 4096).unwrap();
+        let source =
+            SequenceSource::new(Sequence::by_name(name, [256, 256]).unwrap(), 4096).unwrap();
         let r = study.run(&source).unwrap();
         assert_eq!(r.pairs, 786_240);
         assert!(r.passed(), "{name}: {r}");

@@ -1,12 +1,11 @@
 //! The core contract: values in [0,1) (never 1.0), determinism by seed, the float edge cases,
 //! Kensler's permute, and the registry's errors.
 
-
 use crate::common::take;
 use strata::float::{ONE_MINUS_EPSILON, f32_in_stratum, unit_f32_from_f64, unit_f32_from_u32};
 use strata::hash::{Permutation, permute};
-use strata_lab::registry::{self, Params};
 use strata::{Error, Sampler};
+use strata_lab::registry::{self, Params};
 
 #[test]
 fn every_sampler_stays_in_the_unit_square() {

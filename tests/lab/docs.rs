@@ -107,15 +107,13 @@ fn no_merge_conflict_markers_are_left_in_the_sources_or_the_docs() {
     // (a merge once committed its markers into CHANGELOG.md and docs/cli.md unnoticed)
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let markers = [format!("{} ", "<".repeat(7)), format!("{} ", ">".repeat(7))];
-    let mut stack: Vec<std::path::PathBuf> =
-        ["src", "docs", "examples", "tests", "benches", "strata", "python", "gpu"]
-            .iter()
-            .map(|d| root.join(d))
-            .chain(
-                ["README.md", "CHANGELOG.md", "CONTRIBUTING.md", "Cargo.toml"]
-                    .map(|f| root.join(f)),
-            )
-            .collect();
+    let mut stack: Vec<std::path::PathBuf> = [
+        "src", "docs", "examples", "tests", "benches", "strata", "python", "gpu",
+    ]
+    .iter()
+    .map(|d| root.join(d))
+    .chain(["README.md", "CHANGELOG.md", "CONTRIBUTING.md", "Cargo.toml"].map(|f| root.join(f)))
+    .collect();
     let mut files = 0;
     while let Some(p) = stack.pop() {
         if p.is_dir() {

@@ -2,11 +2,10 @@
 //! nets); seeds 0 and u64::MAX; indices near 2^32; Poisson radii near 0 and near the limit;
 //! coincident and nearly coincident points into Lloyd and the spectrum; no 1.0 anywhere.
 
-use strata_lab::registry::{self, Params};
 use strata::samplers::{Pmj02Stochastic, Sobol};
-use strata_lab::samplers::{Pmj};
 use strata::{Progression, Sampler};
-
+use strata_lab::registry::{self, Params};
+use strata_lab::samplers::Pmj;
 
 use crate::common::is_net_fixed as is_net;
 

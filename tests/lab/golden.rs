@@ -116,7 +116,10 @@ fn the_renderer_crate_pins_its_samplers_with_the_same_digests() {
     // one value per line in both files: a renderer sampler's line here is its line there
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let read = |p: &str| std::fs::read_to_string(root.join(p)).unwrap();
-    let (lab, renderer) = (read("tests/lab/golden.txt"), read("strata/tests/golden.txt"));
+    let (lab, renderer) = (
+        read("tests/lab/golden.txt"),
+        read("strata/tests/golden.txt"),
+    );
     let lab: std::collections::HashMap<&str, &str> = lab
         .lines()
         .map(|l| {
@@ -130,7 +133,11 @@ fn the_renderer_crate_pins_its_samplers_with_the_same_digests() {
         if name.starts_with("pixel ") {
             continue;
         }
-        assert_eq!(lab.get(name), Some(&digest), "{name}: the two golden files disagree");
+        assert_eq!(
+            lab.get(name),
+            Some(&digest),
+            "{name}: the two golden files disagree"
+        );
         compared += 1;
     }
     // every renderer sampler, 2D and D-dimensional forms

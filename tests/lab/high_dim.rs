@@ -3,8 +3,8 @@
 //! (every 1D projection into N strata, every 2D projection for Bose, every t-D one for Bush).
 
 use strata::SamplerNd;
-use strata_lab::registry::{self, Params};
 use strata::samplers::{LatinHypercube, UncorrelatedJitter};
+use strata_lab::registry::{self, Params};
 use strata_lab::samplers::{Bose, Bush};
 
 fn points(s: &mut dyn SamplerNd, n: usize) -> Vec<Vec<f32>> {

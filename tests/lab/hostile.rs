@@ -5,7 +5,6 @@
 
 #![cfg(unix)]
 
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 

@@ -2,12 +2,11 @@
 //! and every aligned block, under XOR shuffling, PMJ's 1D strata and squarest grids, the
 //! stratified classes, best-candidate spacing, and the errors.
 
-
 use crate::common::top;
 use strata::Sampler;
+use strata::samplers::Pmj02Stochastic;
 use strata_lab::samplers::pmj::blue::DEFAULT_SWEEPS;
 use strata_lab::samplers::pmj::{class2, class4};
-use strata::samplers::{Pmj02Stochastic};
 use strata_lab::samplers::{Pmj, Pmj02Bn};
 
 /// For each shape `2^a x 2^(m-a)` (`a = 0..=m`), how many cells hold exactly one point.

@@ -3,10 +3,9 @@
 
 use proptest::prelude::*;
 use strata::SamplerNd;
-use strata_lab::registry::{self, Params};
 use strata::samplers::{Cmj, Jittered, MultiJittered, NRooks, Pmj02Stochastic, Sobol};
+use strata_lab::registry::{self, Params};
 use strata_lab::samplers::{Bose, Pmj};
-
 
 use crate::common::{counts, is_net_fixed as is_net, take};
 

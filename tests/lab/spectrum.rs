@@ -3,8 +3,6 @@
 //! on its lattice, DC is N, the expected spectrum does not depend on the thread count, and the
 //! files read back as written.
 
-
-
 use crate::common::take;
 use strata_lab::registry::{self, Params};
 use strata_lab::spectrum::{self, Spectrum, expected_spectrum, periodogram, periodogram_direct};

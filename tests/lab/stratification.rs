@@ -1,7 +1,6 @@
 //! Stratification of the classic samplers, counted cell by cell at several counts and seeds,
 //! over several consecutive blocks (each block of a fixed-count sampler is its own set).
 
-
 use crate::common::{assert_at_most_one_per_cell, assert_one_per_cell, take};
 use strata::samplers::{Cmj, Jittered, MultiJittered, NRooks, Regular};
 use strata::{Progression, Sampler};

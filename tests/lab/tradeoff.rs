@@ -3,7 +3,6 @@
 //! the spectral variance prediction exact for random sampling, bootstrap intervals that hold the
 //! rates and separate the classes, the time to reach an error, determinism, and the errors.
 
-
 use strata_lab::analysis::Integrand;
 use strata_lab::analysis::study::{self, Config, Seeds};
 use strata_lab::registry;

@@ -142,9 +142,9 @@ class PixelSampler:
     """The path-tracer adapter: stratified, independent values by (pixel, sample index,
     dimension), as ``strata::PixelSampler`` gives them to a renderer.
 
-    ``sequence`` is one of ``strata_sampling.sequences()`` (``random``, ``jittered``, ``pmj02``,
-    ``sobol``, ``halton``, ``lattice``, ``zsobol``, ``zpmj02``, ``zquad``, ``zjoint``, and
-    ``zjoint-G`` for groups of ``G`` dimensions); ``spp`` the samples per pixel
+    ``sequence`` is one of ``strata_sampling.sequences()`` (the Rust crate's declarations: its
+    table is in the crate's docs and in ``docs/cli.md``; ``zjoint`` also as ``zjoint-G`` for
+    groups of ``G`` dimensions); ``spp`` the samples per pixel
     (used by ``jittered``, which needs a square, ``halton`` and the Z-ordered sequences);
     ``resolution`` the ``(width, height)`` image of the Z-ordered sequences.
 

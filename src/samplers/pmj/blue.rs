@@ -49,16 +49,16 @@
 //! `tools/pmj-peer`); counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`; each
 //! sample is then computed from the flags in `O(m)` and one hash.
 
-use strata::samplers::MAX_SEQUENCE_LEN;
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
-use strata::counts::{CountRule};
-use strata::Result;
-use strata::float::unit_f32_from_u32;
 use crate::grid::relative_radius_max;
+use strata::Result;
+use strata::counts::CountRule;
+use strata::float::unit_f32_from_u32;
 use strata::hash::{hash_u64, stream_seed};
-use strata::{Point2, Progression, Sampler, Seed, StrataGrid};
+use strata::samplers::MAX_SEQUENCE_LEN;
 use strata::samplers::{Epochs, sobol};
 use strata::scramble::owen_scramble;
+use strata::{Point2, Progression, Sampler, Seed, StrataGrid};
 
 /// The kernel width relative to `r_max` of each prefix.
 pub(crate) const SIGMA: f64 = 0.4;
@@ -223,7 +223,6 @@ impl Pmj02Bn {
         let p = self.sample_u32(index);
         [unit_f32_from_u32(p[0]), unit_f32_from_u32(p[1])]
     }
-
 }
 
 impl Sampler for Pmj02Bn {

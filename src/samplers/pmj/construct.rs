@@ -3,11 +3,11 @@
 use rand::Rng;
 use rand_pcg::Pcg32;
 
-use strata::float::unit_f64_from_u32;
 use crate::grid::{TorusGrid, torus_distance_squared};
+use crate::occupancy::{ElementaryIntervals, Strata1D, top_bits};
+use strata::float::unit_f64_from_u32;
 use strata::hash::{hash_u64, stream_seed};
 use strata::morton::{morton, unmorton};
-use crate::occupancy::{ElementaryIntervals, Strata1D, top_bits};
 
 /// Which constraints a new point obeys, and how many best-candidate candidates it draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -134,7 +134,6 @@ pub fn class2(index: u64) -> u8 {
     class4(index) >> 1
 }
 
-
 /// A PMJ-family sequence built by construction (pmj, pmjbn, pmj02).
 ///
 /// ```

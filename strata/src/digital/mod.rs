@@ -456,7 +456,10 @@ const fn parse_joe_kuo<const N: usize>(text: &[u8]) -> [Matrix; N] {
     let mut dim = 1;
     while dim < N {
         let (d, _) = next_number(text, &mut at);
-        assert!(d as usize == dim + 1, "new-joe-kuo-6: the lines must be in order");
+        assert!(
+            d as usize == dim + 1,
+            "new-joe-kuo-6: the lines must be in order"
+        );
         let (s, _) = next_number(text, &mut at);
         assert!(s >= 1 && s <= 31, "new-joe-kuo-6: degree out of range");
         let (a, _) = next_number(text, &mut at);
@@ -465,8 +468,14 @@ const fn parse_joe_kuo<const N: usize>(text: &[u8]) -> [Matrix; N] {
         let mut k = 0;
         while k < s as usize {
             let (v, end) = next_number(text, &mut at);
-            assert!(v % 2 == 1 && v < 1 << (k + 1), "new-joe-kuo-6: m_k must be odd, < 2^k");
-            assert!(end == (k + 1 == s as usize), "new-joe-kuo-6: s numbers m_k per line");
+            assert!(
+                v % 2 == 1 && v < 1 << (k + 1),
+                "new-joe-kuo-6: m_k must be odd, < 2^k"
+            );
+            assert!(
+                end == (k + 1 == s as usize),
+                "new-joe-kuo-6: s numbers m_k per line"
+            );
             m[k] = v;
             k += 1;
         }
@@ -595,7 +604,6 @@ pub(crate) fn digital_t_value_in(matrices: &[Matrix], m: u32, bits: u32) -> u32 
     m - strength
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -671,7 +679,10 @@ mod tests {
         // (upper triangular with a unit diagonal): the matrix is invertible
         let text = JOE_KUO.lines().skip(1);
         for (line, m) in text.zip(&SOBOL[1..]) {
-            let v: Vec<u64> = line.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            let v: Vec<u64> = line
+                .split_whitespace()
+                .map(|x| x.parse().unwrap())
+                .collect();
             let (s, a) = (v[1] as u32, v[2]);
             let poly = (1u64 << s) | (a << 1) | 1;
             // the order of x modulo poly

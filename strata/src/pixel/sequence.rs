@@ -937,8 +937,7 @@ fn jittered(k: &DrawKeys, index: u32, spp: &SamplesPerPixel) -> [f32; 2] {
     let (_, c, key) = block_permuted(k.stream(), index, &spp.cells);
     let (row, col) = spp.side.div_rem(c);
     let h = hash_u64(key, c as u64);
-    spp.strata
-        .place2([col, row], [h as u32, (h >> 32) as u32])
+    spp.strata.place2([col, row], [h as u32, (h >> 32) as u32])
 }
 
 /// `halton`: the Halton index the sample is sent to (its block's members in a random order).
@@ -989,9 +988,13 @@ mod tests {
             );
         }
         assert_eq!(Sequence::NAMES.len(), ROWS.len());
-        let e = Sequence::by_name("zsobol", [0, 16]).unwrap_err().to_string();
+        let e = Sequence::by_name("zsobol", [0, 16])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("1 to 65536"), "{e}");
-        let e = Sequence::by_name("sobolx", [16, 16]).unwrap_err().to_string();
+        let e = Sequence::by_name("sobolx", [16, 16])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("zjoint"), "{e}");
     }
 
@@ -1004,7 +1007,10 @@ mod tests {
             std::fs::write(path, &table).unwrap();
         }
         let docs = std::fs::read_to_string(path).unwrap();
-        assert_eq!(docs, table, "docs/sequences.md is stale (STRATA_BLESS=1 rewrites it)");
+        assert_eq!(
+            docs, table,
+            "docs/sequences.md is stale (STRATA_BLESS=1 rewrites it)"
+        );
         let module = include_str!("mod.rs");
         assert!(module.contains("include_str!(\"../../docs/sequences.md\")"));
         // one row per name, in order, and its GPU column as `gpu_parameters` says
@@ -1019,7 +1025,9 @@ mod tests {
                 crate::Seed(1),
             )
             .unwrap();
-            let gpu = s.gpu_parameters().map(|g| format!("sequence {}", g.sequence));
+            let gpu = s
+                .gpu_parameters()
+                .map(|g| format!("sequence {}", g.sequence));
             assert!(
                 row.contains(&format!("| {} |", gpu.as_deref().unwrap_or("CPU only"))),
                 "{row}"

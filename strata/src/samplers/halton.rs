@@ -23,7 +23,6 @@
 //! dimension, none above base 127), so per point only the lower digits are hashed. Same values
 //! as [`scrambled_radical_inverse`], which allocates nothing.
 
-
 use crate::error::Result;
 use crate::float::{Strata, unit_f32_from_u32};
 use crate::hash::{DivMod, Stream, hash32, mix64, stream_seed};
@@ -58,7 +57,6 @@ pub const PRIMES: [u32; MAX_DIMENSIONS] = {
 /// The registry entry of `halton`.
 /// The registered name.
 const NAME: &str = "halton";
-
 
 /// Digits are produced until the last one's weight is at most the inverse of this (the
 /// spacing of `f32` in `[1/2, 1)`).

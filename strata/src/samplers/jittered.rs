@@ -13,7 +13,6 @@ use crate::hash::{DivMod, hash_u64};
 use crate::prelude::*;
 use crate::sampler::{Point2, Seed, StrataGrid};
 
-
 /// The name of the sampler.
 const NAME: &str = "jittered";
 
@@ -39,9 +38,9 @@ impl Jittered {
         let s = n.isqrt();
         Ok(Fixed::new(
             Jittered {
-            side: DivMod::new(s).expect("side >= 1"),
-            strata: Strata::new(s as u64),
-            key: 0,
+                side: DivMod::new(s).expect("side >= 1"),
+                strata: Strata::new(s as u64),
+                key: 0,
             },
             seed,
         ))
@@ -59,7 +58,6 @@ impl Blocks for Jittered {
     fn set_len(&self) -> u32 {
         self.count()
     }
-
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;

@@ -17,8 +17,6 @@ use crate::sampler::{Point2, Seed, StrataGrid};
 const NROOKS: &str = "nrooks";
 const LATIN: &str = "latin";
 
-
-
 /// N-rooks (2D Latin hypercube): any `N >= 1`, one point per `1/N` column and per `1/N` row.
 ///
 /// Sample `i` of a set takes column `px(i)` and row `py(i)` for two independent hashed
@@ -50,11 +48,11 @@ impl NRooks {
         let identity = Permutation::new(n, 0).expect("n >= 1");
         Ok(Fixed::new(
             NRooks {
-            count: n,
-            strata: Strata::new(n as u64),
-            px: identity,
-            py: identity,
-            key: 0,
+                count: n,
+                strata: Strata::new(n as u64),
+                px: identity,
+                py: identity,
+                key: 0,
             },
             seed,
         ))
@@ -72,7 +70,6 @@ impl Blocks for NRooks {
     fn set_len(&self) -> u32 {
         self.count()
     }
-
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
@@ -121,11 +118,11 @@ impl LatinHypercube {
         check_dims(LATIN, dims, MAX_DIMENSIONS, "")?;
         Ok(Fixed::new(
             LatinHypercube {
-            count: n,
-            dims,
-            strata: Strata::new(n as u64),
-            perms: Vec::new(),
-            key: 0,
+                count: n,
+                dims,
+                strata: Strata::new(n as u64),
+                perms: Vec::new(),
+                key: 0,
             },
             seed,
         ))
@@ -147,7 +144,6 @@ impl Blocks for LatinHypercube {
     fn set_dims(&self) -> u32 {
         self.dims
     }
-
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;

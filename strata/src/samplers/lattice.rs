@@ -18,7 +18,7 @@
 //! Screen-Space Samplers with Blue-Noise Error Distribution", 2021) report lattices on par
 //! with Owen-scrambled Sobol' for rendering once padded: `render` measures it.
 
-use super::{Blocks, Fixed, Epochs, check_dims};
+use super::{Blocks, Epochs, Fixed, check_dims};
 use crate::counts::{CountRule, fibonacci_numbers};
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
@@ -46,8 +46,6 @@ pub const GENERATOR: [u32; 100] = [
 
 /// The registered name of the lattice.
 const LATTICE_NAME: &str = "lattice";
-
-
 
 /// Dimensions 0 and 1 of the lattice point whose radical inverse is `r` (in 32-bit fixed point
 /// `phi_2(i) 2^32` is the bit reversal of `i`), shifted on the torus by `shift`: the point
@@ -214,9 +212,9 @@ impl Fibonacci {
             .unwrap_or(1) as u32;
         Ok(Fixed::new(
             Fibonacci {
-            n,
-            z,
-            shift: [0, 0],
+                n,
+                z,
+                shift: [0, 0],
             },
             seed,
         ))
@@ -229,7 +227,6 @@ impl Blocks for Fibonacci {
     fn set_len(&self) -> u32 {
         self.n
     }
-
 
     fn begin_block(&mut self, key: u64) {
         self.shift = [stream_seed(key, 0) >> 32, stream_seed(key, 1) >> 32];

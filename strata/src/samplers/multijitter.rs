@@ -24,8 +24,6 @@ use crate::sampler::{Point2, Seed, StrataGrid};
 const MULTIJITTERED: &str = "multijittered";
 const CMJ: &str = "cmj";
 
-
-
 /// The point of cell `(col, row)` of an `m x n` grid whose x lies in sub-column `sub_x` (of `n`)
 /// and y in sub-row `sub_y` (of `m`), jittered by the two halves of `h`; `fine` holds the
 /// `m n` strata of each axis.
@@ -88,15 +86,14 @@ pub struct MultiJittered {
 impl MultiJittered {
     /// Multi-jittered sets of `count` points seeded by `seed`; `count` must be a perfect square.
     pub fn new(count: u64, seed: Seed) -> crate::Result<Fixed<Self>> {
-        let n = CountRule::Square.check(MULTIJITTERED, count)?
-            .isqrt();
+        let n = CountRule::Square.check(MULTIJITTERED, count)?.isqrt();
         Ok(Fixed::new(
             MultiJittered {
-            side: DivMod::new(n).expect("side >= 1"),
-            fine: Strata::new(n as u64 * n as u64),
-            key: 0,
-            key_x: 0,
-            key_y: 0,
+                side: DivMod::new(n).expect("side >= 1"),
+                fine: Strata::new(n as u64 * n as u64),
+                key: 0,
+                key_x: 0,
+                key_y: 0,
             },
             seed,
         ))
@@ -114,7 +111,6 @@ impl Blocks for MultiJittered {
     fn set_len(&self) -> u32 {
         self.count()
     }
-
 
     fn begin_block(&mut self, key: u64) {
         self.key = key;
@@ -181,14 +177,14 @@ impl Cmj {
         let identity = |len| Permutation::new(len, 0).expect("len >= 1");
         Ok(Fixed::new(
             Cmj {
-            count,
-            columns: DivMod::new(m).expect("m >= 1"),
-            rows: n,
-            fine: Strata::new(m as u64 * n as u64),
-            order: identity(count),
-            shuffle_x: identity(n),
-            shuffle_y: identity(m),
-            key: 0,
+                count,
+                columns: DivMod::new(m).expect("m >= 1"),
+                rows: n,
+                fine: Strata::new(m as u64 * n as u64),
+                order: identity(count),
+                shuffle_x: identity(n),
+                shuffle_y: identity(m),
+                key: 0,
             },
             seed,
         ))
@@ -244,7 +240,6 @@ impl Blocks for Cmj {
     fn set_len(&self) -> u32 {
         self.count()
     }
-
 
     fn begin_block(&mut self, key: u64) {
         let (m, n) = self.grid();

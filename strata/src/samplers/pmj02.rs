@@ -22,7 +22,6 @@
 //! Stirling numbers of the second kind mod 2, which its tests check independently). The
 //! path-tracer adapter's `pmj02` is the same digital sequence, Owen-scrambled.
 
-
 use crate::float::unit_f32_from_u32;
 use crate::hash::{hash_u64, stream_seed};
 use crate::prelude::*;
@@ -53,7 +52,6 @@ pub struct Pmj02Stochastic {
 
 /// The registered name.
 const NAME: &str = "pmj02-stochastic";
-
 
 impl Pmj02Stochastic {
     /// The sequence seeded by `seed`.

@@ -15,7 +15,6 @@ use crate::sampler::{Point2, Seed, StrataGrid};
 /// The name of the sampler.
 const NAME: &str = "regular";
 
-
 /// The `N = s^2` cell centres `((i + 1/2) / s, (j + 1/2) / s)`, in row-major order.
 ///
 /// ```
@@ -37,8 +36,8 @@ impl Regular {
         let s = n.isqrt();
         Ok(Fixed::new(
             Regular {
-            side: DivMod::new(s).expect("side >= 1"),
-            strata: Strata::new(s as u64),
+                side: DivMod::new(s).expect("side >= 1"),
+                strata: Strata::new(s as u64),
             },
             Seed(0),
         ))
@@ -56,7 +55,6 @@ impl Blocks for Regular {
     fn set_len(&self) -> u32 {
         self.count()
     }
-
 
     fn begin_block(&mut self, _key: u64) {}
 

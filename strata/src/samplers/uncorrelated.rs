@@ -18,7 +18,6 @@ use crate::sampler::{Seed, StrataGrid};
 /// The name of the sampler.
 const NAME: &str = "uncorrelated";
 
-
 /// Uncorrelated jitter in `D` dimensions: `N = s^2` (any `N` when `D = 1`).
 ///
 /// ```
@@ -52,13 +51,13 @@ impl UncorrelatedJitter {
         };
         Ok(Fixed::new(
             UncorrelatedJitter {
-            count: n,
-            side: DivMod::new(side).expect("side >= 1"),
-            dims,
-            pairs: Strata::new(side as u64),
-            single: Strata::new(n as u64),
-            perms: Vec::new(),
-            key: 0,
+                count: n,
+                side: DivMod::new(side).expect("side >= 1"),
+                dims,
+                pairs: Strata::new(side as u64),
+                single: Strata::new(n as u64),
+                perms: Vec::new(),
+                key: 0,
             },
             seed,
         ))
@@ -80,7 +79,6 @@ impl Blocks for UncorrelatedJitter {
     fn set_dims(&self) -> u32 {
         self.dims
     }
-
 
     /// The pairs (0,1), (2,3), ... are jittered on the `s x s` grid; other pairs are not
     /// stratified together.

@@ -16,9 +16,8 @@ use std::path::Path;
 
 use strata::counts::CountRule;
 use strata::samplers::{
-    Cmj, Fibonacci, Halton, HaltonNd, Jittered, LatinHypercube, Lattice, LatticeNd,
-    MultiJittered, NRooks, Pmj02Stochastic, Random, RandomNd, Regular, Sobol, SobolNd,
-    UncorrelatedJitter,
+    Cmj, Fibonacci, Halton, HaltonNd, Jittered, LatinHypercube, Lattice, LatticeNd, MultiJittered,
+    NRooks, Pmj02Stochastic, Random, RandomNd, Regular, Sobol, SobolNd, UncorrelatedJitter,
 };
 use strata::{PixelSampler, Sampler, SamplerNd, Seed, Sequence};
 

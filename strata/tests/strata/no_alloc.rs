@@ -50,7 +50,8 @@ fn the_counter_sees_an_allocation() {
 #[test]
 fn the_render_loop_allocates_nothing() {
     for name in Sequence::NAMES {
-        let s = PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), 16, Seed(9)).unwrap();
+        let s =
+            PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), 16, Seed(9)).unwrap();
         let mut t = black_box(s.clone());
         let mut acc = 0.0f32;
         let n = allocations(|| {

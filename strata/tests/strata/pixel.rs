@@ -2,7 +2,6 @@
 //! per-pixel stratification, padding decorrelation, index limits; and Sobol' direction
 //! numbers checked against an independent implementation.
 
-
 use crate::common::is_net;
 use strata::pixel::{PixelSampler, Sequence};
 
@@ -92,8 +91,12 @@ fn revisiting_a_pixel_in_any_order_gives_the_same_bits() {
 fn each_pixel_gets_a_stratified_set_in_every_draw() {
     for name in ["pmj02", "sobol"] {
         for spp in [4u32, 16, 64, 256] {
-            let s =
-                PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), spp, strata::Seed(11)).unwrap();
+            let s = PixelSampler::new(
+                Sequence::by_name(name, [256, 256]).unwrap(),
+                spp,
+                strata::Seed(11),
+            )
+            .unwrap();
             for pixel in [[0u32, 0], [7, 3], [1000, 999]] {
                 for dim in [0u32, 2, 9] {
                     let pts: Vec<_> = (0..spp as u64)
@@ -138,7 +141,12 @@ fn halton_blocks_are_stratified_on_their_grid_in_every_draw() {
 #[test]
 fn past_two_to_the_32_the_draws_stay_stratified() {
     for name in ["pmj02", "sobol"] {
-        let s = PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), 256, strata::Seed(8)).unwrap();
+        let s = PixelSampler::new(
+            Sequence::by_name(name, [256, 256]).unwrap(),
+            256,
+            strata::Seed(8),
+        )
+        .unwrap();
         for start in [1u64 << 32, 5 << 32] {
             let pts: Vec<_> = (0..256u64)
                 .map(|i| s.sample_2d([3, 3], start + i, 4))
@@ -151,8 +159,18 @@ fn past_two_to_the_32_the_draws_stay_stratified() {
 #[test]
 fn progressive_sequences_ignore_the_samples_per_pixel() {
     for name in ["random", "pmj02", "sobol"] {
-        let a = PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), 16, strata::Seed(2)).unwrap();
-        let b = PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), 1000, strata::Seed(2)).unwrap();
+        let a = PixelSampler::new(
+            Sequence::by_name(name, [256, 256]).unwrap(),
+            16,
+            strata::Seed(2),
+        )
+        .unwrap();
+        let b = PixelSampler::new(
+            Sequence::by_name(name, [256, 256]).unwrap(),
+            1000,
+            strata::Seed(2),
+        )
+        .unwrap();
         for i in [0u64, 5, 999, 70_000] {
             assert_eq!(
                 a.sample_2d([1, 2], i, 6),
@@ -448,7 +466,10 @@ fn any_order_of_draws_gives_the_stateless_values() {
         (state >> 33) % n
     };
     // (the Z-ordered sequences over a 3 x 2 image: x = 3 is outside it)
-    for seq in Sequence::NAMES.iter().map(|n| Sequence::by_name(n, [3, 2]).unwrap()) {
+    for seq in Sequence::NAMES
+        .iter()
+        .map(|n| Sequence::by_name(n, [3, 2]).unwrap())
+    {
         for padding in [strata::Padding::Nested, strata::Padding::Uniform] {
             let mut s = PixelSampler::new(seq.clone(), 16, strata::Seed(5))
                 .unwrap()
@@ -544,7 +565,12 @@ fn uniform_padding_keeps_each_block_and_reorders_it_per_draw() {
     }
     // the sequences that already pad by whole blocks are unchanged by it
     for name in ["random", "jittered", "halton"] {
-        let s = PixelSampler::new(Sequence::by_name(name, [256, 256]).unwrap(), 16, strata::Seed(5)).unwrap();
+        let s = PixelSampler::new(
+            Sequence::by_name(name, [256, 256]).unwrap(),
+            16,
+            strata::Seed(5),
+        )
+        .unwrap();
         let u = s.clone().with_padding(Padding::Uniform);
         assert_eq!(
             s.sample_2d([1, 2], 5, 4),
@@ -700,7 +726,10 @@ fn a_filled_pixel_sample_is_the_stateless_draws() {
     // `fill_sample` is the row layout of `points --pixel`, the Python binding and the
     // conformance suite: pairs from `get_2d`, a last `get_1d` for an odd width, from any
     // starting dimension; every value must be the stateless draw at its dimension
-    for seq in Sequence::NAMES.iter().map(|n| Sequence::by_name(n, [3, 2]).unwrap()) {
+    for seq in Sequence::NAMES
+        .iter()
+        .map(|n| Sequence::by_name(n, [3, 2]).unwrap())
+    {
         for padding in [strata::Padding::Nested, strata::Padding::Uniform] {
             let mut s = PixelSampler::new(seq.clone(), 16, strata::Seed(9))
                 .unwrap()

@@ -34,7 +34,10 @@ pub fn surface(dir: &Path, lib: &str, features: &[&str]) -> BTreeSet<String> {
         .args(["--", "-Z", "unstable-options", "--output-format", "json"])
         .status()
         .expect("cargo rustdoc runs");
-    assert!(status.success(), "cargo rustdoc --output-format json failed");
+    assert!(
+        status.success(),
+        "cargo rustdoc --output-format json failed"
+    );
     let text = std::fs::read_to_string(target.join("doc").join(format!("{lib}.json"))).unwrap();
     let doc: Value = serde_json::from_str(&text).unwrap();
     let index = doc["index"].as_object().unwrap();
@@ -145,10 +148,7 @@ impl Walk<'_> {
                 value(&item["inner"]["constant"]["const"]["expr"])
             ),
             "static" => format!("static {path}: {}", ty(&item["inner"]["static"]["type"])),
-            "type_alias" => format!(
-                "type {path} = {}",
-                ty(&item["inner"]["type_alias"]["type"])
-            ),
+            "type_alias" => format!("type {path} = {}", ty(&item["inner"]["type_alias"]["type"])),
             _ => format!("{k} {path}"),
         };
         self.lines.insert(line);
@@ -273,9 +273,9 @@ fn value(v: &Value) -> String {
     if text.len() <= 60 {
         return text.to_string();
     }
-    let digest = text
-        .bytes()
-        .fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ b as u64).wrapping_mul(0x100_0000_01b3));
+    let digest = text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
+    });
     format!("<{} bytes, FNV-1a {digest:016x}>", text.len())
 }
 
@@ -341,7 +341,6 @@ fn strip_ids(v: &mut Value) {
     }
 }
 
-
 #[test]
 #[ignore = "about a minute: runs rustdoc; .ci/run runs it"]
 fn the_public_surface_is_the_reviewed_list() {
@@ -376,5 +375,8 @@ fn features_only_add_items_and_std_adds_only_the_warps() {
         );
     }
     // and the check sees a type: the names of the sequences are one slice in both builds
-    assert!(lean.iter().any(|l| l.starts_with("const strata::pixel::Sequence::NAMES: &[&str]")));
+    assert!(
+        lean.iter()
+            .any(|l| l.starts_with("const strata::pixel::Sequence::NAMES: &[&str]"))
+    );
 }
