@@ -20,9 +20,12 @@ use serde_json::Value;
 /// built with `features` (cargo's flags: `--all-features`, `--no-default-features`, ...) into
 /// its own target directory, as lines.
 pub fn surface(dir: &Path, lib: &str, features: &[&str]) -> BTreeSet<String> {
-    let target = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("target")
-        .join(format!("public-api{}", features.join("")));
+    // the workspace's target directory: this test's executable is target/<profile>/deps/NAME
+    let exe = std::env::current_exe().unwrap();
+    let target = exe.ancestors().nth(3).unwrap().join(format!(
+        "public-api{}",
+        features.join("")
+    ));
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let status = Command::new(cargo)
         .current_dir(dir)
