@@ -1,7 +1,7 @@
 //! The lab's public surface, pinned in `docs/public-api.txt` (the walker is the renderer
 //! crate's test module `strata/tests/strata/public_api.rs`, included here).
 
-#[path = "../../strata/tests/strata/public_api.rs"]
+#[path = "../../strata/tests/strata/surface.rs"]
 mod walker;
 
 use std::path::Path;

@@ -7,3 +7,4 @@ mod golden;
 mod no_alloc;
 mod pixel;
 mod public_api;
+mod surface;
