@@ -1,12 +1,14 @@
-//! Golden digests: the values of every sampler and every path-tracer sequence are pinned.
+//! Golden digests: the values of every sampler of the registry are pinned.
 //!
 //! A 64-bit digest of the first values of every registry entry (2D, and 5D where it has D
-//! dimensions) and of every adapter sequence (three pixels, dimensions 0-31, indices at the
-//! start, across `2^16` and across `2^32`) is compared with `tests/golden.txt`. A refactor must
-//! leave every digest as it is; a deliberate change of values is announced in `CHANGELOG.md`
-//! under "value-breaking" and blessed with `STRATA_BLESS=1 cargo test -p strata-lab --test lab golden`.
-//! `.ci/run` also runs this test with the SIMD lane types compiled out
-//! (`RUSTFLAGS="--cfg strata_portable"`), so the same digests hold without SIMD.
+//! dimensions, and the bulk `fill` path at 13) is compared with `tests/lab/golden.txt`. The
+//! renderer crate pins its own samplers the same way (and the path-tracer sequences) in
+//! `strata/tests/golden.txt`: the lines of its samplers must be the same in both files (a test
+//! below). A refactor must leave every digest as it is; a deliberate change of values is
+//! announced in `CHANGELOG.md` under "value-breaking" (the section of the crate that owns the
+//! sampler) and blessed with `STRATA_BLESS=1 cargo test -p strata-lab --test lab golden`. CI
+//! also runs this test with the SIMD lane types compiled out (`RUSTFLAGS="--cfg
+//! strata_portable"`), so the same digests hold without SIMD.
 
 use std::path::Path;
 

@@ -6,11 +6,11 @@
 //!   in base 2. Dimension 0 is van der Corput (`C` the identity), dimension 1 uses the
 //!   polynomial `x + 1` (`C` the Pascal matrix mod 2); together they form a (0,2)-sequence, so
 //!   every prefix and aligned block of `2^m` points is a (0,m,2)-net.
-//! * Direction numbers for dimensions 2.. are Joe and Kuo's `new-joe-kuo-6` (S. Joe and F. Y.
-//!   Kuo, "Constructing Sobol sequences with better two-dimensional projections", SIAM J. Sci.
-//!   Comput. 30, 2008; BSD-3-Clause, Copyright (c) 2008 Frances Y. Kuo and Stephen Joe), read
-//!   from the `sobol` crate's copy of the table (feature `joe-kuo`, 1000 dimensions). The lean
-//!   build has dimensions 0 and 1.
+//! * Direction numbers for dimensions 2..1000 are Joe and Kuo's `new-joe-kuo-6` (S. Joe and F.
+//!   Y. Kuo, "Constructing Sobol sequences with better two-dimensional projections", SIAM J.
+//!   Sci. Comput. 30, 2008; BSD licence, Copyright (c) 2008 Frances Y. Kuo and Stephen Joe),
+//!   their file kept in the source and turned into matrices at compile time
+//!   ([`crate::digital`]).
 //! * Randomization: Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020), with the
 //!   shared functions of [`crate::scramble`] (the same as the path-tracer adapter's Sobol'):
 //!   the index goes through a nested uniform shuffle (aligned blocks of `2^m` indices map to

@@ -4,7 +4,7 @@
 //! A 64-bit digest of the first values of every sampler (2D, and 5D where it has D dimensions,
 //! and the bulk `fill` path at 13 dimensions) and of every adapter sequence (three pixels,
 //! dimensions 0-31, indices at the start, across `2^16` and across `2^32`) is compared with
-//! `tests/golden.txt`. The samplers are built as the lab's registry builds them (seed 1, the
+//! `strata/tests/golden.txt`. The samplers are built as the lab's registry builds them (seed 1, the
 //! count its rule allows nearest to 2048, or to 819 for 5D), so that the lab's golden file
 //! repeats these lines and a lab test checks that the two files agree. A refactor must leave
 //! every digest as it is; a deliberate change of values is announced in `CHANGELOG.md` under

@@ -73,7 +73,7 @@ fn the_render_loop_allocates_nothing() {
 
 #[test]
 fn the_stateless_core_allocates_nothing() {
-    // warm the lazily built tables (Sobol' dimensions past 1, with joe-kuo)
+    // (the tables are built at compile time, or when a sampler is made)
     black_box(sobol::owen_scrambled(0, 5, 1));
     let zsobol = PixelSampler::new(Sequence::zsobol(64, 64).unwrap(), 16, Seed(2)).unwrap();
     let n = allocations(|| {
