@@ -191,7 +191,7 @@ pub(crate) struct Row {
     /// The suffix the name takes (`zjoint-G`), in words; `""` for none.
     suffix: &'static str,
     /// The sequence for an image of `resolution` (the Z-ordered ones) and the suffix after
-    /// `name-` (`None` without one).
+    /// `name-` (`None` without one; never `Some` for a row whose `suffix` is empty).
     make: fn([u32; 2], Option<&str>) -> Result<Sequence>,
     /// The constructor, as the docs write it.
     build: &'static str,
@@ -206,21 +206,6 @@ pub(crate) struct Row {
     pub(crate) pads: bool,
 }
 
-/// A row that takes no suffix: `make` for a constructor of the resolution alone.
-fn no_suffix(
-    name: &'static str,
-    suffix: Option<&str>,
-    build: impl FnOnce() -> Result<Sequence>,
-) -> Result<Sequence> {
-    match suffix {
-        None => build(),
-        Some(s) => Err(Error::input(
-            "Sequence::by_name",
-            format!("'{name}-{s}': {name} takes no suffix"),
-        )),
-    }
-}
-
 /// Every sequence, in the order of [`Sequence::NAMES`] (row `k` is the sequence of [`Kind`]
 /// `k`: a test checks it).
 pub(crate) const ROWS: [Row; 10] = [
@@ -228,7 +213,7 @@ pub(crate) const ROWS: [Row; 10] = [
         kind: Kind::Random,
         name: "random",
         suffix: "",
-        make: |_, s| no_suffix("random", s, || Ok(Sequence::random())),
+        make: |_, _| Ok(Sequence::random()),
         build: "`Sequence::random()`",
         spp: SppUse::Ignored,
         promise: "independent uniform values (hashed)",
@@ -240,7 +225,7 @@ pub(crate) const ROWS: [Row; 10] = [
         kind: Kind::Jittered,
         name: "jittered",
         suffix: "",
-        make: |_, s| no_suffix("jittered", s, || Ok(Sequence::jittered())),
+        make: |_, _| Ok(Sequence::jittered()),
         build: "`Sequence::jittered()`",
         spp: SppUse::Square,
         promise: "one value per cell of `s x s` in each set of `spp`",
@@ -252,7 +237,7 @@ pub(crate) const ROWS: [Row; 10] = [
         kind: Kind::Pmj02,
         name: "pmj02",
         suffix: "",
-        make: |_, s| no_suffix("pmj02", s, || Ok(Sequence::pmj02())),
+        make: |_, _| Ok(Sequence::pmj02()),
         build: "`Sequence::pmj02()`",
         spp: SppUse::Ignored,
         promise: "every power-of-two prefix a (0,m,2)-net; Owen-scrambled",
@@ -264,7 +249,7 @@ pub(crate) const ROWS: [Row; 10] = [
         kind: Kind::Sobol,
         name: "sobol",
         suffix: "",
-        make: |_, s| no_suffix("sobol", s, || Ok(Sequence::sobol())),
+        make: |_, _| Ok(Sequence::sobol()),
         build: "`Sequence::sobol()`",
         spp: SppUse::Ignored,
         promise: "every power-of-two prefix a (0,m,2)-net; Owen-scrambled",
@@ -276,7 +261,7 @@ pub(crate) const ROWS: [Row; 10] = [
         kind: Kind::Halton,
         name: "halton",
         suffix: "",
-        make: |_, s| no_suffix("halton", s, || Ok(Sequence::halton())),
+        make: |_, _| Ok(Sequence::halton()),
         build: "`Sequence::halton()`",
         spp: SppUse::HaltonBlocks,
         promise: "each block's `2^a x 3^b` strata, one value each",
@@ -288,7 +273,7 @@ pub(crate) const ROWS: [Row; 10] = [
         kind: Kind::Lattice,
         name: "lattice",
         suffix: "",
-        make: |_, s| no_suffix("lattice", s, || Ok(Sequence::lattice())),
+        make: |_, _| Ok(Sequence::lattice()),
         build: "`Sequence::lattice()`",
         spp: SppUse::Ignored,
         promise: "`n x 1` and `1 x n` strata at every power of two; shifted",
@@ -300,7 +285,7 @@ pub(crate) const ROWS: [Row; 10] = [
         kind: Kind::ZSobol,
         name: "zsobol",
         suffix: "",
-        make: |r, s| no_suffix("zsobol", s, || Sequence::zsobol(r[0], r[1])),
+        make: |r, _| Sequence::zsobol(r[0], r[1]),
         build: "`Sequence::zsobol(width, height)`",
         spp: SppUse::PixelBlock,
         promise: "as `sobol` per pixel; pixels along a scrambled Z curve (blue-noise error)",
@@ -312,7 +297,7 @@ pub(crate) const ROWS: [Row; 10] = [
         kind: Kind::ZPmj02,
         name: "zpmj02",
         suffix: "",
-        make: |r, s| no_suffix("zpmj02", s, || Sequence::zpmj02(r[0], r[1])),
+        make: |r, _| Sequence::zpmj02(r[0], r[1]),
         build: "`Sequence::zpmj02(width, height)`",
         spp: SppUse::PixelBlock,
         promise: "as `pmj02` per pixel; pixels along a scrambled Z curve",
@@ -324,7 +309,7 @@ pub(crate) const ROWS: [Row; 10] = [
         kind: Kind::ZQuad,
         name: "zquad",
         suffix: "",
-        make: |r, s| no_suffix("zquad", s, || Sequence::zquad(r[0], r[1])),
+        make: |r, _| Sequence::zquad(r[0], r[1]),
         build: "`Sequence::zquad(width, height)`",
         spp: SppUse::PixelBlock,
         promise: "the Z order shared by a group of 4 draws, which read the dimensions of a \
@@ -607,12 +592,18 @@ impl Sequence {
             return (row.make)(resolution, None);
         }
         if let Some(row) = ROWS.iter().find(|r| {
-            !r.suffix.is_empty()
-                && name.len() > r.name.len() + 1
+            name.len() > r.name.len() + 1
                 && name.starts_with(r.name)
                 && name.as_bytes()[r.name.len()] == b'-'
         }) {
-            return (row.make)(resolution, Some(&name[row.name.len() + 1..]));
+            let suffix = &name[row.name.len() + 1..];
+            if row.suffix.is_empty() {
+                return Err(Error::input(
+                    "Sequence::by_name",
+                    format!("'{name}': {} takes no suffix", row.name),
+                ));
+            }
+            return (row.make)(resolution, Some(suffix));
         }
         Err(Error::input(
             "Sequence::by_name",
