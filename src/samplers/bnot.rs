@@ -23,7 +23,7 @@
 //! [`Error::Unreachable`].
 //!
 //! **What is guaranteed**: every returned set, with the weights of [`BnotResult::weights`], has
-//! power cells of area `1/N` within a relative `1e-6` (measured: within `2e-8`); the points
+//! power cells of area `1/N` within a relative `1e-6` (a final solve checks it); the points
 //! are distinct and in `[0, 1)^2`; the same seed gives the same bits. Counts: 1 to
 //! [`MAX_BNOT_COUNT`]. `N = 1` is the uniform random start (the one cell is the whole torus
 //! and the site is its own centroid); `N = 2` converges to two cells of area `1/2`.

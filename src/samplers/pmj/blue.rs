@@ -35,19 +35,15 @@
 //!
 //! Ahmed and Wonka (2021) note that (0,2)-sequences are much less optimisable than nets, since
 //! a coarse choice serves every later prefix. Choosing flags across all prefixes at once is what
-//! makes it work: with 32 seeds, mean nearest-neighbour distances over `r_max` are 0.756, 0.728,
-//! 0.705, 0.697 and 0.693 at 64, 256, 1024, 4096 and 16384 points, 1.15-1.25x those of `pmj02`
-//! (0.61), where best candidate inside the single valid stratum left by `pmj02` reached
-//! 0.99-1.06x; the `pmj` crate's best-candidate pmj02bn (99 retries) reaches 0.60 at 4096
-//! (`tools/pmj-peer`, `TABLE=1` and 30 timed rounds).
+//! makes it work: its spacing (mean nearest-neighbour distance) is well above `pmj02`'s at every
+//! prefix, where best candidate inside the single valid stratum left by `pmj02` barely moves
+//! it; the repository's `docs/results.md` has the measured figures (`spectrum
+//! --blue-noise-table`) and `tools/pmj-peer` times it against the `pmj` crate.
 //!
 //! Guaranteed: the (0,2)-sequence property above (tested on every prefix and aligned block).
-//! Cost: the optimisation, once per sequence, is `O(N log N)` for the intended count `N`
-//! (4096 points, set and points: 0.139 G instructions under callgrind, 0.80x the 0.173 G of
-//! the `pmj` crate's best candidate; in interleaved runs about its time, median per-round
-//! ratio 0.95-0.98 in three runs of 30 rounds on a noisy 2-core machine, about 12 ms each;
-//! `tools/pmj-peer`); counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`; each
-//! sample is then computed from the flags in `O(m)` and one hash.
+//! Cost: the optimisation, once per sequence, is `O(N log N)` for the intended count `N`;
+//! counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`; each sample is then computed
+//! from the flags in `O(m)` and one hash.
 
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
 use crate::grid::relative_radius_max;

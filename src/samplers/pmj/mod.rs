@@ -18,8 +18,8 @@
 //!   drawn in the valid strata, farthest (toroidally) from the points so far. `pmjbn` has real
 //!   freedom (about `sqrt(N)/4` free strata per axis) and gains clear blue noise. In `pmj02` the
 //!   elementary intervals leave exactly one stratum pair per point, so best candidate can only
-//!   move each point inside a `2^-m` square (measured: mean nearest-neighbour distance 0.99 to
-//!   1.06x that of `pmj02`); `pmj02bn` ([`blue`]) chooses the sequence's structure instead.
+//!   move each point inside a `2^-m` square (its spacing barely changes: `docs/results.md`);
+//!   `pmj02bn` ([`blue`]) chooses the sequence's structure instead.
 //! * `pmj02-stochastic`: Helmer, Christensen, Kensler, "Stochastic Generation of (t, s) Sample
 //!   Sequences" (EGSR 2021). Sample `2^k + i` copies the top `k` digits of sample
 //!   `i ^ XOR[k]`, flips digit `k + 1` and draws the rest at random: O(1) per sample, and its
