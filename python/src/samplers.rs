@@ -285,7 +285,7 @@ fn allowed_counts(name: &str, lo: u64, hi: u64) -> PyResult<Vec<u64>> {
             hi as u128 - lo as u128 + 1
         )));
     }
-    Ok(e.counts.counts_between(lo, hi))
+    Ok(e.counts.counts_between(lo, hi).collect())
 }
 
 /// The error the crate gives for a fixed-count sampler asked for `n` points (`None` when `n`

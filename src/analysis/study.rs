@@ -579,9 +579,9 @@ pub fn time_to_error(rows: &[Row], samplers: &[&Entry], targets: &[f64]) -> Vec<
                     match e
                         .counts
                         .counts_between(want, want.saturating_mul(4).saturating_add(64))
-                        .first()
+                        .next()
                     {
-                        Some(&c) => c,
+                        Some(c) => c,
                         None => continue,
                     }
                 };

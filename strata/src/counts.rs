@@ -91,7 +91,7 @@ impl CountRule {
             }
             CountRule::OaPower(_) => {
                 let all = self.counts_between(1, n.saturating_mul(4).max(1 << 12));
-                all.into_iter().min_by_key(|&c| c.abs_diff(n)).unwrap_or(4)
+                all.min_by_key(|&c| c.abs_diff(n)).unwrap_or(4)
             }
             CountRule::Fibonacci => fibonacci_numbers()
                 .min_by_key(|&f| f.abs_diff(n))
@@ -108,34 +108,38 @@ impl CountRule {
     }
 
     /// The allowed counts in `[min, max]`, in increasing order (none above
-    /// [`MAX_FIXED_COUNT`], which [`check`](CountRule::check) refuses).
-    pub fn counts_between(&self, min: u64, max: u64) -> Vec<u64> {
+    /// [`MAX_FIXED_COUNT`], which [`check`](CountRule::check) refuses), one at a time: a range of
+    /// `any N >= 1` may hold `2^31` of them, so nothing is collected here (`.take(k)` what you
+    /// need).
+    pub fn counts_between(&self, min: u64, max: u64) -> Box<dyn Iterator<Item = u64>> {
         let min = min.max(1);
         let max = max.min(MAX_FIXED_COUNT);
         if min > max {
-            return Vec::new();
+            return Box::new(core::iter::empty());
         }
-        match self {
-            CountRule::Any => (min..=max).collect(),
+        match *self {
+            CountRule::Any => Box::new(min..=max),
             CountRule::Square => {
                 let lo = {
                     let r = min.isqrt();
                     if r * r == min { r } else { r + 1 }
                 };
-                (lo..=max.isqrt()).map(|s| s * s).collect()
+                Box::new((lo..=max.isqrt()).map(|s| s * s))
             }
-            CountRule::OaPower(t) => (2u64..)
-                .map_while(|q| q.checked_pow(*t).filter(|&c| c <= max).map(|c| (q, c)))
-                .filter(|&(q, c)| c >= min && supported_symbols(q as u32))
-                .map(|(_, c)| c)
-                .collect(),
-            CountRule::Fibonacci => fibonacci_numbers()
-                .filter(|&f| f >= min && f <= max)
-                .collect(),
-            CountRule::PowerOfTwo => (0..64)
-                .map(|m| 1u64 << m)
-                .filter(|&c| c >= min && c <= max)
-                .collect(),
+            CountRule::OaPower(t) => Box::new(
+                (2u64..)
+                    .map_while(move |q| q.checked_pow(t).filter(|&c| c <= max).map(|c| (q, c)))
+                    .filter(move |&(q, c)| c >= min && supported_symbols(q as u32))
+                    .map(|(_, c)| c),
+            ),
+            CountRule::Fibonacci => {
+                Box::new(fibonacci_numbers().filter(move |&f| f >= min && f <= max))
+            }
+            CountRule::PowerOfTwo => Box::new(
+                (0..64)
+                    .map(|m| 1u64 << m)
+                    .filter(move |&c| c >= min && c <= max),
+            ),
         }
     }
 }
@@ -299,10 +303,11 @@ mod tests {
 
     #[test]
     fn count_rules_list_allowed_counts() {
-        assert_eq!(CountRule::Square.counts_between(2, 30), vec![4, 9, 16, 25]);
-        assert_eq!(CountRule::Square.counts_between(16, 16), vec![16]);
-        assert_eq!(CountRule::Any.counts_between(0, 3), vec![1, 2, 3]);
-        assert!(CountRule::Square.counts_between(17, 24).is_empty());
+        let list = |r: CountRule, a, b| r.counts_between(a, b).collect::<Vec<u64>>();
+        assert_eq!(list(CountRule::Square, 2, 30), vec![4, 9, 16, 25]);
+        assert_eq!(list(CountRule::Square, 16, 16), vec![16]);
+        assert_eq!(list(CountRule::Any, 0, 3), vec![1, 2, 3]);
+        assert!(list(CountRule::Square, 17, 24).is_empty());
         assert_eq!(CountRule::Square.nearest(1000), 1024);
         assert_eq!(CountRule::Square.nearest(12), 9);
         assert_eq!(CountRule::Square.nearest(0), 1);
@@ -311,7 +316,7 @@ mod tests {
         assert_eq!(CountRule::Square.check("jittered", 9).unwrap(), 9);
         let f: Vec<u64> = fibonacci_numbers().take(10).collect();
         assert_eq!(f, [1, 2, 3, 5, 8, 13, 21, 34, 55, 89]);
-        assert_eq!(CountRule::OaPower(3).counts_between(60, 130), vec![64, 125]);
+        assert_eq!(list(CountRule::OaPower(3), 60, 130), vec![64, 125]);
     }
 
     #[test]

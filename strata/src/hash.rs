@@ -287,11 +287,12 @@ impl Permutation {
         i ^ (i >> 5)
     }
 
-    /// Kensler's final `(i + key) % len`, without a division: both terms are below len.
+    /// Kensler's final `(i + key) % len`, without a division: both terms are below `len`, and
+    /// their sum is taken in 64 bits (past `2^31` it does not fit a `u32`).
     #[inline]
     fn rotate(&self, i: u32) -> u32 {
-        let j = i + self.offset;
-        if j >= self.len { j - self.len } else { j }
+        let (j, len) = (i as u64 + self.offset as u64, self.len as u64);
+        (if j >= len { j - len } else { j }) as u32
     }
 }
 

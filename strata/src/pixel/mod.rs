@@ -61,7 +61,8 @@
 //!   `2^32` in a fresh, independently hashed copy (so nothing panics and nothing repeats; the
 //!   blocks of `jittered` and `halton` count from each multiple of `2^32`, so the block that
 //!   straddles one is not a full set).
-//!   Dimensions are unlimited (`u32`), pixels are any
+//!   Dimensions are any `u32` (the draws of a sample advance with wrapping arithmetic, and
+//!   bounce starts saturate at `2^32 - 1`), pixels are any
 //!   `(u32, u32)`. Values are `f32` in `[0,1)`, never 1.0. After construction nothing
 //!   allocates.
 //!
@@ -394,13 +395,13 @@ pub struct PixelSampler {
     z_places: [u32; 64],
     z_valid: u64,
     /// The draw at `next_dim` of the current sample, computed beside the previous one by
-    /// [`get_2d`](Self::get_2d) (`next_dim` is `u32::MAX`, no dimension such a draw can
-    /// start at, when there is none).
+    /// [`get_2d`](Self::get_2d) (`next_dim` is `None` when there is none).
     next_pair: [f32; 2],
-    next_dim: u32,
+    next_dim: Option<u32>,
     dim: u32,
-    /// The end of the current bounce's dimensions (checked in debug builds).
-    limit: u32,
+    /// The end of the current bounce's dimensions (checked in debug builds); `None` when no
+    /// bounce is open.
+    limit: Option<u32>,
 }
 
 impl PixelSampler {
@@ -436,9 +437,9 @@ impl PixelSampler {
             z_places: [0; 64],
             z_valid: 0,
             next_pair: [0.0; 2],
-            next_dim: u32::MAX,
+            next_dim: None,
             dim: 0,
-            limit: u32::MAX,
+            limit: None,
         };
         s.pixel = s.pixel_state([0, 0], 0);
         s.start_pixel_sample([0, 0], 0, 0);
@@ -458,7 +459,7 @@ impl PixelSampler {
         let (pixel, index) = (self.pixel.pixel, self.current.index.get());
         self.pixel = self.pixel_state(pixel, self.pixel.epoch);
         self.z_valid = 0;
-        self.next_dim = u32::MAX;
+        self.next_dim = None;
         self.current = self.sample_state(&self.pixel, index);
         self
     }
@@ -532,9 +533,9 @@ impl PixelSampler {
         } else {
             self.current = self.sample_state(&self.pixel, index as u32);
         }
-        self.next_dim = u32::MAX;
+        self.next_dim = None;
         self.dim = dim;
-        self.limit = u32::MAX;
+        self.limit = None;
     }
 
     /// The dimension the next draw will use.
@@ -551,30 +552,34 @@ impl PixelSampler {
 
     /// Moves the next draw to the first dimension of bounce `k` (see [`DimensionLayout`]).
     /// Debug builds then check that the bounce's draws stay inside its budget (a bounce that
-    /// took more would reuse the next bounce's dimensions, tying the two together).
+    /// took more would reuse the next bounce's dimensions, tying the two together). Dimensions
+    /// are `u32`: a bounce that starts past the last dimension (`2^32 - 1`, bounce `2^29` of the
+    /// default layout) starts at it, its budget unchecked.
     #[inline]
     pub fn start_bounce(&mut self, k: u32) {
         self.dim = self.layout.bounce_start(k);
-        self.limit = self.layout.bounce_start(k.saturating_add(1));
+        let end = self.layout.bounce_start(k.saturating_add(1));
+        self.limit = (end < u32::MAX).then_some(end);
     }
 
     /// Debug builds: the next `width` dimensions stay inside the current bounce's budget.
     #[inline]
     fn check_budget(&self, width: u64) {
-        debug_assert!(
-            self.dim as u64 + width <= self.limit as u64,
-            "dimension {} is past the budget of this bounce (it ends at {}): raise \
-             DimensionLayout::per_bounce",
-            self.dim,
-            self.limit
-        );
+        if let Some(limit) = self.limit {
+            debug_assert!(
+                self.dim as u64 + width <= limit as u64,
+                "dimension {} is past the budget of this bounce (it ends at {limit}): raise \
+                 DimensionLayout::per_bounce",
+                self.dim,
+            );
+        }
     }
 
     /// The next dimension as a 1D value.
     #[inline]
     pub fn get_1d(&mut self) -> f32 {
         self.check_budget(1);
-        let v = if self.dim == self.next_dim {
+        let v = if self.next_dim == Some(self.dim) {
             self.next_pair[0]
         } else {
             let (keys, index) = self.draw_at(self.dim);
@@ -594,12 +599,12 @@ impl PixelSampler {
     pub fn get_2d(&mut self) -> [f32; 2] {
         self.check_budget(2);
         let dim = self.dim;
-        let v = if dim == self.next_dim {
+        let v = if self.next_dim == Some(dim) {
             self.next_pair
         } else if dim.is_multiple_of(4) && self.sequence.pairs_draws() {
             let [x, y, z, w] = self.draw_4(dim);
             self.next_pair = [z, w];
-            self.next_dim = dim + 2;
+            self.next_dim = Some(dim + 2);
             [x, y]
         } else {
             let (keys, index) = self.draw_at(dim);

@@ -771,3 +771,93 @@ fn a_filled_pixel_sample_is_the_stateless_draws() {
         }
     }
 }
+
+// The second hostile pass (issue 38): values at the edges of the library.
+
+#[test]
+fn the_last_dimension_is_a_dimension_like_any_other() {
+    // N3: a fresh sampler at dimension 2^32 - 1 gave a stale cached value (the "no cached
+    // pair" mark was that dimension), 0.0 for every pixel
+    for name in Sequence::NAMES {
+        let seq = Sequence::by_name(name, [8, 8]).unwrap();
+        let spp = if *name == "jittered" { 16 } else { 8 };
+        let mut s = PixelSampler::new(seq, spp, strata::Seed(3)).unwrap();
+        for (pixel, index) in [([0u32, 0], 0u64), ([5, 2], 3), ([7, 7], 1 << 33)] {
+            s.start_pixel_sample(pixel, index, u32::MAX);
+            let v = s.get_1d();
+            assert_eq!(v, s.sample_1d(pixel, index, u32::MAX), "{name} {pixel:?}");
+            // and after a pair computed ahead (dimension 2^32 - 4 computes 2^32 - 2 too)
+            s.start_pixel_sample(pixel, index, u32::MAX - 3);
+            s.get_2d();
+            s.set_dimension(u32::MAX);
+            assert_eq!(s.get_1d(), s.sample_1d(pixel, index, u32::MAX), "{name}");
+        }
+        // a bounce whose start saturates at the last dimension draws it, not a stale value
+        s.start_pixel_sample([1, 1], 0, 0);
+        s.start_bounce(600_000_000);
+        assert_eq!(s.dimension(), u32::MAX);
+        assert_eq!(s.get_1d(), s.sample_1d([1, 1], 0, u32::MAX), "{name}");
+    }
+}
+
+#[test]
+fn no_bounce_open_means_no_budget_to_check() {
+    // N5: a debug build panicked at the last dimensions when no bounce was open (the "no
+    // limit" value was checked as an end); the tests run with debug assertions
+    assert!(cfg!(debug_assertions), "this test needs debug assertions");
+    let mut s = PixelSampler::new(Sequence::sobol(), 16, strata::Seed(1)).unwrap();
+    s.start_pixel_sample([0, 0], 0, u32::MAX - 3);
+    let [a, b, c, d] = s.get_4d();
+    assert!([a, b, c, d].iter().all(|v| (0.0..1.0).contains(v)));
+    s.start_pixel_sample([0, 0], 0, u32::MAX);
+    let v = s.get_1d();
+    assert!((0.0..1.0).contains(&v));
+    // inside a bounce the budget is still checked
+    let caught = std::panic::catch_unwind(|| {
+        let mut s = PixelSampler::new(Sequence::sobol(), 16, strata::Seed(1)).unwrap();
+        s.start_pixel_sample([0, 0], 0, 0);
+        s.start_bounce(0);
+        for _ in 0..5 {
+            s.get_2d(); // the fifth pair is past the 8 dimensions of the bounce
+        }
+    });
+    assert!(caught.is_err());
+}
+
+#[test]
+fn permutations_past_two_to_the_31_are_bijections() {
+    // N4: Kensler's final rotation added in 32 bits: past 2^31 two indices met
+    use strata::hash::Permutation;
+    let p = Permutation::new(65535 * 65535, 0x9e37_79b9).unwrap();
+    let (a, b) = (p.apply(3_112_325), p.apply(3_374_643));
+    assert_ne!(a, b, "both map to {a}");
+    // a window of indices whose rotation crosses 2^32, all distinct and in range
+    for (len, key) in [(u32::MAX, 7u32), (65535 * 65535, 0x9e37_79b9), ((1 << 31) + 5, 1)] {
+        let p = Permutation::new(len, key).unwrap();
+        let mut seen: Vec<u32> = (0..1u32 << 20).map(|i| p.apply(i)).collect();
+        assert!(seen.iter().all(|&v| v < len));
+        seen.sort_unstable();
+        seen.dedup();
+        assert_eq!(seen.len(), 1 << 20, "len {len}");
+    }
+    // and jittered sets of more than 2^31 samples keep one sample per cell
+    let s = PixelSampler::new(Sequence::jittered(), 65535 * 65535, strata::Seed(9)).unwrap();
+    let cells: Vec<(u32, u32)> = [3_112_325u64, 3_374_643]
+        .iter()
+        .map(|&i| {
+            let v = s.sample_2d([0, 0], i, 0);
+            ((v[0] * 65535.0) as u32, (v[1] * 65535.0) as u32)
+        })
+        .collect();
+    assert_ne!(cells[0], cells[1]);
+}
+
+#[test]
+fn listing_every_count_of_a_rule_allocates_nothing_up_front() {
+    // N24: counts_between(1, u64::MAX) tried to collect 2^31 counts (16 GiB)
+    use strata::counts::CountRule;
+    let mut all = CountRule::Any.counts_between(1, u64::MAX);
+    assert_eq!(all.next(), Some(1));
+    assert_eq!(all.last(), Some(strata::counts::MAX_FIXED_COUNT));
+    assert_eq!(CountRule::Square.counts_between(1, u64::MAX).count(), 46_340);
+}
