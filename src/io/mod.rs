@@ -43,9 +43,14 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
 /// A regular file, or a path where nothing exists yet, is written to a temporary file in the
 /// same directory, flushed to the disk and renamed over the target, so that a full disk or a
 /// crash in mid-write leaves the old file whole (a symbolic link is followed: its target is
-/// replaced, the link kept; the old file's permissions are kept). Anything else (a device such
-/// as `/dev/stdout` or `/dev/full`, a pipe) is written in place and flushed, and a failed write
-/// is an error. A missing parent directory is created.
+/// replaced, the link kept; the old file's permissions are kept). On Linux the temporary file
+/// has no name while it is written (`O_TMPFILE`), so an interrupted program (Ctrl-C, a kill)
+/// leaves nothing behind; it is named (`.strata-PID-N.tmp`, short whatever the target's name)
+/// only for the instant between being linked into the directory and renamed over the target.
+/// A target the user could not write is refused, not replaced: a read-only file (no write
+/// permission bit) or one that cannot be opened for writing. Anything else (a device such as
+/// `/dev/stdout` or `/dev/full`, a pipe) is written in place and flushed, and a failed write is
+/// an error. A missing parent directory is created.
 ///
 /// ```
 /// let dir = std::env::temp_dir().join(format!("strata-doc-{}", std::process::id()));
@@ -60,6 +65,7 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
 /// ```
 pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     let path = path.as_ref();
+    let fail = |e: std::io::Error| Error::io(path.display().to_string(), e);
     if path.as_os_str().is_empty() {
         return Err(Error::io(path.display().to_string(), "an empty file name"));
     }
@@ -72,11 +78,24 @@ pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
                 "a directory, not a file",
             ));
         }
-        _ => {}
+        Ok(m) => {
+            // what the user could not write by redirection is not replaced behind their back
+            // (renaming needs only the directory's permission)
+            let writable = !m.permissions().readonly()
+                && std::fs::OpenOptions::new().write(true).open(path).is_ok();
+            if !writable {
+                return Err(Error::io(
+                    path.display().to_string(),
+                    "the file is read-only (or not writable by you), so it was not replaced: \
+                     make it writable or write elsewhere",
+                ));
+            }
+        }
+        Err(_) => {}
     }
     // follow a symbolic link to the file it names
     let target = if meta.is_ok() {
-        std::fs::canonicalize(path).map_err(|e| Error::io(path.display().to_string(), e))?
+        std::fs::canonicalize(path).map_err(fail)?
     } else {
         path.to_path_buf()
     };
@@ -85,31 +104,90 @@ pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => std::path::PathBuf::from("."),
     };
-    let name = target
-        .file_name()
-        .ok_or_else(|| Error::io(path.display().to_string(), "not a file name"))?
-        .to_string_lossy()
-        .into_owned();
+    if target.file_name().is_none() {
+        return Err(Error::io(path.display().to_string(), "not a file name"));
+    }
     static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
     let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let tmp = dir.join(format!(".{name}.{}.{n}.tmp", std::process::id()));
+    let tmp = dir.join(format!(".strata-{}-{n}.tmp", std::process::id()));
     let result = (|| {
-        let mut f = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)?;
+        let (mut f, unnamed) = temporary::create(&dir, &tmp)?;
         f.write_all(bytes)?;
         f.flush()?;
         f.sync_all()?;
         if let Ok(m) = &meta {
-            std::fs::set_permissions(&tmp, m.permissions())?;
+            f.set_permissions(m.permissions())?;
+        }
+        if unnamed {
+            temporary::link(&f, &tmp)?;
         }
         std::fs::rename(&tmp, &target)
     })();
     result.map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
-        Error::io(path.display().to_string(), e)
+        fail(e)
     })
+}
+
+/// The temporary file of [`write_file`]: unnamed on Linux, linked under its name when it is
+/// complete; named from the start elsewhere (and where the file system has no unnamed files).
+mod temporary {
+    use std::fs::File;
+    use std::path::Path;
+
+    /// A new temporary file in `dir`, and whether it is unnamed (then [`link`] names it `name`,
+    /// a path in `dir`; otherwise it was created under `name`).
+    pub(super) fn create(dir: &Path, name: &Path) -> std::io::Result<(File, bool)> {
+        #[cfg(target_os = "linux")]
+        {
+            use std::os::unix::fs::OpenOptionsExt;
+            if let Ok(f) = std::fs::OpenOptions::new()
+                .write(true)
+                .custom_flags(libc::O_TMPFILE)
+                .mode(0o666)
+                .open(dir)
+            {
+                return Ok((f, true));
+            }
+        }
+        let _ = dir;
+        let f = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(name)?;
+        Ok((f, false))
+    }
+
+    /// Links the unnamed `file` into its directory as `name` (through `/proc/self/fd`, which
+    /// needs no privilege); fails if `name` exists.
+    pub(super) fn link(file: &File, name: &Path) -> std::io::Result<()> {
+        #[cfg(target_os = "linux")]
+        {
+            use std::os::unix::ffi::OsStrExt;
+            use std::os::unix::io::AsRawFd;
+            let from = std::ffi::CString::new(format!("/proc/self/fd/{}", file.as_raw_fd()))?;
+            let to = std::ffi::CString::new(name.as_os_str().as_bytes())?;
+            // SAFETY: both are valid NUL-terminated paths for the duration of the call.
+            let rc = unsafe {
+                libc::linkat(
+                    libc::AT_FDCWD,
+                    from.as_ptr(),
+                    libc::AT_FDCWD,
+                    to.as_ptr(),
+                    libc::AT_SYMLINK_FOLLOW,
+                )
+            };
+            if rc != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        }
+        #[cfg(not(target_os = "linux"))]
+        {
+            let _ = (file, name);
+            Err(std::io::Error::other("unnamed files exist only on Linux"))
+        }
+    }
 }
 
 /// Writes into something that is not a regular file (a device, a pipe), checking every write.
