@@ -260,13 +260,15 @@ pub fn write_markdown_section(
         format!("<!-- begin {name} -->"),
         format!("<!-- end {name} -->"),
     );
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let program = std::env::args()
+    // the arguments as the shell takes them back (any bytes, UTF-8 or not), and never a
+    // marker: `<`, `>` and `!` are always escaped
+    let args: Vec<String> = std::env::args_os().skip(1).map(|a| shell_quote(&a)).collect();
+    let program = std::env::args_os()
         .next()
         .and_then(|p| {
             std::path::Path::new(&p)
                 .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
+                .map(|s| shell_quote(s))
         })
         .unwrap_or_default();
     let section = format!(
@@ -278,6 +280,28 @@ pub fn write_markdown_section(
     let new = splice_section(path, &old, name, &section)?;
     strata_lab::io::write_text(path, &new)?;
     Ok(())
+}
+
+/// `arg` as a shell word: as it is when it holds only letters, digits and `_ . / , = : + - @ %`,
+/// else in bash's `$'...'` quoting with every other byte as `\xNN` (so a recorded command line
+/// can be pasted back, whatever its bytes, and never holds `<`, `>` or `!`, which could close
+/// or open a Markdown comment or a section marker).
+pub fn shell_quote(arg: &std::ffi::OsStr) -> String {
+    let bytes = arg.as_encoded_bytes();
+    let plain = |b: u8| b.is_ascii_alphanumeric() || b"_./,=:+-@%".contains(&b);
+    if !bytes.is_empty() && bytes.iter().all(|&b| plain(b)) {
+        return String::from_utf8_lossy(bytes).into_owned();
+    }
+    let mut q = String::from("$'");
+    for &b in bytes {
+        if plain(b) || b == b' ' {
+            q.push(b as char);
+        } else {
+            q.push_str(&format!("\\x{b:02x}"));
+        }
+    }
+    q.push('\'');
+    q
 }
 
 /// `old` with section `name` replaced by `section` (appended when the file has no such

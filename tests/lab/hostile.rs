@@ -656,3 +656,62 @@ fn an_interrupted_program_leaves_no_temporary_file() {
     assert!(leftovers.is_empty(), "{leftovers:#?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+// The second hostile pass (issue 38): the command line a section records.
+
+#[test]
+fn a_section_records_any_arguments_quoted_and_later_runs_still_work() {
+    // N1: an argument that is not UTF-8 panicked after all the work (`std::env::args`);
+    // N21: an argument holding the end marker broke every later `--markdown` run
+    use std::os::unix::ffi::OsStrExt;
+    let dir = scratch("record");
+    let md = dir.join("r.md");
+    let odd = std::ffi::OsStr::from_bytes(b"o\xff");
+    let out = dir.join(odd);
+    let mut c = command(
+        "spectrum",
+        &[
+            "--sampler",
+            "random",
+            "-n",
+            "64",
+            "--realizations",
+            "2",
+            "--resolution",
+            "16",
+            "--markdown",
+            s(&md),
+        ],
+    );
+    c.arg("--out").arg(&out);
+    let r = finish(c);
+    assert_eq!(r.code, 0, "{}", r.err);
+    let text = std::fs::read_to_string(&md).unwrap();
+    assert!(text.contains(r"/o\xff'"), "{text}");
+    // an argument holding the section's end marker (here in the output directory's name)
+    let tricky = dir.join("x<!-- end spectrum -->y");
+    for _ in 0..2 {
+        let r = run(
+            "spectrum",
+            &[
+                "--sampler",
+                "random",
+                "-n",
+                "64",
+                "--realizations",
+                "2",
+                "--resolution",
+                "16",
+                "--out",
+                s(&tricky),
+                "--markdown",
+                s(&md),
+            ],
+        );
+        assert_eq!(r.code, 0, "{}", r.err);
+    }
+    let text = std::fs::read_to_string(&md).unwrap();
+    assert_eq!(text.matches("<!-- end spectrum -->").count(), 1, "{text}");
+    assert_eq!(text.matches("<!-- begin spectrum -->").count(), 1, "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
