@@ -175,21 +175,28 @@ fn cell(v: Option<f64>) -> String {
     }
 }
 
-/// A label per file, unique: the name without its extension, or with it where two files would
-/// share a label, then a number.
+/// A file name as text: its UTF-8 as it is, every other byte as `%XX` (so two names that differ
+/// only in bytes that are not UTF-8 keep different labels).
+fn name_text(s: &std::ffi::OsStr) -> String {
+    let mut out = String::new();
+    for chunk in s.as_encoded_bytes().utf8_chunks() {
+        out.push_str(chunk.valid());
+        for b in chunk.invalid() {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
+/// A label per file, unique among all of them (they name the output files): the name without
+/// its extension, or with it where two files would share a label; then, where labels still
+/// meet, a number before the extension (`pts-2.csv`), never one that another file's label
+/// takes.
 fn file_labels(paths: &[PathBuf]) -> Vec<String> {
-    let stem = |p: &Path| {
-        p.file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| p.display().to_string())
-    };
-    let name = |p: &Path| {
-        p.file_name()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| p.display().to_string())
-    };
+    let stem = |p: &Path| p.file_stem().map_or_else(|| name_text(p.as_os_str()), name_text);
+    let name = |p: &Path| p.file_name().map_or_else(|| name_text(p.as_os_str()), name_text);
     let stems: Vec<String> = paths.iter().map(|p| stem(p)).collect();
-    let mut labels: Vec<String> = paths
+    let bases: Vec<String> = paths
         .iter()
         .zip(&stems)
         .map(|(p, s)| {
@@ -200,18 +207,25 @@ fn file_labels(paths: &[PathBuf]) -> Vec<String> {
             }
         })
         .collect();
-    let mut seen = std::collections::HashMap::<String, usize>::new();
-    for l in labels.iter_mut() {
-        let k = seen.entry(l.clone()).or_insert(0);
-        *k += 1;
-        if *k > 1 {
-            *l = match l.rsplit_once('.') {
+    let mut taken = std::collections::HashSet::new();
+    bases
+        .iter()
+        .map(|base| {
+            let numbered = |k: usize| match base.rsplit_once('.') {
                 Some((a, b)) if !a.is_empty() => format!("{a}-{k}.{b}"),
-                _ => format!("{l}-{k}"),
+                _ => format!("{base}-{k}"),
             };
-        }
-    }
-    labels
+            let mut label = base.clone();
+            let mut k = 1;
+            // a number that is free now and is no other file's own label
+            while taken.contains(&label) || (k > 1 && bases.contains(&label)) {
+                k += 1;
+                label = numbered(k);
+            }
+            taken.insert(label.clone());
+            label
+        })
+        .collect()
 }
 
 fn main() -> ExitCode {

@@ -13,7 +13,8 @@
 //!   after point, set after set. Only `f32` and `f64` data are point coordinates here.
 //!
 //! Every coordinate must lie in `[0, 1)` and every set must hold at least one point of the
-//! same dimension. Malformed input is an [`Error::InvalidInput`] that names the line (text) or
+//! same dimension; a file holds at most [`MAX_SETS`] sets (a bound on the memory of many small
+//! sets, checked before they are read). Malformed input is an [`Error::InvalidInput`] that names the line (text) or
 //! the byte offset (binary) and what is allowed; nothing panics, and nothing is allocated
 //! beyond the size of the input (the binary reader checks the header's counts against the
 //! file length before reading).
@@ -26,6 +27,20 @@ use strata::{Error, Result};
 
 /// Who reports the errors.
 const CONTEXT: &str = "pointsets";
+
+/// The most sets a file may hold (`2^16`). Each set costs its coordinates plus a fixed overhead
+/// in every tool that reads it (a row of `measure`'s tables, about 0.5 KiB), so a file of
+/// millions of one-point sets would take a hundred times its size: the readers refuse more sets
+/// than this before reading them (UTK binary: from the header; text: at the first set past it).
+pub const MAX_SETS: usize = 1 << 16;
+
+/// The error for a file of more than [`MAX_SETS`] sets.
+fn too_many_sets(what: String) -> Error {
+    Error::input(
+        CONTEXT,
+        format!("{what}: at most {MAX_SETS} sets per file (split it, or merge its sets)"),
+    )
+}
 
 /// The UTK binary magic number, `UTK!` as little-endian bytes.
 pub const UTK_MAGIC: u32 = 0x214B_5455;
@@ -265,16 +280,19 @@ fn collect_sets<'a>(
 ) -> Result<Vec<PointSet>> {
     let mut sets = Vec::new();
     let mut current: Option<(usize, usize, Vec<f64>)> = None; // (dims, first line, coords)
-    let mut finish = |current: &mut Option<(usize, usize, Vec<f64>)>| {
+    let finish = |sets: &mut Vec<PointSet>, current: &mut Option<(usize, usize, Vec<f64>)>| {
         if let Some((dims, _, coords)) = current.take() {
             sets.push(PointSet { dims, coords });
         }
     };
     for (line, row) in rows {
         let Some(fields) = row else {
-            finish(&mut current);
+            finish(&mut sets, &mut current);
             continue;
         };
+        if current.is_none() && sets.len() >= MAX_SETS {
+            return Err(too_many_sets(format!("line {line} starts set {}", sets.len() + 1)));
+        }
         let (dims, first, coords) = current.get_or_insert((fields.len(), line, Vec::new()));
         if fields.len() != *dims {
             return Err(Error::input(
@@ -290,7 +308,7 @@ fn collect_sets<'a>(
             coords.push(number(f, line, c + 1)?);
         }
     }
-    finish(&mut current);
+    finish(&mut sets, &mut current);
     if sets.is_empty() {
         return Err(Error::input(CONTEXT, "no points: the input holds no set"));
     }
@@ -386,6 +404,11 @@ pub fn parse_utk_bin(bytes: &[u8]) -> Result<Vec<PointSet>> {
             "the header (bytes 8-19) announces {sets} sets x {points} points x {dims} \
              dimensions x {width} bytes = {} bytes of data, but {data} bytes follow it",
             expected.map_or("more than 2^64".to_string(), |e| e.to_string())
+        )));
+    }
+    if sets > MAX_SETS as u64 {
+        return Err(too_many_sets(format!(
+            "UTK binary: the header (bytes 8-11) announces {sets} sets"
         )));
     }
     let (points, dims) = (points as usize, dims as usize);

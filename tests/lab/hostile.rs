@@ -302,7 +302,7 @@ fn measure_labels_are_unique_per_file() {
     for f in [
         "pts.csv-spectrum.png",
         "pts-2.csv-spectrum.png",
-        "odd\u{fffd}-spectrum.png",
+        "odd%FF-spectrum.png",
     ] {
         assert!(out.join(f).exists(), "{f} missing");
     }
@@ -713,5 +713,69 @@ fn a_section_records_any_arguments_quoted_and_later_runs_still_work() {
     let text = std::fs::read_to_string(&md).unwrap();
     assert_eq!(text.matches("<!-- end spectrum -->").count(), 1, "{text}");
     assert_eq!(text.matches("<!-- begin spectrum -->").count(), 1, "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn measure_labels_are_unique_among_all_outputs() {
+    // N8: `a/pts.csv b/pts.csv pts-2.csv.csv pts-2.csv` gave two inputs the same label, and
+    // one's outputs overwrote the other's; old #28: a name that is not UTF-8 became U+FFFD
+    use std::os::unix::ffi::OsStrExt;
+    let dir = scratch("labels2");
+    let set = |k: usize| -> String {
+        (0..16)
+            .map(|i| {
+                format!(
+                    "{},{}\n",
+                    ((i + k) % 4) as f32 / 4.0 + 0.1,
+                    (i / 4) as f32 / 4.0 + 0.1
+                )
+            })
+            .collect()
+    };
+    for sub in ["a", "b"] {
+        std::fs::create_dir_all(dir.join(sub)).unwrap();
+    }
+    let files: Vec<PathBuf> = vec![
+        dir.join("a/pts.csv"),
+        dir.join("b/pts.csv"),
+        dir.join("pts-2.csv.csv"),
+        dir.join("pts-2.csv"),
+        dir.join(std::ffi::OsStr::from_bytes(b"x\xff.csv")),
+        dir.join(std::ffi::OsStr::from_bytes(b"x\xfe.csv")),
+    ];
+    for (k, f) in files.iter().enumerate() {
+        std::fs::write(f, set(k)).unwrap();
+    }
+    let out = dir.join("out");
+    let mut c = command("measure", &[]);
+    c.args(&files).args(["--resolution", "8", "--out"]).arg(&out);
+    let r = finish(c);
+    assert_eq!(r.code, 0, "{}", r.err);
+    let csv = std::fs::read_to_string(out.join("measures.csv")).unwrap();
+    let labels: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .filter(|l| l.split(',').nth(1) == Some("0"))
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(labels.len(), files.len(), "{csv}");
+    let mut unique = labels.clone();
+    unique.sort_unstable();
+    unique.dedup();
+    assert_eq!(unique.len(), labels.len(), "{labels:?}");
+    assert!(labels.contains(&"x%FF") && labels.contains(&"x%FE"), "{labels:?}");
+    // one picture per file, none overwritten
+    let pictures = std::fs::read_dir(&out)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .file_name()
+                .to_string_lossy()
+                .ends_with("-spectrum.png")
+        })
+        .count();
+    assert_eq!(pictures, files.len());
     let _ = std::fs::remove_dir_all(&dir);
 }
