@@ -32,7 +32,9 @@ GOOD = np.random.default_rng(0).random((64, 2))
         (lambda: ss.points("jittered", 16, dims=3), ValueError, "2-dimensional points only; samplers with D dimensions: random, sobol"),
         (lambda: ss.points("sobol", 4, dims=1001), ValueError, "sobol: dims = 1001 is not allowed: 1 to 1000"),
         (lambda: ss.points("sobol", 4, seed=-1), ValueError, "seed = -1 is out of range"),
-        (lambda: ss.points("sobol", 4, seed=2**64), ValueError, "seed = 18446744073709551616 is out of range"),
+        (lambda: ss.points("sobol", 4, seed=1.5), TypeError, "seed must be an int >= 0 .*SeedSequence, Generator or BitGenerator; not float"),
+        (lambda: ss.points("sobol", 4, seed=True), TypeError, "seed must be .*; not a bool"),
+        (lambda: ss.points("sobol", 4, seed=-2**70), ValueError, "as numpy.random.default_rng refuses them"),
         (lambda: ss.points("oa-bose", 49, dims=9), ValueError, "oa-bose"),
     ],
 )

@@ -110,12 +110,16 @@ def nearest_count(name: str, n: int) -> int:
     return int(_strata.nearest_count(name, _v.whole(n, "n", 0, _v.U64_MAX)))
 
 
-def points(name: str, n: int, *, seed: int = 1, dims: int = 2, **params: Any) -> np.ndarray:
+def points(name: str, n: int, *, seed: Any = 1, dims: int = 2, **params: Any) -> np.ndarray:
     """The first ``n`` points of sampler ``name``: an ``(n, dims)`` float32 array in [0, 1).
 
     Bit-identical to ``cargo run --release --example points -- --sampler NAME -n N --seed S
     --dims D [--radius ...]``: a fixed-count sampler's first set of ``n`` (``n`` must be a
     count it accepts, see ``samplers()``), a progressive sampler's first ``n`` points.
+
+    ``seed``: an int >= 0 (one in ``[0, 2^64)`` is the ``--seed`` of the command line, a larger
+    one stands for ``numpy.random.SeedSequence(seed)``), a ``numpy.random.SeedSequence``,
+    ``Generator`` or ``BitGenerator`` (the mapping is ``Engine``'s, see its docstring).
 
     ``params`` are the optional parameters some samplers take, by the names their samplers
     declare (``samplers()`` lists each sampler's, with kind, range, default and help):
@@ -146,14 +150,15 @@ class PixelSampler:
     table is in the crate's docs and in ``docs/cli.md``; ``zjoint`` also as ``zjoint-G`` for
     groups of ``G`` dimensions); ``spp`` the samples per pixel
     (used by ``jittered``, which needs a square, ``halton`` and the Z-ordered sequences);
-    ``resolution`` the ``(width, height)`` image of the Z-ordered sequences.
+    ``resolution`` the ``(width, height)`` image of the Z-ordered sequences; ``seed`` is taken
+    as by ``points`` (the 64-bit seed used is ``.seed``).
 
     >>> ps = strata_sampling.PixelSampler("sobol", 16, seed=7)
     >>> v = ps.sample([3, 4], np.arange(16), dims=5)    # (16, 5) float32
     """
 
     def __init__(
-        self, sequence: str, spp: int, seed: int = 1, *, resolution: tuple = (256, 256)
+        self, sequence: str, spp: int, seed: Any = 1, *, resolution: tuple = (256, 256)
     ) -> None:
         spp = _v.whole(spp, "spp", 0, _v.U32_MAX)
         seed = _v.seed_value(seed)
@@ -292,13 +297,14 @@ def sampler_spectrum(
     resolution: int,
     *,
     realizations: int = 16,
-    seed: int = 1,
+    seed: Any = 1,
     **params: Any,
 ) -> np.ndarray:
     """The expected spectrum of sampler ``name`` at ``n`` points (see ``expected_spectrum``)
     over ``realizations`` sets, set ``r`` being ``points(name, n, seed=seed + r, **params)``
-    as in the crate's ``spectrum`` program; the sets are generated and transformed in
-    parallel, without the GIL."""
+    as in the crate's ``spectrum`` program (``seed`` taken as by ``points``, then ``+ r`` on the
+    64-bit seed, wrapping); the sets are generated and transformed in parallel, without the
+    GIL."""
     n = _v.whole(n, "n", 0, _v.U64_MAX)
     seed = _v.seed_value(seed)
     realizations = _v.whole(realizations, "realizations", 0, _v.U32_MAX)
