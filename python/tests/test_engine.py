@@ -210,3 +210,36 @@ def test_zero_dimensions_and_optimization_as_for_scipy_engines():
     assert qmc.discrepancy(x) <= qmc.discrepancy(plain)
     # qmc_quad's copies keep the optimization
     assert e._init_quad == {"name": "sobol", "d": 2, "optimization": "random-cd"}
+
+
+# issue 38, N13: deterministic samplers give no independent replicates
+
+
+def test_qmc_quad_refuses_a_deterministic_sampler():
+    # regular's points do not depend on the seed: qmc_quad's copies would all be equal and
+    # its standard error 0.0 whatever the true error (4.1e-5 here: 1/6 is exact)
+    with pytest.raises(ValueError, match=r"regular is deterministic.*use 'jittered'"):
+        qmc_quad(lambda x: x[0] ** 2 * x[1], [0, 0], [1, 1], n_points=1024,
+                 qrng=ss.Engine("regular", 2, seed=1))
+    # jittered, regular's randomized form, gives an honest error estimate
+    res = qmc_quad(lambda x: x[0] ** 2 * x[1], [0, 0], [1, 1], n_points=1024,
+                   qrng=ss.Engine("jittered", 2, seed=1))
+    assert res.standard_error > 0
+    assert abs(res.integral - 1 / 6) < 6 * res.standard_error
+
+
+@pytest.mark.parametrize("entry", ss.samplers(), ids=lambda e: e["name"])
+def test_the_seeded_flag_is_what_the_points_do(entry):
+    # every registered sampler, checked empirically: two seeds, same points iff not seeded
+    name = entry["name"]
+    n = ss.nearest_count(name, 64)
+    for d in [2] if entry["dimensions"] == "2" else [2, 3]:
+        same = np.array_equal(
+            ss.points(name, n, seed=1, dims=d), ss.points(name, n, seed=2, dims=d)
+        )
+        assert same == (not entry["seeded"]), (name, d)
+    if entry["seeded"]:
+        ss.Engine(name, 2, seed=1)
+    else:
+        with pytest.raises(ValueError, match="is deterministic"):
+            ss.Engine(name, 2, seed=1)

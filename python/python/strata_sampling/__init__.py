@@ -84,12 +84,15 @@ def samplers() -> List[Dict[str, Any]]:
     ``allowed``, ``help``, from each sampler's declaration),
     ``promise`` (the stratification it promises), ``rates`` (published variance exponents on
     ``discontinuous``/``smooth``/``higher``-dimensional integrands, ``None`` where unpublished),
-    ``expensive`` and ``pixel_sampler`` (whether ``PixelSampler`` has it as a sequence).
+    ``expensive``, ``pixel_sampler`` (whether ``PixelSampler`` has it as a sequence) and
+    ``seeded`` (False for a deterministic sampler such as ``regular``, whose points do not
+    depend on the seed: ``Engine`` refuses it, since it cannot give independent replicates).
     """
     adapter = set(_strata.sequence_names())
     out = _strata.registry_entries()
     for e in out:
         e["pixel_sampler"] = e["name"] in adapter
+        e["seeded"] = e["name"] not in _v.UNSEEDED
     return out
 
 

@@ -27,6 +27,9 @@ class Engine(qmc.QMCEngine):
       endless sequence: ``random(n)`` returns its next ``n`` points, so ``random(5)`` then
       ``random(11)`` give the same 16 points as ``strata_sampling.points(name, 16, seed=seed,
       dims=d)``; ``reset`` starts again; ``fast_forward(n)`` skips ``n`` points.
+    * A deterministic sampler (``regular``: ``strata_sampling.samplers()`` says ``seeded:
+      False``) is refused: its "independent" sets would all be the same, and so would the
+      copies ``qmc_quad`` makes to estimate its error. ``jittered`` is its randomized form.
     * A **fixed-count** sampler (``jittered``, ``poisson``, ``oa-bose``, ``ccvt``, ...) makes
       sets of a count it accepts (``Engine.counts`` says which; a refused count raises
       ``ValueError`` naming the nearest allowed ones): each ``random(n)`` returns the next
@@ -70,6 +73,16 @@ class Engine(qmc.QMCEngine):
         if entry is None:
             _strata.nearest_count(name, 1)  # raises the crate's "unknown sampler" error
         assert entry is not None
+        if entry["name"] in _v.UNSEEDED:
+            instead = _v.SEEDED_INSTEAD.get(entry["name"], "a seeded sampler")
+            raise ValueError(
+                f"{name} is deterministic: its points do not depend on the seed, so an Engine "
+                f"could not give independent sets, and the copies that "
+                f"scipy.integrate.qmc_quad makes would all be equal (a standard error of 0 "
+                f"whatever the true error); use '{instead}' (randomized; every sampler but "
+                f"{', '.join(sorted(_v.UNSEEDED))} is), or strata_sampling.points({name!r}, n) "
+                f"for the points themselves"
+            )
         d = _v.whole(d, "d", 0, _strata.MAX_DIMENSIONS)
         self._params: Dict[str, Any] = _v.sampler_params(params, "Engine")
         if seed is not None and rng is not None:

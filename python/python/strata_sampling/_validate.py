@@ -18,6 +18,14 @@ from . import _strata
 PARAMETER_KINDS: Dict[str, str] = dict(_strata.parameter_kinds())
 SAMPLER_PARAMETERS = tuple(PARAMETER_KINDS)
 
+#: The registered samplers whose points do not depend on the seed (the registry has no such
+#: flag; ``tests/test_engine.py`` checks every registered sampler against this set, two seeds
+#: giving the same points exactly for these).
+UNSEEDED = frozenset({"regular"})
+
+#: A seeded sampler to use instead of each unseeded one, for the error messages.
+SEEDED_INSTEAD = {"regular": "jittered"}
+
 U32_MAX = 2**32 - 1
 U64_MAX = 2**64 - 1
 
