@@ -154,7 +154,9 @@ class PixelSampler:
     groups of ``G`` dimensions); ``spp`` the samples per pixel
     (used by ``jittered``, which needs a square, ``halton`` and the Z-ordered sequences);
     ``resolution`` the ``(width, height)`` image of the Z-ordered sequences; ``seed`` is taken
-    as by ``points`` (the 64-bit seed used is ``.seed``).
+    as by ``points`` (the 64-bit seed used is ``.seed``). It pickles and copies (``pickle``,
+    ``copy.deepcopy``, ``multiprocessing``): it has no position, values being by pixel and
+    sample index.
 
     >>> ps = strata_sampling.PixelSampler("sobol", 16, seed=7)
     >>> v = ps.sample([3, 4], np.arange(16), dims=5)    # (16, 5) float32

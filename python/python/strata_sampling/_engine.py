@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import operator
 from typing import Any, Dict, Optional, Union
 
@@ -57,6 +58,11 @@ class Engine(qmc.QMCEngine):
 
     Points are returned as float64 (scipy's type) holding the sampler's float32 values
     exactly.
+
+    An engine pickles and copies (``pickle``, ``copy.copy``, ``copy.deepcopy``; so
+    ``multiprocessing`` and joblib can ship it): the copy is independent and continues exactly
+    where the engine stood. Restoring a sampler that cannot skip ahead in constant time
+    redraws the points it had given, which costs what drawing them did.
     """
 
     def __init__(
@@ -196,6 +202,11 @@ class Engine(qmc.QMCEngine):
             left -= k
         self.num_generated += n
         return self
+
+    def __copy__(self) -> "Engine":
+        """An independent copy, as ``copy.deepcopy`` makes: a shallow copy would share the
+        sampler, and two engines would take turns drawing from one stream."""
+        return copy.deepcopy(self)
 
     def __repr__(self) -> str:
         extra = "".join(f", {k}={v!r}" for k, v in self._params.items())
