@@ -203,7 +203,8 @@ class PixelSampler:
         ``pixels`` at sample ``indices``, vectorized with numpy broadcasting.
 
         ``pixels`` holds integer ``(x, y)`` pairs in its last axis (shape ``(..., 2)``),
-        ``indices`` integer sample indices (shape ``(...)``); the result has the broadcast
+        ``indices`` integer sample indices (shape ``(...)``; 0 to 2^64 - 1, Python ints
+        beyond int64 included, read exactly); the result has the broadcast
         shape of the two plus ``(dims,)``, float32. Each row is what a renderer gets from
         ``start_pixel_sample(pixel, index, first_dim)`` then ``get_pixel_2d`` (dimensions 0-1),
         ``get_2d`` pairs and, for an odd count, a last ``get_1d`` (Rust's
@@ -240,8 +241,14 @@ class PixelSampler:
 
 
 def _integers(values: Any, what: str, hi: int) -> np.ndarray:
-    """An integer array with values in ``[0, hi]``."""
+    """An integer array with values in ``[0, hi]``. Python ints (in lists, tuples or alone)
+    that numpy would turn into float64 or objects (beyond int64: up to 2^64 - 1, or mixed
+    with negative ones) are read exactly, as uint64 or int64."""
     a = np.asarray(values)
+    if a.dtype.kind in "fO" and not isinstance(values, np.ndarray):
+        exact = _python_ints(values, what, hi)
+        if exact is not None:
+            a = exact
     if a.dtype == object or a.dtype.kind not in "iu":
         raise TypeError(f"{what} must be integers, not {a.dtype}")
     if a.size:
@@ -250,6 +257,27 @@ def _integers(values: Any, what: str, hi: int) -> np.ndarray:
             bad = lo_v if lo_v < 0 else hi_v
             raise ValueError(f"{what} holds {bad}; allowed: 0 to {hi}")
     return a
+
+
+def _python_ints(values: Any, what: str, hi: int) -> Optional[np.ndarray]:
+    """``values`` (nested lists or tuples of Python or numpy ints, or one int) as an exact
+    uint64 array, after checking that every value is in ``[0, hi]`` (``hi < 2^64``); ``None``
+    if some value is not an int (a float, a bool, ``None``, ...) or the nesting is ragged."""
+    try:
+        obj = np.array(values, dtype=object)
+    except ValueError:  # ragged
+        return None
+    flat = obj.reshape(-1).tolist()
+    if not flat or not all(
+        isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_)) for v in flat
+    ):
+        return None
+    ints = [int(v) for v in flat]
+    lo_v, hi_v = min(ints), max(ints)
+    if lo_v < 0 or hi_v > hi:
+        bad = lo_v if lo_v < 0 else hi_v
+        raise ValueError(f"{what} holds {bad}; allowed: 0 to {hi}")
+    return np.array(ints, dtype=np.uint64).reshape(obj.shape)
 
 
 # ---------------------------------------------------------------------------------------------
