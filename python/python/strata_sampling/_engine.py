@@ -150,11 +150,9 @@ class Engine(qmc.QMCEngine):
         out = np.empty((n, self.d), dtype=np.float32)
         if n == 0:
             return out.astype(np.float64)
-        if self.d == 0 and self.progressive:
-            pass
-        elif self.progressive:
-            assert self._sequence is not None
-            self._sequence.fill(out)
+        if self.progressive:
+            if self._sequence is not None:  # None: 0 dimensions, nothing to draw
+                self._sequence.fill(out)
         else:
             err = _strata.count_error(self.name, n)
             if err is not None:
