@@ -3,6 +3,7 @@
 
 use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
+use pyo3::types::PyTuple;
 use rayon::prelude::*;
 use strata::{PixelSampler, Seed, Sequence};
 
@@ -16,6 +17,10 @@ const ROWS_PER_TASK: usize = 512;
 #[derive(Debug)]
 pub struct PyPixelSampler {
     inner: PixelSampler,
+    /// The arguments it was built from, for pickling (the name as given: `zjoint-4`).
+    name: String,
+    seed: u64,
+    resolution: (u32, u32),
 }
 
 #[pymethods]
@@ -27,7 +32,29 @@ impl PyPixelSampler {
     fn new(sequence: &str, spp: u32, seed: u64, resolution: (u32, u32)) -> PyResult<Self> {
         let seq = Sequence::by_name(sequence, [resolution.0, resolution.1]).map_err(to_py_err)?;
         let inner = PixelSampler::new(seq, spp, Seed(seed)).map_err(to_py_err)?;
-        Ok(PyPixelSampler { inner })
+        Ok(PyPixelSampler {
+            inner,
+            name: sequence.to_string(),
+            seed,
+            resolution,
+        })
+    }
+
+    /// Pickling (and `copy.copy`, `copy.deepcopy`): rebuilt from the arguments it was made
+    /// with (the adapter has no position: values are by pixel and sample index).
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let py = slf.py();
+        let this = slf.get();
+        let args = (
+            this.name.as_str(),
+            this.inner.samples_per_pixel(),
+            this.seed,
+            this.resolution,
+        )
+            .into_pyobject(py)?;
+        Ok((slf.get_type().into_any(), args))
     }
 
     /// Fills `out` (C-contiguous float32, `(m, dims)`) with the values of pixel `pixels[k]`

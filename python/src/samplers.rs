@@ -5,7 +5,7 @@ use std::sync::Mutex;
 
 use numpy::PyArray2;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyTuple};
 use strata::SamplerNd;
 use strata_lab::registry::{self, Built, CountRule, Entry, Kind, Params, Strictness};
 
@@ -91,6 +91,38 @@ impl PySampler {
         skipped
     }
 
+    /// The points given so far (by `fill` and `skip`).
+    #[getter]
+    fn drawn(&self) -> u64 {
+        self.inner.lock().unwrap_or_else(|e| e.into_inner()).1
+    }
+
+    /// Pickling (and `copy.copy`, `copy.deepcopy`): the sampler is rebuilt from its name,
+    /// count, seed, dimensions and parameters by `restore_sampler`, then moved on by the
+    /// points it has given, so that the copy continues exactly where this one stands.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let parameters = PyDict::new(py);
+        for (name, value) in self.params.given() {
+            parameters.set_item(name, value)?;
+        }
+        let restore = py
+            .import("strata_sampling._strata")?
+            .getattr("restore_sampler")?;
+        let args = (
+            self.name,
+            self.count,
+            self.params.seed,
+            self.dims,
+            self.drawn(),
+            parameters,
+        )
+            .into_pyobject(py)?;
+        Ok((restore, args))
+    }
+
     /// The registered name.
     #[getter]
     fn name(&self) -> &'static str {
@@ -128,6 +160,44 @@ impl PySampler {
             }
         )
     }
+}
+
+/// Values drawn and dropped at once when a restored sampler cannot skip (a 4 MB buffer).
+const REPLAY_CHUNK: usize = 1 << 20;
+
+/// Sampler `name` (see `Sampler`) moved on by `drawn` points: what unpickling a `Sampler`
+/// calls. The move is a constant-time skip where the sampler can (Sobol', Faure, the
+/// lattice); otherwise the points are drawn and dropped (with the GIL released), which costs
+/// what drawing them did.
+#[pyfunction]
+#[pyo3(signature = (name, count, seed, dims, drawn, parameters=None))]
+fn restore_sampler(
+    py: Python<'_>,
+    name: &str,
+    count: u64,
+    seed: u64,
+    dims: u32,
+    drawn: u64,
+    parameters: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PySampler> {
+    let s = PySampler::new(py, name, count, seed, dims, parameters)?;
+    py.detach(|| {
+        let mut guard = s.inner.lock().unwrap_or_else(|e| e.into_inner());
+        let (inner, given) = &mut *guard;
+        if !inner.skip(drawn) {
+            let d = dims as usize;
+            let chunk = (REPLAY_CHUNK / d).max(1) as u64;
+            let mut scratch = vec![0.0f32; chunk.min(drawn) as usize * d];
+            let mut left = drawn;
+            while left > 0 {
+                let k = chunk.min(left) as usize;
+                inner.fill(&mut scratch[..k * d]);
+                left -= k as u64;
+            }
+        }
+        *given = drawn;
+    });
+    Ok(s)
 }
 
 /// The parameters of a sampler, as the command line's flags set them: `count`, `seed` and
@@ -302,6 +372,7 @@ fn count_error(name: &str, n: u64) -> PyResult<Option<String>> {
 /// Adds the sampler class and the registry functions to the module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySampler>()?;
+    m.add_function(wrap_pyfunction!(restore_sampler, m)?)?;
     m.add_function(wrap_pyfunction!(registry_entries, m)?)?;
     m.add_function(wrap_pyfunction!(parameter_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(allows_count, m)?)?;

@@ -85,3 +85,10 @@ def points_cli_error(points_cli: Callable[..., np.ndarray]) -> Callable[..., str
         raise AssertionError(f"points {args} succeeded")
 
     return run
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    # scipy's QMCEngineTests (tests/test_scipy_engine.py) carry the marks of scipy's own runs
+    config.addinivalue_line(
+        "markers", "thread_unsafe: scipy's mark of tests that pytest-run-parallel runs alone"
+    )

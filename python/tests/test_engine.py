@@ -111,8 +111,12 @@ def test_engine_errors():
         ss.Engine("poisson", 2, raduis=0.5)
     with pytest.raises(ValueError, match="takes no radius"):
         ss.Engine("sobol", 2, radius=0.5)
-    with pytest.raises(ValueError, match="d = 0 is out of range"):
-        ss.Engine("sobol", 0)
+    with pytest.raises(ValueError, match="d = -1 is out of range"):
+        ss.Engine("sobol", -1)
+    with pytest.raises(ValueError, match="d = 0 is not allowed: pmj02 has 2-dimensional points"):
+        ss.Engine("pmj02", 0)
+    with pytest.raises(ValueError, match="'toto' is not a valid optimization method"):
+        ss.Engine("sobol", 2, optimization="toto")
 
 
 @pytest.mark.parametrize("name", ["sobol", "halton"])
@@ -138,3 +142,104 @@ def test_fast_forward_is_constant_time_for_sobol():
     assert e.num_generated == 1 << 40
     x = e.random(8)
     assert x.shape == (8, 4) and np.all((x >= 0) & (x < 1))
+
+
+# issue 38, N14: seeds as scipy and numpy take them
+
+SCIPY_SEED = 170382760648021597650530316304495310428  # QMCEngineTests' default seed
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2**32, 2**63, 2**64 - 1, np.uint64(2**64 - 1)])
+def test_seeds_below_two_to_the_64_are_the_seed_itself(seed):
+    e = ss.Engine("sobol", 3, seed=seed)
+    assert e.seed == int(seed)
+    np.testing.assert_array_equal(e.random(16), ss.points("sobol", 16, seed=int(seed), dims=3))
+
+
+def test_large_ints_and_seed_sequences_are_hashed_as_documented():
+    # an int >= 2^64 stands for SeedSequence(int), whose first two 32-bit words of state are
+    # the low and high halves of the 64-bit seed: a fixed value, on every platform
+    assert ss.Engine("sobol", 2, seed=SCIPY_SEED).seed == 10103525735708876616
+    seq = np.random.SeedSequence(SCIPY_SEED)
+    assert ss.Engine("sobol", 2, seed=seq).seed == 10103525735708876616
+    assert ss.Engine("sobol", 2, seed=seq).seed == 10103525735708876616  # not consumed
+    lo, hi = np.random.SeedSequence(2**64).generate_state(2, np.uint32)
+    assert ss.Engine("halton", 2, seed=2**64).seed == int(lo) | int(hi) << 32
+    kids = np.random.SeedSequence(5).spawn(3)
+    assert len({ss.Engine("sobol", 2, seed=k).seed for k in kids}) == 3
+    # the same mapping in every seed-taking function
+    np.testing.assert_array_equal(
+        ss.points("pmj02", 16, seed=SCIPY_SEED), ss.points("pmj02", 16, seed=10103525735708876616)
+    )
+    np.testing.assert_array_equal(
+        ss.PixelSampler("sobol", 16, seed=seq).sample([1, 2], np.arange(16)),
+        ss.PixelSampler("sobol", 16, seed=10103525735708876616).sample([1, 2], np.arange(16)),
+    )
+    assert ss.PixelSampler("sobol", 16, seed=seq).seed == 10103525735708876616
+
+
+def test_rng_is_the_spec7_name_of_seed():
+    np.testing.assert_array_equal(
+        ss.Engine("sobol", 2, rng=7).random(8), ss.Engine("sobol", 2, seed=7).random(8)
+    )
+    assert ss.Engine("sobol", 2, rng=np.random.SeedSequence(3)).seed == ss.Engine(
+        "sobol", 2, seed=np.random.SeedSequence(3)).seed
+    # a generator is consumed: engines made one after the other differ (as scipy's)
+    g = np.random.default_rng(0xA29CABB11CFDF44FF6CAC8BEC254C2A0)
+    a, b = ss.Engine("pmj02", 2, rng=g), ss.Engine("pmj02", 2, rng=g)
+    assert a.seed != b.seed
+    # a BitGenerator is wrapped in a Generator
+    assert ss.Engine("sobol", 2, rng=np.random.PCG64(1)).seed == ss.Engine(
+        "sobol", 2, rng=np.random.Generator(np.random.PCG64(1))).seed
+    with pytest.raises(TypeError, match="got both seed and rng"):
+        ss.Engine("sobol", 2, seed=1, rng=1)
+    with pytest.raises(ValueError, match="seed = -1 is out of range; allowed: an int >= 0"):
+        ss.Engine("sobol", 2, rng=-1)
+    with pytest.raises(TypeError, match="not RandomState"):
+        ss.Engine("sobol", 2, seed=np.random.RandomState(1))
+
+
+def test_zero_dimensions_and_optimization_as_for_scipy_engines():
+    for name, n in (("sobol", 4), ("latin", 5)):
+        e = ss.Engine(name, 0, seed=1)
+        assert e.random(n).shape == (n, 0) and e.num_generated == n
+    e = ss.Engine("sobol", 2, seed=1, optimization="random-cd")
+    assert repr(e) == "Engine('sobol', d=2, seed=1, optimization='random-cd')"
+    x = e.random(32)
+    plain = ss.points("sobol", 32, seed=1).astype(np.float64)
+    assert qmc.discrepancy(x) <= qmc.discrepancy(plain)
+    # qmc_quad's copies keep the optimization
+    assert e._init_quad == {"name": "sobol", "d": 2, "optimization": "random-cd"}
+
+
+# issue 38, N13: deterministic samplers give no independent replicates
+
+
+def test_qmc_quad_refuses_a_deterministic_sampler():
+    # regular's points do not depend on the seed: qmc_quad's copies would all be equal and
+    # its standard error 0.0 whatever the true error (4.1e-5 here: 1/6 is exact)
+    with pytest.raises(ValueError, match=r"regular is deterministic.*use 'jittered'"):
+        qmc_quad(lambda x: x[0] ** 2 * x[1], [0, 0], [1, 1], n_points=1024,
+                 qrng=ss.Engine("regular", 2, seed=1))
+    # jittered, regular's randomized form, gives an honest error estimate
+    res = qmc_quad(lambda x: x[0] ** 2 * x[1], [0, 0], [1, 1], n_points=1024,
+                   qrng=ss.Engine("jittered", 2, seed=1))
+    assert res.standard_error > 0
+    assert abs(res.integral - 1 / 6) < 6 * res.standard_error
+
+
+@pytest.mark.parametrize("entry", ss.samplers(), ids=lambda e: e["name"])
+def test_the_seeded_flag_is_what_the_points_do(entry):
+    # every registered sampler, checked empirically: two seeds, same points iff not seeded
+    name = entry["name"]
+    n = ss.nearest_count(name, 64)
+    for d in [2] if entry["dimensions"] == "2" else [2, 3]:
+        same = np.array_equal(
+            ss.points(name, n, seed=1, dims=d), ss.points(name, n, seed=2, dims=d)
+        )
+        assert same == (not entry["seeded"]), (name, d)
+    if entry["seeded"]:
+        ss.Engine(name, 2, seed=1)
+    else:
+        with pytest.raises(ValueError, match="is deterministic"):
+            ss.Engine(name, 2, seed=1)

@@ -32,7 +32,9 @@ GOOD = np.random.default_rng(0).random((64, 2))
         (lambda: ss.points("jittered", 16, dims=3), ValueError, "2-dimensional points only; samplers with D dimensions: random, sobol"),
         (lambda: ss.points("sobol", 4, dims=1001), ValueError, "sobol: dims = 1001 is not allowed: 1 to 1000"),
         (lambda: ss.points("sobol", 4, seed=-1), ValueError, "seed = -1 is out of range"),
-        (lambda: ss.points("sobol", 4, seed=2**64), ValueError, "seed = 18446744073709551616 is out of range"),
+        (lambda: ss.points("sobol", 4, seed=1.5), TypeError, "seed must be an int >= 0 .*SeedSequence, Generator or BitGenerator; not float"),
+        (lambda: ss.points("sobol", 4, seed=True), TypeError, "seed must be .*; not a bool"),
+        (lambda: ss.points("sobol", 4, seed=-2**70), ValueError, "as numpy.random.default_rng refuses them"),
         (lambda: ss.points("oa-bose", 49, dims=9), ValueError, "oa-bose"),
     ],
 )
@@ -220,3 +222,42 @@ def test_a_huge_count_fails_cleanly():
         ss.points("sobol", 2**62, dims=4)
     with pytest.raises(ValueError, match="cannot make"):
         ss.points("jittered", 2**62)  # refused before anything is allocated
+
+
+# issue 38, N15: Python ints beyond int64 as sample indices
+
+
+def test_python_int_indices_up_to_two_to_the_64_are_uint64():
+    ps = ss.PixelSampler("sobol", 16, seed=3)
+    big = np.array([0, 2**64 - 1, 2**63], dtype=np.uint64)
+    want = ps.sample([3, 4], big, dims=3)
+    np.testing.assert_array_equal(ps.sample([3, 4], [0, 2**64 - 1, 2**63], dims=3), want)
+    np.testing.assert_array_equal(ps.sample([3, 4], (0, 2**64 - 1, 2**63), dims=3), want)
+    np.testing.assert_array_equal(ps.sample([3, 4], 2**64 - 1, dims=3), want[1])
+    nested = ps.sample([3, 4], [[0, 2**64 - 1], [2**63, 0]], dims=3)
+    np.testing.assert_array_equal(nested[0, 1], want[1])
+    np.testing.assert_array_equal(nested[1, 0], want[2])
+    # exactly: 2^64 - 1 and 2^64 - 2 would be the same float64
+    a = ps.sample([3, 4], [2**64 - 2, 2**64 - 1], dims=2)
+    b = ps.sample([3, 4], np.array([2**64 - 2, 2**64 - 1], np.uint64), dims=2)
+    np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize(
+    "indices,exc,match",
+    [
+        ([-1, 2**64 - 1], ValueError, r"indices holds -1; allowed: 0 to 18446744073709551615"),
+        ([0, 2**64], ValueError, r"indices holds 18446744073709551616; allowed: 0 to"),
+        (2**64, ValueError, r"indices holds 18446744073709551616"),
+        ([0.5, 2**64 - 1], TypeError, "indices must be integers, not float64"),
+        ([None, 2**64], TypeError, "indices must be integers, not object"),
+    ],
+)
+def test_python_int_indices_out_of_range_are_refused(indices, exc, match):
+    with pytest.raises(exc, match=match):
+        ss.PixelSampler("sobol", 16).sample([1, 2], indices)
+
+
+def test_python_int_pixels_out_of_range_are_refused():
+    with pytest.raises(ValueError, match=r"pixels holds 18446744073709551616; allowed: 0 to 4294967295"):
+        ss.PixelSampler("sobol", 16).sample([2**64, 1], [0])

@@ -84,12 +84,15 @@ def samplers() -> List[Dict[str, Any]]:
     ``allowed``, ``help``, from each sampler's declaration),
     ``promise`` (the stratification it promises), ``rates`` (published variance exponents on
     ``discontinuous``/``smooth``/``higher``-dimensional integrands, ``None`` where unpublished),
-    ``expensive`` and ``pixel_sampler`` (whether ``PixelSampler`` has it as a sequence).
+    ``expensive``, ``pixel_sampler`` (whether ``PixelSampler`` has it as a sequence) and
+    ``seeded`` (False for a deterministic sampler such as ``regular``, whose points do not
+    depend on the seed: ``Engine`` refuses it, since it cannot give independent replicates).
     """
     adapter = set(_strata.sequence_names())
     out = _strata.registry_entries()
     for e in out:
         e["pixel_sampler"] = e["name"] in adapter
+        e["seeded"] = e["name"] not in _v.UNSEEDED
     return out
 
 
@@ -110,12 +113,16 @@ def nearest_count(name: str, n: int) -> int:
     return int(_strata.nearest_count(name, _v.whole(n, "n", 0, _v.U64_MAX)))
 
 
-def points(name: str, n: int, *, seed: int = 1, dims: int = 2, **params: Any) -> np.ndarray:
+def points(name: str, n: int, *, seed: Any = 1, dims: int = 2, **params: Any) -> np.ndarray:
     """The first ``n`` points of sampler ``name``: an ``(n, dims)`` float32 array in [0, 1).
 
     Bit-identical to ``cargo run --release --example points -- --sampler NAME -n N --seed S
     --dims D [--radius ...]``: a fixed-count sampler's first set of ``n`` (``n`` must be a
     count it accepts, see ``samplers()``), a progressive sampler's first ``n`` points.
+
+    ``seed``: an int >= 0 (one in ``[0, 2^64)`` is the ``--seed`` of the command line, a larger
+    one stands for ``numpy.random.SeedSequence(seed)``), a ``numpy.random.SeedSequence``,
+    ``Generator`` or ``BitGenerator`` (the mapping is ``Engine``'s, see its docstring).
 
     ``params`` are the optional parameters some samplers take, by the names their samplers
     declare (``samplers()`` lists each sampler's, with kind, range, default and help):
@@ -146,14 +153,17 @@ class PixelSampler:
     table is in the crate's docs and in ``docs/cli.md``; ``zjoint`` also as ``zjoint-G`` for
     groups of ``G`` dimensions); ``spp`` the samples per pixel
     (used by ``jittered``, which needs a square, ``halton`` and the Z-ordered sequences);
-    ``resolution`` the ``(width, height)`` image of the Z-ordered sequences.
+    ``resolution`` the ``(width, height)`` image of the Z-ordered sequences; ``seed`` is taken
+    as by ``points`` (the 64-bit seed used is ``.seed``). It pickles and copies (``pickle``,
+    ``copy.deepcopy``, ``multiprocessing``): it has no position, values being by pixel and
+    sample index.
 
     >>> ps = strata_sampling.PixelSampler("sobol", 16, seed=7)
     >>> v = ps.sample([3, 4], np.arange(16), dims=5)    # (16, 5) float32
     """
 
     def __init__(
-        self, sequence: str, spp: int, seed: int = 1, *, resolution: tuple = (256, 256)
+        self, sequence: str, spp: int, seed: Any = 1, *, resolution: tuple = (256, 256)
     ) -> None:
         spp = _v.whole(spp, "spp", 0, _v.U32_MAX)
         seed = _v.seed_value(seed)
@@ -193,7 +203,8 @@ class PixelSampler:
         ``pixels`` at sample ``indices``, vectorized with numpy broadcasting.
 
         ``pixels`` holds integer ``(x, y)`` pairs in its last axis (shape ``(..., 2)``),
-        ``indices`` integer sample indices (shape ``(...)``); the result has the broadcast
+        ``indices`` integer sample indices (shape ``(...)``; 0 to 2^64 - 1, Python ints
+        beyond int64 included, read exactly); the result has the broadcast
         shape of the two plus ``(dims,)``, float32. Each row is what a renderer gets from
         ``start_pixel_sample(pixel, index, first_dim)`` then ``get_pixel_2d`` (dimensions 0-1),
         ``get_2d`` pairs and, for an odd count, a last ``get_1d`` (Rust's
@@ -230,8 +241,14 @@ class PixelSampler:
 
 
 def _integers(values: Any, what: str, hi: int) -> np.ndarray:
-    """An integer array with values in ``[0, hi]``."""
+    """An integer array with values in ``[0, hi]``. Python ints (in lists, tuples or alone)
+    that numpy would turn into float64 or objects (beyond int64: up to 2^64 - 1, or mixed
+    with negative ones) are read exactly, as uint64 or int64."""
     a = np.asarray(values)
+    if a.dtype.kind in "fO" and not isinstance(values, np.ndarray):
+        exact = _python_ints(values, what, hi)
+        if exact is not None:
+            a = exact
     if a.dtype == object or a.dtype.kind not in "iu":
         raise TypeError(f"{what} must be integers, not {a.dtype}")
     if a.size:
@@ -240,6 +257,27 @@ def _integers(values: Any, what: str, hi: int) -> np.ndarray:
             bad = lo_v if lo_v < 0 else hi_v
             raise ValueError(f"{what} holds {bad}; allowed: 0 to {hi}")
     return a
+
+
+def _python_ints(values: Any, what: str, hi: int) -> Optional[np.ndarray]:
+    """``values`` (nested lists or tuples of Python or numpy ints, or one int) as an exact
+    uint64 array, after checking that every value is in ``[0, hi]`` (``hi < 2^64``); ``None``
+    if some value is not an int (a float, a bool, ``None``, ...) or the nesting is ragged."""
+    try:
+        obj = np.array(values, dtype=object)
+    except ValueError:  # ragged
+        return None
+    flat = obj.reshape(-1).tolist()
+    if not flat or not all(
+        isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_)) for v in flat
+    ):
+        return None
+    ints = [int(v) for v in flat]
+    lo_v, hi_v = min(ints), max(ints)
+    if lo_v < 0 or hi_v > hi:
+        bad = lo_v if lo_v < 0 else hi_v
+        raise ValueError(f"{what} holds {bad}; allowed: 0 to {hi}")
+    return np.array(ints, dtype=np.uint64).reshape(obj.shape)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -292,13 +330,14 @@ def sampler_spectrum(
     resolution: int,
     *,
     realizations: int = 16,
-    seed: int = 1,
+    seed: Any = 1,
     **params: Any,
 ) -> np.ndarray:
     """The expected spectrum of sampler ``name`` at ``n`` points (see ``expected_spectrum``)
     over ``realizations`` sets, set ``r`` being ``points(name, n, seed=seed + r, **params)``
-    as in the crate's ``spectrum`` program; the sets are generated and transformed in
-    parallel, without the GIL."""
+    as in the crate's ``spectrum`` program (``seed`` taken as by ``points``, then ``+ r`` on the
+    64-bit seed, wrapping); the sets are generated and transformed in parallel, without the
+    GIL."""
     n = _v.whole(n, "n", 0, _v.U64_MAX)
     seed = _v.seed_value(seed)
     realizations = _v.whole(realizations, "realizations", 0, _v.U32_MAX)

@@ -29,6 +29,11 @@ class Sampler:
     def skip(self, n: int) -> bool:
         """Moves ``n`` points on in constant time where the sampler can (Sobol'); False and
         nothing changed otherwise."""
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        """Pickles as ``restore_sampler(name, count, seed, dims, drawn, parameters)``."""
+    @property
+    def drawn(self) -> int:
+        """The points given so far."""
     @property
     def name(self) -> str: ...
     @property
@@ -58,6 +63,17 @@ class PixelSampler:
     def sequence(self) -> str: ...
     def round_count(self, n: int) -> int: ...
     def promised_strata(self, n: int) -> List[Tuple[int, int]]: ...
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]: ...
+
+def restore_sampler(
+    name: str,
+    count: int,
+    seed: int,
+    dims: int,
+    drawn: int,
+    parameters: Optional[Dict[str, float]] = None,
+) -> Sampler:
+    """Sampler ``name`` moved on by ``drawn`` points (skipped, or drawn and dropped)."""
 
 def registry_entries() -> List[Dict[str, Any]]: ...
 def allows_count(name: str, n: int) -> bool: ...

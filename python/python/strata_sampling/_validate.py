@@ -18,6 +18,14 @@ from . import _strata
 PARAMETER_KINDS: Dict[str, str] = dict(_strata.parameter_kinds())
 SAMPLER_PARAMETERS = tuple(PARAMETER_KINDS)
 
+#: The registered samplers whose points do not depend on the seed (the registry has no such
+#: flag; ``tests/test_engine.py`` checks every registered sampler against this set, two seeds
+#: giving the same points exactly for these).
+UNSEEDED = frozenset({"regular"})
+
+#: A seeded sampler to use instead of each unseeded one, for the error messages.
+SEEDED_INSTEAD = {"regular": "jittered"}
+
 U32_MAX = 2**32 - 1
 U64_MAX = 2**64 - 1
 
@@ -41,11 +49,58 @@ def whole(value: Any, what: str, lo: int, hi: int) -> int:
     return v
 
 
+#: What a seed may be, for the error messages.
+SEED_KINDS = (
+    "an int >= 0 (0 to 2^64 - 1 is the sampler's seed itself, a larger one is hashed), a "
+    "numpy.random.SeedSequence, Generator or BitGenerator"
+)
+
+
+def seed_from_sequence(sequence: np.random.SeedSequence) -> int:
+    """The 64-bit seed a ``numpy.random.SeedSequence`` stands for: its first two 32-bit words of
+    state, ``generate_state(2, numpy.uint32)``, as the low and high halves (the same on every
+    platform and for every numpy with ``SeedSequence``)."""
+    lo, hi = (int(w) for w in sequence.generate_state(2, np.uint32))
+    return lo | (hi << 32)
+
+
 def seed_value(seed: Any, what: str = "seed") -> int:
-    """A 64-bit seed from an int, or drawn from a ``numpy.random.Generator``."""
+    """The 64-bit sampler seed of ``seed``, taken as scipy and numpy take seeds:
+
+    * an int in ``[0, 2^64)`` (Python or numpy) is the seed itself, so its values never change;
+    * a larger int ``s`` stands for ``numpy.random.SeedSequence(s)`` (as
+      ``numpy.random.default_rng(s)`` reads it), reduced by ``seed_from_sequence``;
+    * a ``numpy.random.SeedSequence`` is reduced by ``seed_from_sequence`` (children of
+      ``spawn`` give different seeds);
+    * a ``numpy.random.Generator`` (or a ``BitGenerator``, wrapped in one) gives one draw,
+      ``integers(0, 2**64, dtype=numpy.uint64)``, which advances it: engines made one after the
+      other from one generator differ, as scipy's do.
+
+    Negative ints are refused, as ``numpy.random.default_rng`` refuses them; bools, floats and
+    anything else are a ``TypeError``.
+    """
     if isinstance(seed, np.random.Generator):
         return int(seed.integers(0, 2**64, dtype=np.uint64))
-    return whole(seed, what, 0, U64_MAX)
+    if isinstance(seed, np.random.BitGenerator):
+        return seed_value(np.random.Generator(seed), what)
+    if isinstance(seed, np.random.SeedSequence):
+        return seed_from_sequence(seed)
+    if isinstance(seed, (bool, np.bool_)):
+        raise TypeError(f"{what} must be {SEED_KINDS}; not a bool")
+    try:
+        v = operator.index(seed)
+    except TypeError:
+        raise TypeError(
+            f"{what} must be {SEED_KINDS}; not {type(seed).__name__} {seed!r}"
+        ) from None
+    if v < 0:
+        raise ValueError(
+            f"{what} = {v} is out of range; allowed: {SEED_KINDS} (negative ints are refused, "
+            "as numpy.random.default_rng refuses them)"
+        )
+    if v <= U64_MAX:
+        return v
+    return seed_from_sequence(np.random.SeedSequence(v))
 
 
 def sampler_params(params: Dict[str, Any], function: str) -> Dict[str, Any]:
