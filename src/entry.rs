@@ -432,6 +432,9 @@ pub struct Entry {
     pub family: Family,
     /// True for progressive sequences, false for fixed-count sets.
     pub progressive: bool,
+    /// Whether the points depend on the seed (false for `regular`, whose cell centres do not:
+    /// independent replicates of it are all the same set).
+    pub seeded: bool,
     /// The counts it accepts.
     pub counts: CountRule,
     /// The optional parameters it takes.

@@ -276,6 +276,7 @@ fn entry_dict<'py>(py: Python<'py>, e: &Entry) -> PyResult<Bound<'py, PyDict>> {
     d.set_item("description", e.description)?;
     d.set_item("paper", e.paper)?;
     d.set_item("progressive", e.progressive)?;
+    d.set_item("seeded", e.seeded)?;
     d.set_item("counts", e.counts.to_string())?;
     d.set_item("dimensions", if e.has_dimensions() { "D" } else { "2" })?;
     let params = PyList::empty(py);

@@ -285,6 +285,22 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_seeded_flag_says_whether_the_seed_changes_the_points() {
+        // one home for the fact: the Python engine refuses the unseeded samplers from it
+        for e in entries() {
+            let n = e.counts.nearest(64);
+            let draw = |seed: u64| {
+                let mut s = e.build(&Params::new(n).seed(seed)).unwrap();
+                let mut v = vec![[0.0f32; 2]; n as usize];
+                strata::Sampler::fill(&mut s, &mut v);
+                v
+            };
+            assert_eq!(draw(1) != draw(2), e.seeded, "{}", e.name);
+        }
+        assert!(entries().iter().any(|e| !e.seeded));
+    }
+
+    #[test]
     fn nearest_and_listed_counts_are_accepted_over_the_whole_range() {
         // issue 24, row 5: nearest(2^64 - 1) was 0 for squares and counts past the largest
         // allowed for the orthogonal arrays and n-rooks

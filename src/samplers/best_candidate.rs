@@ -45,6 +45,7 @@ pub(crate) const ENTRY: Entry = Entry {
     paper: "Mitchell 1991",
     family: Family::BlueNoise,
     progressive: true,
+    seeded: true,
     counts: CountRule::Any,
     parameters: &[CANDIDATES],
     promise: "farthest of `k n` candidates",

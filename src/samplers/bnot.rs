@@ -95,6 +95,7 @@ pub(crate) const ENTRY: Entry = Entry {
     paper: "de Goes et al. 2012",
     family: Family::BlueNoise,
     progressive: false,
+    seeded: true,
     counts: CountRule::Any,
     parameters: &[ITERATIONS],
     promise: "equal-area power cells (blue noise)",

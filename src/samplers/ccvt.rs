@@ -64,6 +64,7 @@ pub(crate) const ENTRY: Entry = Entry {
     paper: "Balzer, Schlömer, Deussen 2009",
     family: Family::BlueNoise,
     progressive: false,
+    seeded: true,
     counts: CountRule::Any,
     parameters: &[ITERATIONS, CAPACITY],
     promise: "equal-capacity Voronoi cells (blue noise)",

@@ -61,6 +61,7 @@ pub(crate) const ENTRY: Entry = Entry {
     paper: "Lloyd 1982",
     family: Family::BlueNoise,
     progressive: false,
+    seeded: true,
     counts: CountRule::Any,
     parameters: &[ITERATIONS],
     promise: "a centroidal Voronoi tessellation (near-hexagonal), converged",

@@ -64,6 +64,7 @@ pub(crate) const ENTRY: Entry = Entry {
     paper: "Ahmed, Wonka 2021",
     family: Family::BlueNoise,
     progressive: false,
+    seeded: true,
     counts: CountRule::PowerOfTwo,
     parameters: &[SWEEPS],
     promise: "a (0,m,2)-net with blue-noise spacing",

@@ -92,7 +92,6 @@ def samplers() -> List[Dict[str, Any]]:
     out = _strata.registry_entries()
     for e in out:
         e["pixel_sampler"] = e["name"] in adapter
-        e["seeded"] = e["name"] not in _v.UNSEEDED
     return out
 
 

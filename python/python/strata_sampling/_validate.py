@@ -18,10 +18,10 @@ from . import _strata
 PARAMETER_KINDS: Dict[str, str] = dict(_strata.parameter_kinds())
 SAMPLER_PARAMETERS = tuple(PARAMETER_KINDS)
 
-#: The registered samplers whose points do not depend on the seed (the registry has no such
-#: flag; ``tests/test_engine.py`` checks every registered sampler against this set, two seeds
-#: giving the same points exactly for these).
-UNSEEDED = frozenset({"regular"})
+#: The registered samplers whose points do not depend on the seed, from the registry's
+#: ``seeded`` flag (``tests/test_engine.py`` checks every registered sampler against it, two
+#: seeds giving the same points exactly for these).
+UNSEEDED = frozenset(e["name"] for e in _strata.registry_entries() if not e["seeded"])
 
 #: A seeded sampler to use instead of each unseeded one, for the error messages.
 SEEDED_INSTEAD = {"regular": "jittered"}

@@ -92,6 +92,7 @@ pub(crate) const ENTRY: Entry = Entry {
     paper: "Christensen et al. 2018; Doignies et al. 2024",
     family: Family::Pmj,
     progressive: true,
+    seeded: true,
     counts: CountRule::Any,
     parameters: &[SWEEPS],
     promise: "(0,m,2)-net at every `2^m` prefix and aligned block, blue noise up to `N`",
