@@ -59,12 +59,16 @@ Columns (one row per set, then the mean of each file's sets):
               65536 points
 
 The pairwise sums are O(n^2 d): sets with n^2 d above 2^33 (65536 points in 2D, 2930 in 1000
-dimensions, a few seconds each) show '-' for them. Each file is labelled by its name without
+dimensions) show '-' for them; sets near that bound take tens of seconds each, and a file whose
+sums are that long says so on stderr when it starts and when it is done. Each file is labelled by its name without
 the extension; files whose names would give the same label keep their extension, then a
 number ('pts.csv', 'pts-2.csv').";
 
 /// The most work, `n^2 d`, of the O(n^2 d) discrepancies of one set.
 const MAX_PAIRWISE_WORK: u128 = 1 << 33;
+
+/// The pairwise work of a file from which `measure` says what it does (about a second).
+const LONG_PAIRWISE_WORK: u128 = 1 << 28;
 
 /// Whether the O(n^2 d) sums of a set of `n` points in `d` dimensions are within the bound.
 fn pairwise_allowed(n: usize, d: usize) -> bool {
@@ -144,8 +148,8 @@ fn measure(set: &PointSet) -> Result<Row, strata::Error> {
         v[5] = discrepancy::net_t_value(c)?.map(f64::from);
         if n >= 2 {
             let m = spectrum::point_set_measures(&[points])?;
-            v[6] = Some(m.global_min_distance);
-            v[7] = Some(m.average_min_distance);
+            v[6] = m.global_min_distance;
+            v[7] = m.average_min_distance;
             v[8] = m.effective_nyquist;
             v[9] = m.oscillations;
         }
@@ -193,8 +197,14 @@ fn name_text(s: &std::ffi::OsStr) -> String {
 /// meet, a number before the extension (`pts-2.csv`), never one that another file's label
 /// takes.
 fn file_labels(paths: &[PathBuf]) -> Vec<String> {
-    let stem = |p: &Path| p.file_stem().map_or_else(|| name_text(p.as_os_str()), name_text);
-    let name = |p: &Path| p.file_name().map_or_else(|| name_text(p.as_os_str()), name_text);
+    let stem = |p: &Path| {
+        p.file_stem()
+            .map_or_else(|| name_text(p.as_os_str()), name_text)
+    };
+    let name = |p: &Path| {
+        p.file_name()
+            .map_or_else(|| name_text(p.as_os_str()), name_text)
+    };
     let stems: Vec<String> = paths.iter().map(|p| stem(p)).collect();
     let bases: Vec<String> = paths
         .iter()
@@ -237,10 +247,30 @@ fn main() -> ExitCode {
         let labels = file_labels(&args.files);
         for (path, label) in args.files.iter().zip(labels) {
             let sets = pointsets::read_file(path)?;
+            // a long file says what it does (issue 38, N16: a minute in silence)
+            let work: u128 = sets
+                .iter()
+                .filter(|s| pairwise_allowed(s.len(), s.dims))
+                .map(|s| s.len() as u128 * s.len() as u128 * s.dims as u128)
+                .sum();
+            let started = std::time::Instant::now();
+            let long = work >= LONG_PAIRWISE_WORK;
+            if long {
+                eprintln!(
+                    "measure: {label}: {} set(s), pairwise sums of n^2 d = {work} terms in all ...",
+                    sets.len()
+                );
+            }
             let rows: Vec<Row> = sets
                 .par_iter()
                 .map(measure)
                 .collect::<Result<_, strata::Error>>()?;
+            if long {
+                eprintln!(
+                    "measure: {label}: measured in {:.1} s",
+                    started.elapsed().as_secs_f64()
+                );
+            }
             let same_shape = rows.iter().all(|r| (r.n, r.d) == (rows[0].n, rows[0].d));
             if let Some(r) = rows.iter().find(|r| !pairwise_allowed(r.n, r.d)) {
                 eprintln!(

@@ -26,6 +26,8 @@ const MAX_PNG_DIMS: usize = 64;
 
 /// Runs of at least this many values print a line on stderr before and after making them.
 const LONG_RUN_VALUES: u64 = 1 << 22;
+/// The count from which an expensive sampler (a relaxation, an optimisation) says what it does.
+const LONG_RUN_EXPENSIVE: u64 = 1 << 12;
 
 const USAGE: &str = "points --sampler NAME -n N [--seed S] [--dims D] [--pixel X,Y] \
 [--radius|--iterations|... X (a sampler parameter; see --help)] [--resolution WxH] [--png FILE] \
@@ -45,7 +47,7 @@ Options:
   --pixel X,Y        the values the path-tracer adapter gives pixel (X,Y); --sampler is then
                      a sequence: {SEQUENCES}
   --resolution WxH   the image of the Z-ordered adapter sequences {Z_SEQUENCES}
-                     (default 256x256; the others ignore it)
+                     (with --pixel; default 256x256; the others ignore it)
 {PARAMETERS}  --png FILE         also draw the points (with the strata grid) into FILE
   --format F         csv (default), utk (UTK text: space-separated, no header) or bin (UTK
                      binary: the magic UTK!, data type 4 = f32, counts, then the values)
@@ -62,7 +64,7 @@ struct Args {
     params: Params,
     dims: u64,
     pixel: Option<(u64, u64)>,
-    resolution: [u32; 2],
+    resolution: Option<[u32; 2]>,
     png: Option<std::path::PathBuf>,
     header: bool,
     format: Format,
@@ -76,7 +78,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         params: Params::new(1),
         dims: 2,
         pixel: None,
-        resolution: [256, 256],
+        resolution: None,
         png: None,
         header: true,
         format: Format::Csv,
@@ -114,10 +116,10 @@ fn parse() -> Result<Option<Args>, CliError> {
                     ))
                 };
                 let (w, h) = v.split_once(['x', 'X']).ok_or_else(bad)?;
-                args.resolution = [
+                args.resolution = Some([
                     parse_int("--resolution", w, 1, 65536)? as u32,
                     parse_int("--resolution", h, 1, 65536)? as u32,
-                ];
+                ]);
             }
             Long("no-header") => args.header = false,
             Long("format") => {
@@ -169,6 +171,18 @@ fn main() -> ExitCode {
                 "-n N is required (1 to {MAX_CLI_COUNT}); usage: {USAGE}"
             ))
         })?;
+        // options that would be ignored are refused (issue 38, N23)
+        if args.resolution.is_some() && args.pixel.is_none() {
+            return Err(cli_error(
+                "--resolution is the image of the Z-ordered sequences and needs --pixel X,Y; \
+                 allowed without --pixel: a sampler's own parameters (see --help)",
+            ));
+        }
+        if !args.header && args.format != Format::Csv {
+            return Err(cli_error(
+                "--no-header applies to --format csv only; UTK's formats have no header line",
+            ));
+        }
         // the adapter's sequences (with --pixel) include ones that are not registered samplers
         let entry = if args.pixel.is_some() {
             if let Some((p, _)) = args.params.given().next() {
@@ -182,6 +196,10 @@ fn main() -> ExitCode {
         } else {
             Some(registry::find(&name)?)
         };
+        if let Some(e) = entry {
+            // the suggestions of the count message stay within this program's limit
+            e.counts.check_within(e.name, n, MAX_CLI_COUNT)?;
+        }
         let mut params = args.params.clone();
         params.count = n;
         let dims = args.dims as usize;
@@ -205,9 +223,35 @@ fn main() -> ExitCode {
         {
             return Err(cli_error("--png: an empty file name"));
         }
-        // a long run says what it is doing (on stderr; stdout holds the values)
+        // everything is checked (the build refuses what the sampler cannot make) before a long
+        // run says what it is doing, on stderr (stdout holds the values); relaxations and
+        // optimisations are long from a few thousand points on (issue 38, N23; #29)
+        enum Source {
+            Pixel(PixelSampler),
+            Built(Built),
+        }
+        let source = if args.pixel.is_some() {
+            let resolution = args.resolution.unwrap_or([256, 256]);
+            let sequence = Sequence::by_name(&name, resolution)?;
+            let spp = u32::try_from(n)
+                .map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
+            Source::Pixel(PixelSampler::new(
+                sequence,
+                spp,
+                strata::Seed(args.params.seed),
+            )?)
+        } else {
+            // one build for any --dims: a 2D sampler (with its strata grids) at 2
+            let params = params.dims(args.dims as u32);
+            Source::Built(
+                entry
+                    .expect("no --pixel")
+                    .make(&params, Strictness::Strict)?,
+            )
+        };
         let started = std::time::Instant::now();
-        let long_run = n * dims as u64 >= LONG_RUN_VALUES;
+        let long_run = n * dims as u64 >= LONG_RUN_VALUES
+            || (entry.is_some_and(|e| e.expensive) && n >= LONG_RUN_EXPENSIVE);
         if long_run {
             eprintln!("points: {n} points of {name} in {dims} dimensions ...");
         }
@@ -215,40 +259,32 @@ fn main() -> ExitCode {
         let mut values = vec![0f32; n as usize * dims];
         let mut grids = Vec::new();
         let mut projection_grids = Vec::new();
-        if let Some((px, py)) = args.pixel {
-            let sequence = Sequence::by_name(&name, args.resolution)?;
-            let spp = u32::try_from(n)
-                .map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
-            let mut sampler = PixelSampler::new(sequence, spp, strata::Seed(args.params.seed))?;
-            for (index, row) in values.chunks_exact_mut(dims).enumerate() {
-                sampler.fill_sample([px as u32, py as u32], index as u64, 0, row);
-            }
-        } else {
-            // one build for any --dims: a 2D sampler (with its strata grids) at 2
-            let params = params.dims(args.dims as u32);
-            match entry
-                .expect("no --pixel")
-                .make(&params, Strictness::Strict)?
-            {
-                Built::Two(mut sampler) => {
-                    let mut points = vec![[0.0f32; 2]; n as usize];
-                    strata::Sampler::fill(&mut sampler, &mut points);
-                    for (row, p) in values.chunks_exact_mut(2).zip(&points) {
-                        row[0] = p[0];
-                        row[1] = p[1];
-                    }
-                    grids = strata::Sampler::strata(&sampler, n);
+        match source {
+            Source::Pixel(mut sampler) => {
+                let [px, py] = args
+                    .pixel
+                    .map(|(x, y)| [x as u32, y as u32])
+                    .expect("--pixel");
+                for (index, row) in values.chunks_exact_mut(dims).enumerate() {
+                    sampler.fill_sample([px, py], index as u64, 0, row);
                 }
-                mut sampler => {
-                    sampler.fill(&mut values);
-                    // the grid of each 2D projection, row y, column x (only for the picture)
-                    if args.png.is_some() {
-                        projection_grids = (0..dims * dims)
-                            .map(|k| {
-                                sampler.projection_strata((k % dims) as u32, (k / dims) as u32)
-                            })
-                            .collect();
-                    }
+            }
+            Source::Built(Built::Two(mut sampler)) => {
+                let mut points = vec![[0.0f32; 2]; n as usize];
+                strata::Sampler::fill(&mut sampler, &mut points);
+                for (row, p) in values.chunks_exact_mut(2).zip(&points) {
+                    row[0] = p[0];
+                    row[1] = p[1];
+                }
+                grids = strata::Sampler::strata(&sampler, n);
+            }
+            Source::Built(mut sampler) => {
+                sampler.fill(&mut values);
+                // the grid of each 2D projection, row y, column x (only for the picture)
+                if args.png.is_some() {
+                    projection_grids = (0..dims * dims)
+                        .map(|k| sampler.projection_strata((k % dims) as u32, (k / dims) as u32))
+                        .collect();
                 }
             }
         }

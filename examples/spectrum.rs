@@ -171,6 +171,16 @@ fn parse() -> Result<Option<Args>, CliError> {
     } else {
         common::check_output_dir(&a.out)?;
     }
+    // realization r uses seed S + r: refused where that would wrap (issue 38, N18)
+    let most = a.realizations.unwrap_or(64) as u64;
+    if a.seed.checked_add(most - 1).is_none() {
+        return Err(cli_error(format!(
+            "--seed {} with {most} realizations would wrap past 2^64 - 1 (realization r uses \
+             seed S + r); allowed: --seed at most {}",
+            a.seed,
+            u64::MAX - (most - 1)
+        )));
+    }
     if let Some(m) = &a.markdown {
         common::check_markdown(m, if a.table { TABLE_SECTION } else { "spectrum" })?;
     }
@@ -203,7 +213,7 @@ fn run_one(
     let mut params = args.params.kept_for(entry);
     params.count = count;
     let generate = |r: u32| -> Result<Vec<[f32; 2]>, strata::Error> {
-        let mut s = entry.build(&params.clone().seed(args.seed.wrapping_add(r as u64)))?;
+        let mut s = entry.build(&params.clone().seed(args.seed + r as u64))?;
         let mut v = vec![[0.0f32; 2]; count as usize];
         s.fill(&mut v);
         Ok(v)
@@ -261,10 +271,11 @@ fn run_one(
 /// Mean power over the low band `0 < |w| < sqrt(N)/2` (what smooth integrands see): the mean of
 /// the radial bins `b = 1, 2, ...` below `sqrt(N)/2` (at least bin 1).
 fn low_band_power(radial: &[RadialBin], count: u64) -> f64 {
-    let band = ((count as f64).sqrt() / 2.0).max(1.0);
+    // bin 1 always: below N = 5 the band holds no other (issue 38, N19: it held none, NaN)
+    let band = (count as f64).sqrt() / 2.0;
     let low: Vec<f64> = radial
         .iter()
-        .filter(|b| (b.frequency as f64) < band)
+        .filter(|b| b.frequency == 1 || (b.frequency >= 1 && (b.frequency as f64) < band))
         .map(|b| b.power)
         .collect();
     if low.is_empty() {
@@ -301,7 +312,7 @@ fn table_row(
     let mut sets = Vec::with_capacity(seeds as usize);
     let mut ms = Vec::with_capacity(seeds as usize);
     for r in 0..seeds {
-        let params = Params::new(count).seed(args.seed.wrapping_add(r as u64));
+        let params = Params::new(count).seed(args.seed + r as u64);
         let start = Instant::now();
         let mut s = entry.build(&params)?;
         let mut v = vec![[0.0f32; 2]; count as usize];
@@ -438,8 +449,8 @@ fn overview(outcomes: &[Outcome]) -> Canvas {
         let m = &o.measures;
         let lines = vec![
             format!("N = {}, {} sets", o.count, o.realizations),
-            format!("min dist {:.3}", m.global_min_distance),
-            format!("avg min dist {:.3}", m.average_min_distance),
+            format!("min dist {}", fmt_opt(m.global_min_distance)),
+            format!("avg min dist {}", fmt_opt(m.average_min_distance)),
             format!("nu_eff {}", fmt_opt(m.effective_nyquist)),
             format!("oscillations {}", fmt_opt(m.oscillations)),
             format!("low-band power {:.3}", o.low_power),
@@ -495,16 +506,9 @@ fn main() -> ExitCode {
         let mut plan = Vec::new();
         for e in &entries {
             let count = if all {
-                e.counts.nearest(n)
+                e.counts.nearest_within(n, MAX_CLI_COUNT)
             } else {
-                if !e.counts.allows(n) {
-                    return Err(cli_error(format!(
-                        "{} cannot make {n} samples: allowed counts are {} (nearest: {})",
-                        e.name,
-                        e.counts,
-                        e.counts.nearest(n)
-                    )));
-                }
+                e.counts.check_within(e.name, n, MAX_CLI_COUNT)?;
                 n
             };
             let r = args
@@ -542,14 +546,14 @@ fn main() -> ExitCode {
         for o in &outcomes {
             let m = &o.measures;
             table.push_str(&format!(
-                "| {} | {} | {} | {:.3} | {:.4} | {:.3} | {:.3} | {} | {} |\n",
+                "| {} | {} | {} | {:.3} | {:.4} | {} | {} | {} | {} |\n",
                 o.name,
                 o.count,
                 o.realizations,
                 o.ms_per_set,
                 o.low_power,
-                m.global_min_distance,
-                m.average_min_distance,
+                fmt_opt(m.global_min_distance),
+                fmt_opt(m.average_min_distance),
                 fmt_opt(m.effective_nyquist),
                 fmt_opt(m.oscillations)
             ));

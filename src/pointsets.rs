@@ -3,8 +3,10 @@
 //! tools and ours read by theirs.
 //!
 //! * **CSV**: one point per line, coordinates separated by commas, an optional header line
-//!   (any line whose first field is not a number, before the first point), blank lines ignored.
-//!   One set per file. This is what `points` prints.
+//!   (any line whose first field is not a number, before the first point), blank lines ignored,
+//!   comment lines starting with `#` before the first point (numpy's `savetxt` header). One set
+//!   per file: a `#` line after a point is refused (sets separated by `#` lines are UTK text).
+//!   This is what `points` prints.
 //! * **UTK text**: one point per line, coordinates separated by spaces, no header; sets
 //!   separated by lines that start with `#` (UTK writes `#` between sets, none after the last).
 //! * **UTK binary** (`.bin`), little-endian: the magic `0x214B5455` (the bytes `UTK!`), a
@@ -12,7 +14,8 @@
 //!   bytes, then `u32` counts: sets, points per set, dimensions; then the coordinates, point
 //!   after point, set after set. Only `f32` and `f64` data are point coordinates here.
 //!
-//! Every coordinate must lie in `[0, 1)` and every set must hold at least one point of the
+//! Text lines end in LF or CR LF; a carriage return alone (classic Mac OS) is refused with the
+//! line it ends. Every coordinate must lie in `[0, 1)` and every set must hold at least one point of the
 //! same dimension; a file holds at most [`MAX_SETS`] sets (a bound on the memory of many small
 //! sets, checked before they are read). Malformed input is an [`Error::InvalidInput`] that names the line (text) or
 //! the byte offset (binary) and what is allowed; nothing panics, and nothing is allocated
@@ -291,7 +294,10 @@ fn collect_sets<'a>(
             continue;
         };
         if current.is_none() && sets.len() >= MAX_SETS {
-            return Err(too_many_sets(format!("line {line} starts set {}", sets.len() + 1)));
+            return Err(too_many_sets(format!(
+                "line {line} starts set {}",
+                sets.len() + 1
+            )));
         }
         let (dims, first, coords) = current.get_or_insert((fields.len(), line, Vec::new()));
         if fields.len() != *dims {
@@ -315,15 +321,47 @@ fn collect_sets<'a>(
     Ok(sets)
 }
 
-/// Parses a CSV point set: at most one header line (the first non-empty line, when none of its
-/// fields is a number), then one point per line. A UTF-8 byte-order mark at the start is
-/// skipped. A later line that is not all numbers is an error that names its line and column.
+/// Refuses a carriage return that does not end a line with a line feed: lines would run
+/// together (`0.1,0.2\r0.3,0.4` reads as one line).
+fn check_line_ends(text: &str) -> Result<()> {
+    let bytes = text.as_bytes();
+    match bytes
+        .iter()
+        .enumerate()
+        .find(|&(i, &b)| b == b'\r' && bytes.get(i + 1) != Some(&b'\n'))
+    {
+        Some((i, _)) => Err(Error::input(
+            CONTEXT,
+            format!(
+                "line {} ends with a carriage return alone (classic Mac OS line ends); allowed: \
+                 lines ending in LF or CR LF",
+                bytes[..i].iter().filter(|&&b| b == b'\n').count() + 1
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Parses a CSV point set: `#` comment lines and at most one header line (the first other
+/// non-empty line, when none of its fields is a number) before the first point, then one point
+/// per line. A UTF-8 byte-order mark at the start is skipped. A later line that is not all
+/// numbers is an error that names its line and column; so is a later `#` line (CSV holds one
+/// set; `#`-separated sets are UTK text).
 pub fn parse_csv(text: &str) -> Result<PointSet> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    check_line_ends(text)?;
     let mut first = true;
+    let mut points = false;
+    let mut late_comment = None;
     let rows = text.lines().enumerate().filter_map(|(i, l)| {
         let l = l.trim();
-        if l.is_empty() {
+        if l.is_empty() || late_comment.is_some() {
+            return None;
+        }
+        if l.starts_with('#') {
+            if points {
+                late_comment = Some(i + 1);
+            }
             return None;
         }
         let fields: Vec<&str> = l.split(',').map(str::trim).collect();
@@ -332,15 +370,27 @@ pub fn parse_csv(text: &str) -> Result<PointSet> {
         if header {
             return None;
         }
+        points = true;
         Some((i + 1, Some(fields)))
     });
     let mut sets = collect_sets(rows)?;
+    if let Some(line) = late_comment {
+        return Err(Error::input(
+            CONTEXT,
+            format!(
+                "line {line}: a '#' line after the first point; a CSV file holds one set, with \
+                 '#' comments only before its first point (sets separated by '#' lines are UTK \
+                 text: coordinates separated by spaces)"
+            ),
+        ));
+    }
     Ok(sets.remove(0))
 }
 
 /// Parses UTK text: points as lines of space-separated coordinates, sets separated by lines
 /// starting with `#`. Blank lines are skipped (UTK's own reader would misread them).
 pub fn parse_utk_text(text: &str) -> Result<Vec<PointSet>> {
+    check_line_ends(text)?;
     let rows = text.lines().enumerate().filter_map(|(i, l)| {
         let l = l.trim();
         if l.is_empty() {
@@ -670,6 +720,34 @@ mod tests {
 
     fn message(r: Result<impl std::fmt::Debug>) -> String {
         r.unwrap_err().to_string()
+    }
+
+    #[test]
+    fn comments_before_the_points_and_line_ends_that_end_lines() {
+        // issue 38, N20: '#' lines and CR-only line ends got messages that named neither
+        let plain = parse_csv("0.5,0.25\n0.125,0.75\n").unwrap();
+        assert_eq!(
+            parse_csv("# made by numpy\n#x,y\nx,y\n0.5,0.25\r\n0.125,0.75\n").unwrap(),
+            plain
+        );
+        let m = message(parse_csv("0.5,0.25\n# set 2\n0.125,0.75\n"));
+        assert!(
+            m.contains("line 2") && m.contains("'#'") && m.contains("UTK"),
+            "{m}"
+        );
+        let m = message(parse_csv("x,y\n0.5,0.25\n#\n"));
+        assert!(m.contains("line 3") && m.contains("'#'"), "{m}");
+        for text in ["0.5,0.25\r0.125,0.75\r", "x,y\n0.5,0.25\r0.125,0.75"] {
+            let m = message(parse_csv(text));
+            assert!(m.contains("carriage return alone"), "{m}");
+        }
+        let m = message(parse_utk_text("0.5 0.25\n0.1 0.2\r0.125 0.75\r"));
+        assert!(
+            m.contains("line 2 ends with a carriage return alone"),
+            "{m}"
+        );
+        let m = message(parse(b"0.5,0.25\r0.125,0.75\r"));
+        assert!(m.contains("carriage return alone"), "{m}");
     }
 
     #[test]

@@ -262,14 +262,13 @@ pub fn write_markdown_section(
     );
     // the arguments as the shell takes them back (any bytes, UTF-8 or not), and never a
     // marker: `<`, `>` and `!` are always escaped
-    let args: Vec<String> = std::env::args_os().skip(1).map(|a| shell_quote(&a)).collect();
+    let args: Vec<String> = std::env::args_os()
+        .skip(1)
+        .map(|a| shell_quote(&a))
+        .collect();
     let program = std::env::args_os()
         .next()
-        .and_then(|p| {
-            std::path::Path::new(&p)
-                .file_stem()
-                .map(|s| shell_quote(s))
-        })
+        .and_then(|p| std::path::Path::new(&p).file_stem().map(shell_quote))
         .unwrap_or_default();
     let section = format!(
         "{begin}\n<!-- written by `cargo run --release --example {program} -- {}` -->\n\n{}\n\n{end}",
@@ -427,4 +426,13 @@ pub fn check_output_dir(dir: &std::path::Path) -> Result<(), CliError> {
     std::fs::write(&probe, b"")
         .and_then(|()| std::fs::remove_file(&probe))
         .map_err(|e| cli_error(format!("--out {}: cannot be written ({e})", dir.display())))
+}
+
+/// The peak resident memory of this process in bytes (`VmHWM` of `/proc/self/status`), where
+/// the system reports it (Linux).
+pub fn peak_memory() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib << 10)
 }

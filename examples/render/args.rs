@@ -26,9 +26,9 @@ Options:
                          size): {SEQUENCES}
   --spp N[,N,..]         samples per pixel, one to eight counts (default 4,16,64,256; each 1
                          to 65536; jittered needs squares)
-  --size WxH             image size (default 128x128; each side 8 to 1024: every sequence and
-                         count keeps its image until the pictures are drawn, about 1.2 GB at
-                         1024x1024 with four counts)
+  --size WxH             image size (default 128x128; each side 8 to 1024; every sequence and
+                         count keeps its images until the pictures are drawn: a run whose
+                         estimate passes 4 GiB is refused before any work, see docs/cli.md)
   --scene NAME           cornell (default: a Cornell box, up to 8 bounces, two lights, a
                          discrete light and lobe choice, Russian roulette, thin lens), spheres
                          (direct lighting, seven dimensions) or cornell-direct (the Cornell box
@@ -227,6 +227,21 @@ fn check(a: &Args) -> Result<(), CliError> {
                  measured against a noisier image; allowed: {largest} to 65536"
         )));
     }
+    let need = memory_estimate(a);
+    if need > MAX_MEMORY {
+        let renders = a.samplers.len() * a.spp.len();
+        return Err(cli_error(format!(
+            "--size {}x{} with {renders} renders ({} sequences x {} counts) needs about {} MiB \
+             ({BYTES_PER_RENDER_PIXEL} bytes per pixel per render, kept for the pictures); \
+             allowed: at most {} MiB: fewer sequences, counts or pixels",
+            a.size.0,
+            a.size.1,
+            a.samplers.len(),
+            a.spp.len(),
+            need >> 20,
+            MAX_MEMORY >> 20
+        )));
+    }
     if a.interactions && a.scene == SceneKind::Cornell {
         return Err(cli_error(
             "--interactions splits the error of a direct-lighting render; allowed with --scene \
@@ -246,10 +261,34 @@ pub fn markdown_section(args: &Args) -> String {
     format!("render-{}-{}", args.scene.name(), counts.join(","))
 }
 
-/// The largest image side: every sequence at eight counts keeps its images and error images
-/// until the pictures are drawn, about 37 bytes per pixel per (sequence, count): at 1024 x 1024
-/// about 1.2 GB with the default four counts, 2.4 GB at eight.
+/// The largest image side.
 const MAX_SIDE: u64 = 1024;
+
+/// Bytes per pixel that every render (a sequence at a count) keeps until the pictures are
+/// drawn: its image, its error image and their spectra, with and without the emitters, and its
+/// tile of `compare.png`. Measured 53-63 (peak resident memory over 1 and 8 renders at 256^2
+/// and 512^2); the allowance covers the allocator.
+const BYTES_PER_RENDER_PIXEL: u64 = 72;
+
+/// Bytes per pixel that a run keeps once (the reference, the emitter mask, the image being
+/// rendered): measured 70.
+const BYTES_PER_PIXEL: u64 = 96;
+
+/// What a run needs whatever its size (the program, its threads, the scene): measured 4 MiB.
+const BASE_BYTES: u64 = 32 << 20;
+
+/// The most memory a run may need by [`memory_estimate`]: 4 GiB.
+pub const MAX_MEMORY: u64 = 4 << 30;
+
+/// The memory a run needs, at most (the test `render_memory_stays_within_its_estimate`
+/// compares it with the peak measured): refused before any work above [`MAX_MEMORY`]
+/// (issue 38, N10: 1024^2 with every sequence at eight counts took 5.1 GB against a
+/// documented "under 4 GB").
+pub fn memory_estimate(a: &Args) -> u64 {
+    let renders = (a.samplers.len() * a.spp.len()) as u64;
+    let pixels = a.size.0 as u64 * a.size.1 as u64;
+    BASE_BYTES + pixels * (BYTES_PER_PIXEL + renders * BYTES_PER_RENDER_PIXEL)
+}
 
 /// The most sample counts in `--spp`.
 const MAX_COUNTS: usize = 8;

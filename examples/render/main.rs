@@ -86,6 +86,13 @@ fn main() -> ExitCode {
         }
         io::write_png(args.out.join("convergence.png"), &plot.render(720, 480))?;
         eprintln!("wrote {} renders into {}", rows.len(), args.out.display());
+        if let Some(peak) = common::peak_memory() {
+            eprintln!(
+                "render: peak memory {} MiB (estimated at most {} MiB)",
+                peak >> 20,
+                args::memory_estimate(&args) >> 20
+            );
+        }
         Ok(())
     })
 }

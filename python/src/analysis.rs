@@ -176,8 +176,8 @@ fn radial<'py>(
 }
 
 /// The PSA point-set measures of one or more sets (all `(n, 2)` float32 with the same `n`): a
-/// dict of count, global_min_distance, average_min_distance (relative to `r_max(n)`),
-/// effective_nyquist and oscillations (`None` above 2^16 points or below 2).
+/// dict of count, global_min_distance, average_min_distance (relative to `r_max(n)`; `None`
+/// for single points), effective_nyquist and oscillations (`None` above 2^16 points or below 2).
 #[pyfunction]
 fn psa<'py>(
     py: Python<'py>,

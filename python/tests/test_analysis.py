@@ -152,6 +152,17 @@ def test_star_discrepancy_and_t_values():
     assert ss.net_t_value(ss.points("pmj02", 256)) == 0
     assert ss.net_t_value(RNG.random((256, 2))) >= 3
     assert ss.net_t_value(RNG.random((100, 2))) is None
+    # issue 38, N22: [0, 1) whatever the count, and said so
+    for bad in ([[1.0, 0.5], [0.1, 0.1]], [[1.0, 0.5], [0.1, 0.1], [0.2, 0.2]]):
+        with pytest.raises(ValueError, match=r"outside \[0, 1\)"):
+            ss.net_t_value(np.array(bad))
+
+
+def test_psa_of_one_point_has_no_distances():
+    """issue 38, N22: a single point has no neighbour; its distances are None, not NaN."""
+    m = ss.psa(np.array([[0.5, 0.5]], dtype=np.float32))
+    assert m["count"] == 1
+    assert m["global_min_distance"] is None and m["average_min_distance"] is None
 
 
 def test_distances_equal_brute_force():

@@ -167,15 +167,21 @@ pub fn mixture_squared<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result
 /// # Ok::<(), strata::Error>(())
 /// ```
 pub fn net_t_value<T: Copy + Into<f64>>(points: &[T]) -> Result<Option<u32>> {
+    // a net's cells are half-open: [0, 1) is checked first, whatever the count (issue 38, N22:
+    // the message said [0, 1], and 1.0 passed when the count was not a power of two)
+    if let Some(v) = points
+        .iter()
+        .map(|v| (*v).into())
+        .find(|v: &f64| !(0.0..1.0).contains(v))
+    {
+        return Err(Error::input(
+            "discrepancy::net_t_value",
+            format!("coordinate {v} is outside [0, 1), where a net's cells lie"),
+        ));
+    }
     let n = check(points, 2)?;
     if !n.is_power_of_two() {
         return Ok(None);
-    }
-    if let Some(v) = points.iter().map(|v| (*v).into()).find(|v: &f64| *v >= 1.0) {
-        return Err(Error::input(
-            "discrepancy::net_t_value",
-            format!("coordinate {v} is outside [0, 1)"),
-        ));
     }
     let m = n.trailing_zeros();
     let p: Vec<(f64, f64)> = points

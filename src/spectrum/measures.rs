@@ -38,11 +38,11 @@ pub struct PointSetMeasures {
     /// Number of points per set.
     pub count: usize,
     /// Smallest toroidal distance between two points, relative to `r_max(N)` (mean over sets;
-    /// NaN for single points).
-    pub global_min_distance: f64,
+    /// `None` for single points, which have no neighbour).
+    pub global_min_distance: Option<f64>,
     /// Mean distance from a point to its nearest neighbour, relative to `r_max(N)` (mean over
-    /// sets; NaN for single points).
-    pub average_min_distance: f64,
+    /// sets; `None` for single points).
+    pub average_min_distance: Option<f64>,
     /// Effective Nyquist frequency in units of `sqrt(N)` (`None` above
     /// `2^16` points or below 2 points).
     pub effective_nyquist: Option<f64>,
@@ -80,7 +80,7 @@ pub fn nearest_neighbour_distances(points: &[Point2]) -> Option<Vec<f64>> {
 /// let pts: Vec<[f32; 2]> = (0..256).map(|i| [(i % 16) as f32 / 16.0, (i / 16) as f32 / 16.0]).collect();
 /// let m = point_set_measures(&[pts])?;
 /// let expected = (1.0 / 16.0) / relative_radius_max(256);
-/// assert!((m.global_min_distance - expected).abs() < 1e-6);
+/// assert!((m.global_min_distance.unwrap() - expected).abs() < 1e-6);
 /// let nu = m.effective_nyquist.unwrap();
 /// assert!(nu > 0.75 && nu <= 1.0);
 /// # Ok::<(), strata::Error>(())
@@ -106,20 +106,18 @@ pub fn point_set_measures(sets: &[Vec<Point2>]) -> Result<PointSetMeasures> {
         }
     }
     let r_max = relative_radius_max(n);
-    let (mut global, mut average) = (0.0, 0.0);
-    for s in sets {
-        match nearest_neighbour_distances(s) {
-            Some(d) => {
-                global += d.iter().copied().fold(f64::INFINITY, f64::min) / r_max;
-                average += d.iter().sum::<f64>() / d.len() as f64 / r_max;
-            }
-            None => {
-                global = f64::NAN;
-                average = f64::NAN;
-            }
-        }
-    }
     let k = sets.len() as f64;
+    // single points have no neighbour: no distances (issue 38, N22: they were NaN)
+    let (mut global, mut average) = (0.0, 0.0);
+    let mut distances = n >= 2;
+    for s in sets {
+        let Some(d) = nearest_neighbour_distances(s) else {
+            distances = false;
+            break;
+        };
+        global += d.iter().copied().fold(f64::INFINITY, f64::min) / r_max;
+        average += d.iter().sum::<f64>() / d.len() as f64 / r_max;
+    }
     let (nu, omega) = if (2..=MAX_SPECTRAL_MEASURE_POINTS).contains(&n) {
         let mut rp = RadialPower::from_sets(sets);
         (Some(rp.effective_nyquist()), Some(rp.oscillations()))
@@ -128,8 +126,8 @@ pub fn point_set_measures(sets: &[Vec<Point2>]) -> Result<PointSetMeasures> {
     };
     Ok(PointSetMeasures {
         count: n,
-        global_min_distance: global / k,
-        average_min_distance: average / k,
+        global_min_distance: distances.then(|| global / k),
+        average_min_distance: distances.then(|| average / k),
         effective_nyquist: nu,
         oscillations: omega,
     })

@@ -45,26 +45,39 @@ impl CountRule {
     /// `u32`, or an error naming `sampler` and the nearest allowed counts. Every fixed-count
     /// constructor checks its count through its entry's rule.
     pub fn check(&self, sampler: &'static str, count: u64) -> Result<u32> {
+        self.check_within(sampler, count, MAX_FIXED_COUNT)
+    }
+
+    /// [`check`](CountRule::check) for a caller with a lower limit of its own (a program's
+    /// largest count): counts above `max` (clamped to `1..=`[`MAX_FIXED_COUNT`]) are refused,
+    /// and the counts the message suggests are all at most `max`.
+    pub fn check_within(&self, sampler: &'static str, count: u64, max: u64) -> Result<u32> {
+        let max = max.clamp(1, MAX_FIXED_COUNT);
         if let CountRule::OaPower(t) = self {
-            let q = check_oa_count(sampler, count, *t)?;
+            let q = check_oa_count(sampler, count, *t, max)?;
             return Ok(q.pow(*t));
         }
-        if count == 0 || count > MAX_FIXED_COUNT {
+        if count == 0 || (count > max && *self == CountRule::Any) {
             return Err(Error::count(
                 sampler,
                 count,
-                format!("the count must be between 1 and {MAX_FIXED_COUNT}"),
+                format!("the count must be between 1 and {max}"),
             ));
         }
-        if !self.allows(count) {
+        if count > max || !self.allows(count) {
+            let at_most = if count > max {
+                format!(", at most {max}")
+            } else {
+                String::new()
+            };
             let allowed = match self {
                 CountRule::Square => format!(
-                    "the count must be a perfect square (nearest allowed: {})",
-                    nearest_squares(count)
+                    "the count must be a perfect square{at_most} (nearest allowed: {})",
+                    nearest_squares(count, max)
                 ),
                 other => format!(
-                    "allowed counts: {other} (nearest: {})",
-                    other.nearest(count)
+                    "allowed counts: {other}{at_most} (nearest: {})",
+                    other.nearest_within(count, max)
                 ),
             };
             return Err(Error::count(sampler, count, allowed));
@@ -77,32 +90,40 @@ impl CountRule {
     ///
     /// [`check`]: CountRule::check
     pub fn nearest(&self, n: u64) -> u64 {
-        let n = n.clamp(1, MAX_FIXED_COUNT);
+        self.nearest_within(n, MAX_FIXED_COUNT)
+    }
+
+    /// The allowed count nearest to `n` among those at most `max` (clamped to
+    /// `1..=`[`MAX_FIXED_COUNT`]; the smaller one on a tie): a count
+    /// [`check_within`](CountRule::check_within) accepts under the same `max`.
+    pub fn nearest_within(&self, n: u64, max: u64) -> u64 {
+        let max = max.clamp(1, MAX_FIXED_COUNT);
+        let n = n.clamp(1, max);
+        // of two allowed counts `lo <= n <= hi`, the nearer one (`hi` only when allowed)
+        let pick = |lo: u64, hi: u64| {
+            if hi > max || (lo >= 1 && n - lo <= hi - n) {
+                lo
+            } else {
+                hi
+            }
+        };
         match self {
             CountRule::Any => n,
             CountRule::Square => {
                 let r = n.isqrt();
-                let (lo, hi) = (r * r, (r + 1) * (r + 1));
-                if hi > MAX_FIXED_COUNT || (lo >= 1 && n - lo <= hi - n) {
-                    lo
-                } else {
-                    hi
-                }
+                pick(r * r, (r + 1) * (r + 1))
             }
             CountRule::OaPower(_) => {
-                let all = self.counts_between(1, n.saturating_mul(4).max(1 << 12));
+                let all = self.counts_between(1, n.saturating_mul(4).max(1 << 12).min(max));
                 all.min_by_key(|&c| c.abs_diff(n)).unwrap_or(4)
             }
             CountRule::Fibonacci => fibonacci_numbers()
+                .take_while(|&f| f <= max)
                 .min_by_key(|&f| f.abs_diff(n))
                 .unwrap_or(1),
             CountRule::PowerOfTwo => {
                 let lo = 1u64 << (63 - n.leading_zeros());
-                if n - lo <= lo || lo << 1 > MAX_FIXED_COUNT {
-                    lo
-                } else {
-                    lo << 1
-                }
+                pick(lo, lo << 1)
             }
         }
     }
@@ -221,8 +242,8 @@ fn oa_root(n: u64, t: u32) -> Option<u64> {
 }
 
 /// The allowed symbol counts nearest to a requested sample count, for error messages: the
-/// supported `q` with `q^t` just below and above `count`.
-fn nearest_oa_counts(count: u64, t: u32) -> String {
+/// supported `q` with `q^t` just below and above `count` (the one above only up to `max`).
+fn nearest_oa_counts(count: u64, t: u32, max: u64) -> String {
     let supported = supported_symbols;
     let floor = root_floor(count, t);
     let ceil = if floor.checked_pow(t) == Some(count) {
@@ -233,7 +254,9 @@ fn nearest_oa_counts(count: u64, t: u32) -> String {
     let below = (2..=floor.max(2) as u32 + 1)
         .rev()
         .find(|&q| supported(q) && (q as u64).pow(t) <= count);
-    let above = (ceil.max(2) as u32..).find(|&q| supported(q) && (q as u64).pow(t) >= count);
+    let above = (ceil.max(2) as u32..)
+        .map_while(|q| (q as u64).checked_pow(t).filter(|&c| c <= max).map(|_| q))
+        .find(|&q| supported(q) && (q as u64).pow(t) >= count);
     match (below, above) {
         (Some(b), Some(a)) if b != a => format!(
             "{} ({b}^{t}) or {} ({a}^{t})",
@@ -241,21 +264,29 @@ fn nearest_oa_counts(count: u64, t: u32) -> String {
             (a as u64).pow(t)
         ),
         (_, Some(a)) => format!("{} ({a}^{t})", (a as u64).pow(t)),
-        _ => "none".into(),
+        (Some(b), None) => format!("{} ({b}^{t})", (b as u64).pow(t)),
+        (None, None) => "none".into(),
     }
 }
 
-/// Checks `count = q^t` for a supported `q`, returning `q` (the orthogonal arrays' check,
-/// [`CountRule::OaPower`]).
-pub(crate) fn check_oa_count(name: &'static str, count: u64, t: u32) -> Result<u32> {
+/// Checks `count = q^t` for a supported `q` and `count <= max`, returning `q` (the orthogonal
+/// arrays' check, [`CountRule::OaPower`]).
+fn check_oa_count(name: &'static str, count: u64, t: u32, max: u64) -> Result<u32> {
+    // the limit is named when it is what refuses the count (the rest of the message is the
+    // same for callers with different limits)
     let rule = || {
+        let at_most = if count > max {
+            format!(", at most {max}")
+        } else {
+            String::new()
+        };
         format!(
-            "the count must be q^{t} for a prime q, or a prime power q <= {MAX_PRIME_POWER}, at most {MAX_FIXED_COUNT}"
+            "the count must be q^{t} for a prime q, or a prime power q <= {MAX_PRIME_POWER}{at_most}"
         )
     };
-    if count > MAX_FIXED_COUNT {
+    if count > max {
         // no search for the nearest counts up there: say the rule and the largest
-        let largest = nearest_oa_counts(MAX_FIXED_COUNT, t);
+        let largest = nearest_oa_counts(max, t, max);
         return Err(Error::count(
             name,
             count,
@@ -270,23 +301,26 @@ pub(crate) fn check_oa_count(name: &'static str, count: u64, t: u32) -> Result<u
             format!(
                 "{} (nearest allowed: {})",
                 rule(),
-                nearest_oa_counts(count, t)
+                nearest_oa_counts(count, t, max)
             ),
         )),
     }
 }
 
-/// The perfect squares nearest to `n` (one if `n` is a square, else the one below and the one
-/// above), for error messages.
-pub(crate) fn nearest_squares(n: u64) -> String {
+/// The perfect squares at most `max` nearest to `n` (`n` if it is one, else the one below and
+/// the one above), for error messages.
+pub(crate) fn nearest_squares(n: u64, max: u64) -> String {
     let r = n.isqrt();
-    if n == 0 {
-        return "1".to_string();
-    }
-    if r * r == n {
+    if r * r == n && (1..=max).contains(&n) {
         return format!("{n}");
     }
-    format!("{} or {}", r * r, (r + 1) * (r + 1))
+    let below = r.min(max.isqrt());
+    let above = (r + 1).checked_mul(r + 1).filter(|&a| a <= max);
+    match (below, above) {
+        (0, Some(a)) => format!("{a}"),
+        (b, Some(a)) => format!("{} or {a}", b * b),
+        (b, None) => format!("{}", (b * b).max(1)),
+    }
 }
 
 #[cfg(test)]
@@ -295,10 +329,15 @@ mod tests {
 
     #[test]
     fn nearest_squares_brackets_the_count() {
-        assert_eq!(nearest_squares(10), "9 or 16");
-        assert_eq!(nearest_squares(16), "16");
-        assert_eq!(nearest_squares(0), "1");
-        assert_eq!(nearest_squares(2), "1 or 4");
+        let m = MAX_FIXED_COUNT;
+        assert_eq!(nearest_squares(10, m), "9 or 16");
+        assert_eq!(nearest_squares(16, m), "16");
+        assert_eq!(nearest_squares(0, m), "1");
+        assert_eq!(nearest_squares(2, m), "1 or 4");
+        // issue 38, N17: never a square above the limit
+        assert_eq!(nearest_squares(m - 1, m), "2147395600");
+        assert_eq!(nearest_squares(u64::MAX, m), "2147395600");
+        assert_eq!(nearest_squares(20, 16), "16");
     }
 
     #[test]
@@ -365,10 +404,57 @@ mod tests {
                     let old = q >= 2 && q.checked_pow(t) == Some(n) && supported_symbols(q as u32);
                     assert_eq!(oa_root(n, t).is_some(), old, "{n} = q^{t}");
                     if old && n >= 4 {
-                        assert_eq!(check_oa_count("x", n, t).unwrap() as u64, q);
+                        assert_eq!(
+                            check_oa_count("x", n, t, MAX_FIXED_COUNT).unwrap() as u64,
+                            q
+                        );
                     }
                 }
             }
         }
+    }
+
+    /// Every count a message suggests is one the same check accepts (issue 38, N17: messages
+    /// suggested squares, powers of two and `q^t` above the limit, and `2^25` for `2^26 - 1`).
+    #[test]
+    fn suggested_counts_are_allowed_under_the_same_limit() {
+        let rules = [
+            CountRule::Square,
+            CountRule::PowerOfTwo,
+            CountRule::Fibonacci,
+            CountRule::OaPower(2),
+            CountRule::OaPower(3),
+            CountRule::OaPower(4),
+        ];
+        for rule in rules {
+            for max in [1 << 12, 1 << 26, 1000, MAX_FIXED_COUNT] {
+                for count in [max - 1, max + 1, max, 3 * max / 4, u64::MAX, 1 << 40, 2, 5] {
+                    let Err(e) = rule.check_within("x", count, max) else {
+                        continue;
+                    };
+                    let message = e.to_string();
+                    let at = ["(nearest", "about"].iter().find_map(|w| message.find(w));
+                    let tail = &message[at.expect(&message)..];
+                    let suggested: Vec<u64> = tail
+                        .split(|c: char| !c.is_ascii_digit() && c != '^')
+                        .filter(|w| !w.is_empty() && !w.contains('^'))
+                        .filter_map(|w| w.parse().ok())
+                        .collect();
+                    assert!(!suggested.is_empty(), "{message}");
+                    for c in suggested.iter().filter(|&&c| c > 256) {
+                        assert!(
+                            rule.check_within("x", *c, max).is_ok(),
+                            "{rule} under {max}, {count}: suggests {c}: {message}"
+                        );
+                    }
+                }
+            }
+            let n = rule.nearest_within(u64::MAX, 1 << 26);
+            assert!(rule.check_within("x", n, 1 << 26).is_ok(), "{rule}: {n}");
+        }
+        assert_eq!(CountRule::PowerOfTwo.nearest((1 << 26) - 1), 1 << 26);
+        assert_eq!(CountRule::PowerOfTwo.nearest(5), 4);
+        assert_eq!(CountRule::PowerOfTwo.nearest(6), 4);
+        assert_eq!(CountRule::PowerOfTwo.nearest(7), 8);
     }
 }

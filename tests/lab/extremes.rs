@@ -191,8 +191,30 @@ fn coincident_points_into_the_spectrum() {
         assert!(a.is_finite() && (a - b).abs() < 1e-6);
     }
     let m = point_set_measures(&[pts]).unwrap();
-    assert_eq!(m.global_min_distance, 0.0);
-    assert!(m.average_min_distance.is_finite());
+    assert_eq!(m.global_min_distance, Some(0.0));
+    assert!(m.average_min_distance.unwrap().is_finite());
+}
+
+#[test]
+fn a_single_point_has_no_distances_and_nets_are_half_open() {
+    // issue 38, N22: one point gave NaN distances; net_t_value said [0, 1] where it needs
+    // [0, 1), and took 1.0 when the count was not a power of two
+    use strata_lab::analysis::discrepancy::net_t_value;
+    use strata_lab::spectrum::point_set_measures;
+    let m = point_set_measures(&[vec![[0.5f32, 0.5]], vec![[0.1, 0.2]]]).unwrap();
+    assert_eq!(m.count, 1);
+    assert_eq!(m.global_min_distance, None);
+    assert_eq!(m.average_min_distance, None);
+    assert_eq!(m.effective_nyquist, None);
+    for pts in [
+        &[1.0f64, 0.5, 0.1, 0.1][..],
+        &[0.5, 0.5, 0.2, 1.0, 0.3, 0.3],
+        &[1.5, 0.5],
+    ] {
+        let e = net_t_value(pts).unwrap_err().to_string();
+        assert!(e.contains("[0, 1)"), "{e}");
+    }
+    assert_eq!(net_t_value(&[0.0f64, 0.0, 0.5, 0.5]).unwrap(), Some(0));
 }
 
 #[test]

@@ -575,7 +575,11 @@ fn a_read_only_target_is_refused_not_replaced() {
         "points",
         &["--sampler", "jittered", "-n", "16", "--png", s(&keep)],
     );
-    assert_refused(&r, &["keep.png", "read-only"], "points --png onto a read-only file");
+    assert_refused(
+        &r,
+        &["keep.png", "read-only"],
+        "points --png onto a read-only file",
+    );
     assert_eq!(std::fs::read(&keep).unwrap(), b"mine");
     // a writable one is replaced, its permissions kept
     std::fs::set_permissions(&keep, std::fs::Permissions::from_mode(0o640)).unwrap();
@@ -617,7 +621,10 @@ fn an_interrupted_program_leaves_no_temporary_file() {
     let dir = scratch("interrupt");
     let out = dir.join("o");
     let mut leftovers = Vec::new();
-    for (k, delay_ms) in [150u64, 300, 450, 600, 800, 1000, 1300, 1600].iter().enumerate() {
+    for (k, delay_ms) in [150u64, 300, 450, 600, 800, 1000, 1300, 1600]
+        .iter()
+        .enumerate()
+    {
         let _ = std::fs::remove_dir_all(&out);
         let mut c = command(
             "spectrum",
@@ -749,7 +756,9 @@ fn measure_labels_are_unique_among_all_outputs() {
     }
     let out = dir.join("out");
     let mut c = command("measure", &[]);
-    c.args(&files).args(["--resolution", "8", "--out"]).arg(&out);
+    c.args(&files)
+        .args(["--resolution", "8", "--out"])
+        .arg(&out);
     let r = finish(c);
     assert_eq!(r.code, 0, "{}", r.err);
     let csv = std::fs::read_to_string(out.join("measures.csv")).unwrap();
@@ -764,7 +773,10 @@ fn measure_labels_are_unique_among_all_outputs() {
     unique.sort_unstable();
     unique.dedup();
     assert_eq!(unique.len(), labels.len(), "{labels:?}");
-    assert!(labels.contains(&"x%FF") && labels.contains(&"x%FE"), "{labels:?}");
+    assert!(
+        labels.contains(&"x%FF") && labels.contains(&"x%FE"),
+        "{labels:?}"
+    );
     // one picture per file, none overwritten
     let pictures = std::fs::read_dir(&out)
         .unwrap()
@@ -777,5 +789,290 @@ fn measure_labels_are_unique_among_all_outputs() {
         })
         .count();
     assert_eq!(pictures, files.len());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+// The second hostile pass (issue 38): messages and options.
+
+#[test]
+fn count_messages_suggest_counts_the_program_takes() {
+    // N17: the suggestions went past the program's own limit (q^2 = 67387681 > 2^26), and a
+    // power of two was rounded down to half the count asked for
+    let limit = (1u64 << 26).to_string();
+    let cases: &[(&str, &[&str])] = &[
+        ("oa-bose", &["67092481"]),
+        ("net02bn", &["67108864"]),
+        ("regular", &["67092481", "67108864"]),
+    ];
+    for (sampler, suggested) in cases {
+        let r = run("points", &["--sampler", sampler, "-n", "67108863"]);
+        assert_refused(&r, suggested, sampler);
+        let numbers: Vec<u64> = r
+            .err
+            .split(|c: char| !c.is_ascii_digit())
+            .filter_map(|w| w.parse().ok())
+            .collect();
+        for n in numbers {
+            assert!(n <= 1 << 26, "{sampler}: {n} above {limit}: {}", r.err);
+        }
+    }
+    let r = run("spectrum", &["--sampler", "oa-bose", "-n", "67108863"]);
+    assert_refused(&r, &["67092481"], "spectrum oa-bose");
+    assert!(!r.err.contains("67387681"), "{}", r.err);
+}
+
+#[test]
+fn points_refuses_before_it_says_it_works_and_ignores_nothing() {
+    // N23: the progress line came before the refusal; --resolution without --pixel and
+    // --no-header with a UTK format were silently ignored
+    let r = run("points", &["--sampler", "regular", "-n", "67108863"]);
+    assert_refused(&r, &["perfect square"], "a count refused");
+    let r = run(
+        "points",
+        &["--sampler", "sobol", "-n", "4", "--resolution", "4x4"],
+    );
+    assert_refused(
+        &r,
+        &["--resolution", "--pixel"],
+        "--resolution without --pixel",
+    );
+    for format in ["bin", "utk"] {
+        let r = run(
+            "points",
+            &[
+                "--sampler",
+                "sobol",
+                "-n",
+                "4",
+                "--no-header",
+                "--format",
+                format,
+            ],
+        );
+        assert_refused(&r, &["--no-header", "csv"], format);
+    }
+    let r = run(
+        "points",
+        &[
+            "--sampler",
+            "zsobol",
+            "-n",
+            "4",
+            "--pixel",
+            "1,2",
+            "--resolution",
+            "4x4",
+        ],
+    );
+    assert_eq!(r.code, 0, "{}", r.err);
+    // old #29: a relaxation of a few thousand points says what it does, and when it is done
+    let r = run(
+        "points",
+        &["--sampler", "lloyd", "-n", "4096", "--iterations", "1"],
+    );
+    assert_eq!(r.code, 0, "{}", r.err);
+    assert!(
+        r.err.contains("points of lloyd") && r.err.contains("made in"),
+        "{}",
+        r.err
+    );
+}
+
+#[test]
+fn measure_says_when_its_sums_are_long() {
+    // N16: the help promised "a few seconds" at n^2 d = 2^33 (59 s measured) and the work ran
+    // in silence; a file of 2^28 terms (about a second) now says when it starts and ends
+    let dir = scratch("long-sums");
+    let file = dir.join("pts.csv");
+    let n = 11_586u64; // n^2 * 2 just above 2^28
+    assert!(n * n * 2 >= 1 << 28);
+    let text: String = (0..n)
+        .map(|i| {
+            format!(
+                "{},{}\n",
+                (i as f64 + 0.5) / n as f64,
+                ((i * 7919) % n) as f64 / n as f64
+            )
+        })
+        .collect();
+    std::fs::write(&file, text).unwrap();
+    let r = run("measure", &[s(&file)]);
+    assert_eq!(r.code, 0, "{}", r.err);
+    assert!(
+        r.err.contains("pairwise sums") && r.err.contains("measured in"),
+        "{}",
+        r.err
+    );
+    let help = run("measure", &["--help"]);
+    assert!(!help.out.contains("a few seconds"), "{}", help.out);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+// The second hostile pass (issue 38): memory bounded before it is allocated.
+
+/// `render`'s last stderr line: (peak, estimate) in MiB.
+fn render_memory(r: &Run) -> (u64, u64) {
+    let line = r
+        .err
+        .lines()
+        .find(|l| l.starts_with("render: peak memory"))
+        .unwrap_or_else(|| panic!("no peak line: {}", r.err));
+    let numbers: Vec<u64> = line
+        .split(|c: char| !c.is_ascii_digit())
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    (numbers[0], numbers[1])
+}
+
+#[test]
+fn render_memory_stays_within_its_estimate() {
+    // N10: render at its documented maximum took 5.1 GB against "under 4 GB". Now each run's
+    // memory is estimated before any work and refused above 4 GiB; here the estimate is checked
+    // against the peak measured (resident memory, /proc) at two sizes, and its per-pixel part
+    // against the measured growth
+    if !Path::new("/proc/self/status").exists() {
+        return; // the peak is read from /proc (Linux)
+    }
+    let dir = scratch("render-memory");
+    let mut measured = Vec::new();
+    for side in [128u64, 384] {
+        let size = format!("{side}x{side}");
+        let out = dir.join(&size);
+        let r = run(
+            "render",
+            &[
+                "--scene",
+                "cornell-direct",
+                "--samplers",
+                "sobol,random,halton,zsobol",
+                "--size",
+                &size,
+                "--spp",
+                "1,4",
+                "--reference-spp",
+                "4",
+                "--seeds",
+                "1",
+                "--out",
+                s(&out),
+            ],
+        );
+        assert_eq!(r.code, 0, "{}", r.err);
+        let (peak, estimate) = render_memory(&r);
+        assert!(
+            peak <= estimate,
+            "{size}: peak {peak} MiB above the estimate {estimate} MiB"
+        );
+        measured.push((side * side, peak, estimate));
+    }
+    let [(p0, peak0, est0), (p1, peak1, est1)] = measured[..] else {
+        unreachable!()
+    };
+    let (grew, allowed) = ((peak1 - peak0) as f64, (est1 - est0) as f64);
+    assert!(
+        grew <= allowed,
+        "{} pixels more took {grew} MiB more, the estimate allows {allowed}",
+        p1 - p0
+    );
+    // not so loose that it refuses what would fit: the per-pixel part at most 2x what it took
+    assert!(
+        allowed <= 2.0 * grew,
+        "estimate {allowed} MiB for {grew} MiB measured"
+    );
+    // the documented maximum side with every sequence at eight counts is refused at once
+    let r = run(
+        "render",
+        &[
+            "--size",
+            "1024x1024",
+            "--spp",
+            "1,4,9,16,25,36,49,64",
+            "--out",
+            s(&dir.join("big")),
+        ],
+    );
+    assert_refused(
+        &r,
+        &["MiB", "allowed: at most 4096 MiB"],
+        "render 1024^2 x 80",
+    );
+    assert!(!dir.join("big").join("reference.png").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn every_file_measure_reads_can_have_its_spectrum() {
+    // N11: `measure --out` on a file of more than 2^20 sets computed for seconds, then refused
+    // the set count; files are now refused past 2^16 sets before they are read, under the
+    // spectrum's limit, and a file at that count goes through --out
+    use strata_lab::{pointsets, spectrum};
+    assert!(pointsets::MAX_SETS as u64 <= spectrum::MAX_REALIZATIONS as u64);
+    let dir = scratch("many-sets");
+    let file = dir.join("sets.txt");
+    let one = "0.25 0.5\n0.75 0.125\n";
+    let text = vec![one; pointsets::MAX_SETS].join("#\n");
+    std::fs::write(&file, text).unwrap();
+    let r = run(
+        "measure",
+        &[s(&file), "--resolution", "8", "--out", s(&dir.join("out"))],
+    );
+    assert_eq!(r.code, 0, "{}", r.err);
+    assert!(dir.join("out").join("sets-spectrum.png").exists());
+    let more = vec![one; pointsets::MAX_SETS + 1].join("#\n");
+    std::fs::write(&file, more).unwrap();
+    let r = run("measure", &[s(&file), "--out", s(&dir.join("out2"))]);
+    assert_refused(&r, &["65536"], "2^16 + 1 sets");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn spectrum_seeds_do_not_wrap_and_small_sets_have_a_low_band() {
+    // N18: --seed 2^64-1 --realizations 3 wrapped to seeds 0 and 1 in silence
+    let dir = scratch("spectrum-edges");
+    let out = dir.join("o");
+    let r = run(
+        "spectrum",
+        &spectrum_args(
+            s(&out),
+            &["--seed", "18446744073709551615", "--realizations", "3"],
+        ),
+    );
+    assert_refused(
+        &r,
+        &["--seed", "18446744073709551613"],
+        "seed + R past 2^64",
+    );
+    let r = run(
+        "spectrum",
+        &spectrum_args(
+            s(&out),
+            &["--seed", "18446744073709551613", "--realizations", "3"],
+        ),
+    );
+    assert_eq!(r.code, 0, "{}", r.err);
+    // N19: -n 2 to 4 printed NaN for the low-band power
+    for n in ["2", "3", "4"] {
+        let r = run(
+            "spectrum",
+            &[
+                "--sampler",
+                "sobol",
+                "-n",
+                n,
+                "--realizations",
+                "4",
+                "--resolution",
+                "16",
+                "--out",
+                s(&out),
+            ],
+        );
+        assert_eq!(r.code, 0, "{}", r.err);
+        assert!(
+            !r.out.contains("NaN") && !r.out.contains("nan"),
+            "-n {n}: {}",
+            r.out
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

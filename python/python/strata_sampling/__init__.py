@@ -366,8 +366,9 @@ def psa(points: Any) -> Dict[str, Any]:
     """The point-set measures of Schlömer's PSA (Heck, Schlömer, Deussen 2013) of one set
     (``(n, 2)``) or averaged over several (``(r, n, 2)`` or a sequence of ``(n, 2)``): a dict of
     ``count``, ``global_min_distance`` and ``average_min_distance`` (toroidal, relative to
-    ``r_max(n)``, the spacing of a hexagonal packing), ``effective_nyquist`` and
-    ``oscillations`` (``None`` above 2^16 points)."""
+    ``r_max(n)``, the spacing of a hexagonal packing; ``None`` for single points, which have no
+    neighbour), ``effective_nyquist`` and ``oscillations`` (``None`` above 2^16 points or below
+    2)."""
     return dict(_strata.psa(_v.point_sets(points, "psa")))
 
 

@@ -861,7 +861,7 @@ impl Sequence {
                     spp as u64,
                     format!(
                         "{name} needs a square number of samples per pixel (nearest allowed: {})",
-                        crate::counts::nearest_squares(spp as u64)
+                        crate::counts::nearest_squares(spp as u64, u32::MAX as u64)
                     ),
                 ));
             }

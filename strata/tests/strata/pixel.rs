@@ -832,7 +832,11 @@ fn permutations_past_two_to_the_31_are_bijections() {
     let (a, b) = (p.apply(3_112_325), p.apply(3_374_643));
     assert_ne!(a, b, "both map to {a}");
     // a window of indices whose rotation crosses 2^32, all distinct and in range
-    for (len, key) in [(u32::MAX, 7u32), (65535 * 65535, 0x9e37_79b9), ((1 << 31) + 5, 1)] {
+    for (len, key) in [
+        (u32::MAX, 7u32),
+        (65535 * 65535, 0x9e37_79b9),
+        ((1 << 31) + 5, 1),
+    ] {
         let p = Permutation::new(len, key).unwrap();
         let mut seen: Vec<u32> = (0..1u32 << 20).map(|i| p.apply(i)).collect();
         assert!(seen.iter().all(|&v| v < len));
@@ -859,5 +863,8 @@ fn listing_every_count_of_a_rule_allocates_nothing_up_front() {
     let mut all = CountRule::Any.counts_between(1, u64::MAX);
     assert_eq!(all.next(), Some(1));
     assert_eq!(all.last(), Some(strata::counts::MAX_FIXED_COUNT));
-    assert_eq!(CountRule::Square.counts_between(1, u64::MAX).count(), 46_340);
+    assert_eq!(
+        CountRule::Square.counts_between(1, u64::MAX).count(),
+        46_340
+    );
 }
