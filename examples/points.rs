@@ -227,7 +227,7 @@ fn main() -> ExitCode {
         // run says what it is doing, on stderr (stdout holds the values); relaxations and
         // optimisations are long from a few thousand points on (issue 38, N23; #29)
         enum Source {
-            Pixel(PixelSampler),
+            Pixel(Box<PixelSampler>),
             Built(Built),
         }
         let source = if args.pixel.is_some() {
@@ -235,11 +235,11 @@ fn main() -> ExitCode {
             let sequence = Sequence::by_name(&name, resolution)?;
             let spp = u32::try_from(n)
                 .map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
-            Source::Pixel(PixelSampler::new(
+            Source::Pixel(Box::new(PixelSampler::new(
                 sequence,
                 spp,
                 strata::Seed(args.params.seed),
-            )?)
+            )?))
         } else {
             // one build for any --dims: a 2D sampler (with its strata grids) at 2
             let params = params.dims(args.dims as u32);
