@@ -40,7 +40,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let t = test_tuple(k);
     var v: vec2<u32>;
-    if (params.sequence == 6u) {
+    if (strata_is_joint(params.sequence)) {
         v = strata_joint_draw(params, t.xy, t.z, t.w);
     } else {
         v = strata_draw(params, t.xy, t.z, t.w);

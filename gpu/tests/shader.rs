@@ -1,8 +1,8 @@
 //! The WGSL kernel against the CPU, bit for bit.
 //!
 //! `naga` validates the shader; then, on the Vulkan adapter present (Mesa's lavapipe CPU driver
-//! in CI), `2^22` draws of each of the six kernel sequences and of `zjoint` at groups of 2, 8
-//! and 512, half of them a renderer's grid of
+//! in CI), `2^22` draws of each GPU sequence the crate declares, of `zjoint` at groups of 2, 8
+//! and 512 and of `sobol12` at 512, half of them a renderer's grid of
 //! pixels, indices and dimensions, half hashed over the whole `u32` range of each, are compared
 //! with `PixelSampler::sample_2d_u32`. Without an adapter the test says which driver to install
 //! and is skipped, unless `STRATA_GPU_REQUIRED` is set (as `.ci/run` sets it), where it fails.
@@ -48,7 +48,7 @@ fn the_gpu_computes_the_cpu_bits() {
     };
     eprintln!("adapter: {}", gpu.name);
     // every sequence the kernel has, from the declarations (so a new one is tested as soon as
-    // its row says it runs on the GPU), and zjoint's smallest and largest groups
+    // its row says it runs on the GPU), zjoint's smallest and largest groups and sobol12's largest
     let sequences: Vec<Sequence> = Sequence::NAMES
         .iter()
         .map(|n| Sequence::by_name(n, [64, 48]).unwrap())
@@ -56,6 +56,7 @@ fn the_gpu_computes_the_cpu_bits() {
         .chain([
             Sequence::zjoint(64, 64, 2).unwrap(),
             Sequence::zjoint(48, 64, 512).unwrap(),
+            Sequence::sobol12(512).unwrap(),
         ])
         .collect();
     assert!(sequences.len() >= 10, "{sequences:?}");

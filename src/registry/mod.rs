@@ -48,6 +48,7 @@ static ENTRIES: &[Entry] = &[
     ccvt::ENTRY,
     bnot::ENTRY,
     strata_entries::SOBOL,
+    strata_entries::SOBOL12,
     strata_entries::FAURE4,
     strata_entries::HALTON,
     strata_entries::LATTICE,

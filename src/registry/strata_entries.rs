@@ -263,6 +263,31 @@ pub(crate) const SOBOL: Entry = Entry {
     },
 };
 
+/// The registry entry of `sobol12`.
+pub(crate) const SOBOL12: Entry = Entry {
+    name: "sobol12",
+    description: "(1,2)-Sobol': Sobol' whose dimension pairs (2k, 2k+1) are (1,2)-sequences, \
+                  Owen-scrambled by hashing, progressive, up to 692 --dims",
+    paper: "Bonneel, Coeurjolly, Iehl, Ostromoukhov 2025; Burley 2020",
+    family: Family::Qmc,
+    progressive: true,
+    seeded: true,
+    counts: CountRule::Any,
+    parameters: &[],
+    promise: "(0,m,2)-nets in dims 0-1, (1,m,2)-nets in dims 2k, 2k+1 at every `2^m`; up to 692 \
+              dims",
+    rates: Rates::NETS,
+    expensive: false,
+    blue_noise: None,
+    any_dims: true,
+    build: |p| {
+        Ok(match p.dims {
+            2 => Built::two(Sobol::one_two(p.sampler_seed())),
+            d => Built::nd(SobolNd::one_two(d, p.sampler_seed())?),
+        })
+    },
+};
+
 /// The registry entry of `faure4`.
 pub(crate) const FAURE4: Entry = Entry {
     name: "faure4",

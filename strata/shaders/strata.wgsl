@@ -239,7 +239,8 @@ fn strata_sample(
 }
 
 // The 2D draw at `dim` of sample `index` of `pixel`, as 32-bit fixed point (value / 2^32), for
-// sequences 0-5 (zjoint, 6, is `strata_joint_draw` in strata_zjoint.wgsl; here it gives 0).
+// sequences 0-5 (the joint sequences 6 and 7 are `strata_joint_draw` in strata_zjoint.wgsl;
+// here they give 0).
 fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32) -> vec2<u32> {
     let seq = params.sequence;
     let at = strata_sample(params, pixel, index, dim);

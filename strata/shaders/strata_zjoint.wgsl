@@ -1,7 +1,10 @@
-// strata_zjoint.wgsl: the draws of the `zjoint` sequence (sequence 6) of the `strata` crate's
-// path-tracer adapter, as WGSL: a port of `kernel::joint` and of the adapter's keying of a
-// draw by its group's first dimension, the same bits as `PixelSampler::sample_2d_u32`, which
-// the crate's GPU test checks over 2^22 draws for groups of 2, 8 and 512.
+// strata_zjoint.wgsl: the draws of the joint sequences of the `strata` crate's path-tracer
+// adapter, as WGSL: sequence 6 (`zjoint`, `zquad`, `zsobol12`: Z-ordered) and sequence 7
+// (`sobol12`: each pixel its own copy), which differ only in their table and in the keys and
+// index strata.wgsl's `strata_sample` gives them. A port of `kernel::joint` and of the adapter's
+// keying of a draw by its group's first dimension, the same bits as
+// `PixelSampler::sample_2d_u32`, which the crate's GPU test checks over 2^22 draws for each of
+// these sequences and for groups of 2, 8 and 512.
 //
 // Use: include strata.wgsl, then this file, and declare the table this file reads at a
 // binding of your choice, filled with the words of `Sequence::gpu_joint_table()` (word 0 the
@@ -42,7 +45,12 @@ fn strata_joint_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim
     return reverseBits(strata_owen_rev2(p, k.v));
 }
 
-// The zjoint draw as floats in [0, 1): the top 24 bits of each value.
+// Whether a sequence number is one of this file's (6 or 7), not strata.wgsl's `strata_draw`.
+fn strata_is_joint(sequence: u32) -> bool {
+    return sequence == 6u || sequence == 7u;
+}
+
+// The joint draw as floats in [0, 1): the top 24 bits of each value.
 fn strata_joint_get_2d(
     params: StrataParameters,
     pixel: vec2<u32>,

@@ -143,7 +143,7 @@ fn the_renderer_crate_pins_its_samplers_with_the_same_digests() {
         compared += 1;
     }
     // every renderer sampler, 2D and D-dimensional forms
-    assert_eq!(compared, 27);
+    assert_eq!(compared, 30);
 }
 
 #[test]

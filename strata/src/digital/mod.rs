@@ -13,6 +13,16 @@
 //!   file `new-joe-kuo-6.1000`, kept verbatim beside this module with its BSD licence
 //!   (`LICENSE-new-joe-kuo-6`, Copyright (c) 2008 Frances Y. Kuo and Stephen Joe), turned into
 //!   matrices at compile time by the standard recurrence (Bratley and Fox 1988).
+//! * **(1,2)-Sobol'** (N. Bonneel, D. Coeurjolly, J.-C. Iehl, V. Ostromoukhov, "Sobol'
+//!   Sequences with Guaranteed-Quality 2D Projections", ACM TOG 44(4), 2025): a Sobol'
+//!   sequence of 692 dimensions whose pairs of dimensions `(2k, 2k+1)` are all
+//!   (1,2)-sequences (pair 0, the identity and Pascal, a (0,2)-sequence), where Joe and Kuo's
+//!   pairs have `t` from 3 to 12. Its initial direction numbers, derived from the matrices of
+//!   UTK's `SamplerOneTwoSobol.hpp` (BSD licence), are kept beside this module in Joe and Kuo's
+//!   layout (`new-one-two-sobol.692`, provenance and licence in `LICENSE-one-two-sobol`) and
+//!   turned into matrices at compile time by the same recurrence. Its polynomials are
+//!   irreducible and distinct, not all primitive (429 of 691 are), which is what a digital
+//!   sequence needs; 308 have degree 32, the most the recurrence takes.
 //! * **pmj02** as a digital sequence: the generator matrices behind Helmer, Christensen and
 //!   Kensler's stochastic pmj02 ("Stochastic Generation of (t, s) Sample Sequences", EGSR 2021),
 //!   the unsigned Stirling numbers of the first kind mod 2 (x: `C[r][c] = s(c, r)`, y:
@@ -442,9 +452,22 @@ const fn next_number(text: &[u8], at: &mut usize) -> (u32, bool) {
     (n, k >= text.len() || text[k] == b'\n')
 }
 
+/// The number of dimensions of the (1,2)-Sobol' sequence.
+pub(crate) const ONE_TWO_DIMENSIONS: u32 = 692;
+
+/// The (1,2)-Sobol' sequence's polynomials and initial direction numbers in Joe and Kuo's
+/// layout (`new-one-two-sobol.692`; provenance and BSD licence in `LICENSE-one-two-sobol`
+/// beside it): our dimension `d - 1`.
+const ONE_TWO: &str = include_str!("new-one-two-sobol.692");
+
+/// The generator matrices of the (1,2)-Sobol' sequence (Bonneel et al. 2025), built at compile
+/// time from [`ONE_TWO`] by the standard recurrence: 87 KiB. Dimensions 0 and 1 are Sobol''s.
+pub(crate) static ONE_TWO_SOBOL: [Matrix; ONE_TWO_DIMENSIONS as usize] =
+    parse_joe_kuo(ONE_TWO.as_bytes());
+
 /// The Sobol' matrices of a table in Joe and Kuo's format (a header line, then `d s a m_1 ..
 /// m_s` per line, `d` from 2 up), dimension 0 the identity. Checks what the recurrence
-/// needs: the lines in order, `1 <= s <= 31`, `a < 2^(s-1)`, each `m_k` odd and below `2^k`.
+/// needs: the lines in order, `1 <= s <= 32`, `a < 2^(s-1)`, each `m_k` odd and below `2^k`.
 const fn parse_joe_kuo<const N: usize>(text: &[u8]) -> [Matrix; N] {
     let mut out = [[0u32; 32]; N];
     out[0] = sobol01_matrices()[0];
@@ -461,15 +484,15 @@ const fn parse_joe_kuo<const N: usize>(text: &[u8]) -> [Matrix; N] {
             "new-joe-kuo-6: the lines must be in order"
         );
         let (s, _) = next_number(text, &mut at);
-        assert!(s >= 1 && s <= 31, "new-joe-kuo-6: degree out of range");
+        assert!(s >= 1 && s <= 32, "new-joe-kuo-6: degree out of range");
         let (a, _) = next_number(text, &mut at);
         assert!(a < 1 << (s - 1), "new-joe-kuo-6: coefficients out of range");
-        let mut m = [0u32; 31];
+        let mut m = [0u32; 32];
         let mut k = 0;
         while k < s as usize {
             let (v, end) = next_number(text, &mut at);
             assert!(
-                v % 2 == 1 && v < 1 << (k + 1),
+                v % 2 == 1 && (v as u64) < 1u64 << (k + 1),
                 "new-joe-kuo-6: m_k must be odd, < 2^k"
             );
             assert!(
@@ -704,6 +727,206 @@ mod tests {
                 assert_eq!(c.trailing_zeros(), 31 - k as u32, "line {line}: column {k}");
             }
         }
+    }
+
+    #[test]
+    fn the_one_two_matrices_are_utk_s() {
+        // the first 32 columns of dimensions 2, 3, 345, 690 and 691 as UTK's
+        // SamplerOneTwoSobol.hpp lists them (commit 4c195da; see LICENSE-one-two-sobol): the
+        // table here, through the recurrence, gives UTK's matrices
+        let utk: [(usize, [u32; 32]); 5] = [
+            (
+                2,
+                [
+                    0x80000000, 0x40000000, 0xe0000000, 0xb0000000, 0x68000000, 0xf4000000,
+                    0x86000000, 0x4f000000, 0xe8800000, 0xb4400000, 0x66e00000, 0xffb00000,
+                    0x80e80000, 0x40b40000, 0xe0660000, 0xb0ff0000, 0x68808000, 0xf4404000,
+                    0x86e0e000, 0x4fb0b000, 0xe8e86800, 0xb4b4f400, 0x66668600, 0xffff4f00,
+                    0x80006880, 0x4000f440, 0xe00086e0, 0xb0004fb0, 0x6800e8e8, 0xf400b4b4,
+                    0x86006666, 0x4f00ffff,
+                ],
+            ),
+            (
+                3,
+                [
+                    0x80000000, 0x40000000, 0x20000000, 0xf0000000, 0xc8000000, 0x64000000,
+                    0xd2000000, 0x37000000, 0xa0800000, 0xb0400000, 0xe8200000, 0x94f00000,
+                    0x1ac80000, 0x53640000, 0x72520000, 0x87770000, 0x48008000, 0x24004000,
+                    0xf2002000, 0xc700f000, 0x6880c800, 0xd4406400, 0x3a20d200, 0xa3f03700,
+                    0xba48a080, 0xe324b040, 0x9a72e820, 0x138794f0, 0x52c89ac8, 0x77641364,
+                    0x80525252, 0x40777777,
+                ],
+            ),
+            (
+                345,
+                [
+                    0x80000000, 0xc0000000, 0xe0000000, 0x70000000, 0xc8000000, 0xa4000000,
+                    0xfa000000, 0x8f000000, 0x39800000, 0x59400000, 0x2b200000, 0xd5900000,
+                    0xe0080000, 0x949c0000, 0xf29e0000, 0x82e90000, 0x298a8000, 0x55abc000,
+                    0xbc5d6000, 0x63983000, 0x5224e800, 0x5ac23400, 0x39874200, 0x9c6f6300,
+                    0x0e212780, 0x86418c40, 0x05cdcda0, 0x4331ed50, 0x9db7be68, 0x38ce4c2c,
+                    0xb547c606, 0xc641f6fd,
+                ],
+            ),
+            (
+                690,
+                [
+                    0x80000000, 0x40000000, 0x60000000, 0x50000000, 0x48000000, 0xfc000000,
+                    0xc6000000, 0xdf000000, 0x20800000, 0xe8c00000, 0xfda00000, 0xa0100000,
+                    0x74580000, 0xdd740000, 0xa5660000, 0x145b0000, 0xa8618000, 0xc440c000,
+                    0xeb602000, 0x06b03000, 0xd6c81800, 0xececb400, 0x40323a00, 0xc06d1900,
+                    0x22827f80, 0x24a58840, 0x4b6ef560, 0x0d174db0, 0xd4437c48, 0xe675c52c,
+                    0x83965612, 0x5bf3e23d,
+                ],
+            ),
+            (
+                691,
+                [
+                    0x80000000, 0xc0000000, 0x60000000, 0x50000000, 0x88000000, 0xbc000000,
+                    0xba000000, 0x83000000, 0x68800000, 0x24400000, 0x4b200000, 0x51900000,
+                    0xc1980000, 0xd6b40000, 0xbffa0000, 0x91370000, 0x2a918000, 0x4c804000,
+                    0xd3c0a000, 0x02803000, 0x0fd0d800, 0xad983400, 0x46c80600, 0x52b43900,
+                    0x0e8deb80, 0x225d4cc0, 0x6b77ef60, 0x65463ab0, 0x3f137008, 0x34b0d72c,
+                    0xd740954e, 0xe5e1fccd,
+                ],
+            ),
+        ];
+        for (d, columns) in utk {
+            assert_eq!(ONE_TWO_SOBOL[d], columns, "dimension {d}");
+        }
+        assert_eq!(ONE_TWO_SOBOL[..2], sobol01_matrices());
+    }
+
+    /// The product of two polynomials over GF(2) modulo `p` (degree `s <= 32`), bit `k` the
+    /// coefficient of `x^k`.
+    fn mul_mod(a: u64, b: u64, p: u64, s: u32) -> u64 {
+        let (mut r, mut a, mut b) = (0u64, a, b);
+        while b != 0 {
+            if b & 1 == 1 {
+                r ^= a;
+            }
+            b >>= 1;
+            a <<= 1;
+            if a >> s & 1 == 1 {
+                a ^= p;
+            }
+        }
+        r
+    }
+
+    /// `x^(2^k)` modulo `p`.
+    fn x_pow_2k(k: u32, p: u64, s: u32) -> u64 {
+        let mut x = if s == 1 { 2 ^ p } else { 2 };
+        for _ in 0..k {
+            x = mul_mod(x, x, p, s);
+        }
+        x
+    }
+
+    /// The greatest common divisor of two polynomials over GF(2).
+    fn gcd(mut a: u64, mut b: u64) -> u64 {
+        while b != 0 {
+            while a != 0 && 63 - a.leading_zeros() >= 63 - b.leading_zeros() {
+                a ^= b << ((63 - a.leading_zeros()) - (63 - b.leading_zeros()));
+            }
+            core::mem::swap(&mut a, &mut b);
+        }
+        a
+    }
+
+    #[test]
+    fn every_one_two_matrix_is_its_recurrence_over_a_distinct_irreducible_polynomial() {
+        // Rabin's test: x^(2^s) = x mod p, and x^(2^(s/q)) - x coprime to p for each prime q
+        // dividing s. The polynomials are irreducible (not all primitive: 429 of 691 are) and
+        // distinct, as the dimensions of a digital sequence need
+        let mut seen = Vec::new();
+        let mut primitive = 0;
+        for (line, m) in ONE_TWO.lines().skip(1).zip(&ONE_TWO_SOBOL[1..]) {
+            let v: Vec<u64> = line
+                .split_whitespace()
+                .map(|x| x.parse().unwrap())
+                .collect();
+            let (s, a) = (v[1] as u32, v[2]);
+            let p = (1u64 << s) | (a << 1) | 1;
+            assert_eq!(
+                x_pow_2k(s, p, s),
+                if s == 1 { 2 ^ p } else { 2 },
+                "line {line}"
+            );
+            for q in (2..=s).filter(|q| s % q == 0 && (2..*q).all(|r| q % r != 0)) {
+                let x = x_pow_2k(s / q, p, s) ^ 2;
+                assert_eq!(gcd(p, x), 1, "line {line}: reducible");
+            }
+            assert!(!seen.contains(&p), "line {line}: a polynomial twice");
+            seen.push(p);
+            // primitive when x^((2^s - 1) / r) != 1 for every prime r dividing 2^s - 1
+            let order = (1u64 << s) - 1;
+            let mut n = order;
+            let mut factors = Vec::new();
+            let mut r = 2;
+            while r * r <= n {
+                if n % r == 0 {
+                    factors.push(r);
+                    while n % r == 0 {
+                        n /= r;
+                    }
+                }
+                r += 1;
+            }
+            if n > 1 {
+                factors.push(n);
+            }
+            let pow = |mut e: u64| {
+                let (mut acc, mut base) = (1u64, if s == 1 { 2 ^ p } else { 2 });
+                while e != 0 {
+                    if e & 1 == 1 {
+                        acc = mul_mod(acc, base, p, s);
+                    }
+                    base = mul_mod(base, base, p, s);
+                    e >>= 1;
+                }
+                acc
+            };
+            if factors.iter().all(|f| pow(order / f) != 1) {
+                primitive += 1;
+            }
+            for k in 0..s as usize {
+                assert_eq!(m[k] as u64, v[3 + k] << (31 - k), "line {line}");
+            }
+        }
+        assert_eq!(seen.len(), 691);
+        assert_eq!(primitive, 429);
+    }
+
+    /// The largest t of the pair of dimensions `(2k, 2k + 1)` of `matrices` over `2^m` points,
+    /// `m = 1..=32` (the rank criterion), for each `k`.
+    fn pair_t_values(matrices: &[Matrix]) -> Vec<u32> {
+        (0..matrices.len() / 2)
+            .map(|k| {
+                let pair = [matrices[2 * k], matrices[2 * k + 1]];
+                (1..=32)
+                    .map(|m| digital_t_value_in(&pair, m, 1))
+                    .max()
+                    .unwrap()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn every_one_two_pair_is_a_one_two_sequence() {
+        // Bonneel et al.'s property, exactly: the pair (2k, 2k + 1) is a (1,2)-sequence at every
+        // 2^m up to 2^32, pair 0 a (0,2)-sequence
+        let t = pair_t_values(&ONE_TWO_SOBOL);
+        assert_eq!(t.len(), 346);
+        assert_eq!(t[0], 0);
+        for (k, &t) in t.iter().enumerate().skip(1) {
+            assert_eq!(t, 1, "pair ({}, {}): t = {t}", 2 * k, 2 * k + 1);
+        }
+        // the same test on Joe and Kuo's first 692 dimensions fails: their pairs have t of 3
+        // to 12
+        let jk = pair_t_values(&SOBOL[..692]);
+        assert_eq!(jk[0], 0);
+        assert!(jk[1..].iter().all(|&t| (3..=12).contains(&t)), "{jk:?}");
     }
 
     #[test]

@@ -20,15 +20,16 @@
 //! as a WGSL module (`shaders/strata.wgsl`): include it in a compute or fragment shader, upload
 //! [`PixelSampler::gpu_parameters`] (eight `u32`, [`GpuParameters::words`]) as a uniform, and
 //! call `strata_get_2d(params, pixel, index, dim)` for the `f32` pair or `strata_draw` for the
-//! 32-bit fixed-point values. `zjoint` and `zquad` (sequence 6) read more generator columns than
-//! a uniform holds: include [`WGSL_ZJOINT`] after [`WGSL`], declare a storage buffer
-//! `strata_joint: array<u32>` filled with [`Sequence::gpu_joint_table`], and call
-//! `strata_joint_get_2d` instead.
+//! 32-bit fixed-point values. The joint sequences (`zjoint`, `zquad` and `zsobol12`, sequence 6;
+//! `sobol12`, sequence 7) read more generator columns than a uniform holds: include
+//! [`WGSL_ZJOINT`] after [`WGSL`], declare a storage buffer `strata_joint: array<u32>` filled
+//! with [`Sequence::gpu_joint_table`], and call `strata_joint_get_2d` instead
+//! (`strata_is_joint(sequence)` says which).
 //!
 //! What is tested, and nothing more: the repository's GPU test (`gpu/`) validates both modules
 //! with `naga` and runs them through `wgpu` on the Vulkan adapter present (Mesa's lavapipe CPU
 //! driver in CI), comparing `2^22` draws of every GPU sequence (of `zjoint` at groups of 2, 8
-//! and 512) bit for bit with [`PixelSampler::sample_2d_u32`]: half a renderer's grid, half
+//! and 512; `sobol12` and `zsobol12` at 8) bit for bit with [`PixelSampler::sample_2d_u32`]: half a renderer's grid, half
 //! hashed over the whole `u32` range of pixel, index and dimension. No hardware GPU and no
 //! rust-gpu build have been tested. The shader's domain is sample indices below `2^32` (past
 //! them the CPU draws from a fresh key per block of `2^32`); `jittered` and `halton` divide by
@@ -44,7 +45,8 @@
 //!   and per pair of dimensions. The one exception is by design: `zjoint`'s draws of one
 //!   *group* of dimensions are distinct dimensions of one multi-dimensional Sobol' sequence,
 //!   stratified jointly rather than independent (its groups are independent of each other),
-//!   and so are `zquad`'s groups of four, over the base-4 Faure sequence.
+//!   and so are `zquad`'s groups of four, over the base-4 Faure sequence, and the groups of
+//!   `sobol12` and `zsobol12` over the (1,2)-Sobol' sequence.
 //!   A scene that never asks for lens or time dimensions never computes them.
 //! * **Stratified draws.** Per pixel and draw: `pmj02` and `sobol` are (0,m,2)-nets at every
 //!   power-of-two prefix; `lattice` has one point per `1/n` in each coordinate at every power of
@@ -54,6 +56,9 @@
 //!   of a group are `(t, m, 2)`-nets with the t-values of their Sobol' dimensions; `zquad` as
 //!   `zjoint`, and each group's four dimensions a (0,k,4)-net in base 4 at every `4^k` up to
 //!   the samples per pixel, its draws at the group's first and third dimension (0,m,2)-nets;
+//!   `sobol12` (at every power-of-two prefix) and `zsobol12` (up to the samples per pixel) as
+//!   `zjoint`, and their 2D draws at a group's even dimensions `(1,m,2)`-nets (the first a
+//!   (0,m,2)-net);
 //!   `jittered`
 //!   has one point per cell of `s x s` in each block of `spp`; `halton` one per cell of `2^a x 3^b` in each block of `M = 2^a 3^b >= spp` samples. How
 //!   each sequence is randomized is in [`sequence`](self#sequences).
@@ -154,6 +159,7 @@
 //! # Ok::<(), strata::Error>(())
 //! ```
 
+pub mod frames;
 mod kernel;
 mod rng;
 mod sequence;
@@ -176,7 +182,8 @@ use kernel::{PixelKeys, ZPixel};
 /// [module docs](self#on-a-gpu)).
 pub const WGSL: &str = include_str!("../../shaders/strata.wgsl");
 
-/// The WGSL draws of `zjoint` and `zquad` (`shaders/strata_zjoint.wgsl`): `strata_joint_draw` and
+/// The WGSL draws of the joint sequences, `zjoint`, `zquad`, `zsobol12` and `sobol12`
+/// (`shaders/strata_zjoint.wgsl`): `strata_joint_draw` and
 /// `strata_joint_get_2d`, with the arguments of [`WGSL`]'s `strata_draw` and `strata_get_2d`.
 /// Include it after [`WGSL`], and declare the storage buffer it reads, at a binding of your
 /// choice, filled with [`Sequence::gpu_joint_table`]:
@@ -261,7 +268,8 @@ pub struct GpuParameters {
     /// The image of a Z-ordered sequence (`[0, 0]` for the others).
     pub resolution: [u32; 2],
     /// The sequence: 0 `random`, 1 `sobol`, 2 `pmj02`, 3 `lattice`, 4 `zsobol`, 5 `zpmj02`, 6
-    /// `zjoint` and `zquad` ([`WGSL_ZJOINT`], with the sequence's own table).
+    /// `zjoint`, `zquad` and `zsobol12`, 7 `sobol12` (6 and 7: [`WGSL_ZJOINT`], with the
+    /// sequence's own table).
     pub sequence: u32,
     /// `log2` of the samples per pixel rounded up to a power of two (the Z-ordered sequences'
     /// block of each pixel).
@@ -502,7 +510,7 @@ impl PixelSampler {
 
     /// What the [`WGSL`] shader needs to compute this sampler's draws; `None` for `jittered`
     /// and `halton`, which run on the CPU only, and under [`Padding::Uniform`] (the shader has
-    /// the nested padding only). `zjoint` (sequence 6) also needs [`WGSL_ZJOINT`] and its table
+    /// the nested padding only). The joint sequences (6 and 7) also need [`WGSL_ZJOINT`] and their table
     /// ([`Sequence::gpu_joint_table`]).
     pub fn gpu_parameters(&self) -> Option<GpuParameters> {
         if self.current_pads() {

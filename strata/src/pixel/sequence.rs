@@ -36,6 +36,12 @@
 //!   dimension are (0,2)-sequences, as `zsobol`'s draws are. The property the SZ sequences of
 //!   Ahmed, Pharr, Ostromoukhov and Huang (TOG 2025) are built for, by a construction of our
 //!   own (their paper was not available to us).
+//! * `sobol12`, `zsobol12`: the draws of a group of dimensions share one index (shuffled
+//!   once per group, as `sobol`'s is per draw) and read consecutive dimensions of the
+//!   (1,2)-Sobol' sequence (Bonneel, Coeurjolly, Iehl, Ostromoukhov, "Sobol' Sequences with
+//!   Guaranteed-Quality 2D Projections", ACM TOG 44(4), 2025), each value Owen-scrambled under
+//!   the draw's own keys: a 2D draw at a group's even dimension is a (1,2)-sequence. `zsobol12`
+//!   Z-orders the groups as `zjoint` does.
 //! * `halton`: scrambled Halton in bases 2 and 3 for every draw, padded as Kollig and Keller
 //!   ("Efficient Multidimensional Sampling", Eurographics 2002) pad 2D sets: the index is
 //!   permuted at random inside aligned blocks of `M = 2^a 3^b` samples (the smallest such
@@ -48,7 +54,7 @@
 //! * `random`: hashed independent uniform values.
 //!
 //! `halton` and `jittered` divide by the block size and hash with 64-bit arithmetic: they run on
-//! the CPU only. The other eight are the [kernel](super::kernel)'s, 32-bit throughout.
+//! the CPU only. The others are the [kernel](super::kernel)'s, 32-bit throughout.
 
 use alloc::sync::Arc;
 
@@ -151,6 +157,8 @@ pub(crate) enum Kind {
     ZPmj02,
     ZQuad,
     ZJoint,
+    Sobol12,
+    ZSobol12,
 }
 
 /// What the samples-per-pixel count does to a sequence.
@@ -208,7 +216,7 @@ pub(crate) struct Row {
 
 /// Every sequence, in the order of [`Sequence::NAMES`] (row `k` is the sequence of [`Kind`]
 /// `k`: a test checks it).
-pub(crate) const ROWS: [Row; 10] = [
+pub(crate) const ROWS: [Row; 12] = [
     Row {
         kind: Kind::Random,
         name: "random",
@@ -323,21 +331,7 @@ pub(crate) const ROWS: [Row; 10] = [
         kind: Kind::ZJoint,
         name: "zjoint",
         suffix: "`zjoint-G`: groups of `G` dimensions, a power of two from 2 to 512 (default 8)",
-        make: |r, s| {
-            let group = match s {
-                None => DEFAULT_JOINT_GROUP,
-                Some(g) => g.parse::<u32>().map_err(|_| {
-                    Error::input(
-                        "Sequence::by_name",
-                        format!(
-                            "'zjoint-{g}': zjoint-G takes a group size G, a power of two from \
-                             2 to {MAX_JOINT_GROUP}"
-                        ),
-                    )
-                })?,
-            };
-            Sequence::zjoint(r[0], r[1], group)
-        },
+        make: |r, s| Sequence::zjoint(r[0], r[1], group_by_name("zjoint", s, DEFAULT_JOINT_GROUP)?),
         build: "`Sequence::zjoint(width, height, group)`",
         spp: SppUse::PixelBlock,
         promise: "the Z order shared by a group's draws, which read distinct Sobol' dimensions",
@@ -345,7 +339,54 @@ pub(crate) const ROWS: [Row; 10] = [
         shader: Some(6),
         pads: true,
     },
+    Row {
+        kind: Kind::Sobol12,
+        name: "sobol12",
+        suffix: "`sobol12-G`: groups of `G` dimensions, a power of two from 2 to 512 (default 4)",
+        make: |_, s| Sequence::sobol12(group_by_name("sobol12", s, DEFAULT_ONE_TWO_GROUP)?),
+        build: "`Sequence::sobol12(group)`",
+        spp: SppUse::Ignored,
+        promise: "one index per group of draws; the 2D draw at a group's dimension `2k` a \
+                  (1,2)-sequence (`2k = 0`: a (0,2)-sequence); Owen-scrambled",
+        source: "Bonneel et al. 2025",
+        shader: Some(7),
+        pads: true,
+    },
+    Row {
+        kind: Kind::ZSobol12,
+        name: "zsobol12",
+        suffix: "`zsobol12-G`: groups of `G` dimensions, as `sobol12-G`",
+        make: |r, s| {
+            Sequence::zsobol12(
+                r[0],
+                r[1],
+                group_by_name("zsobol12", s, DEFAULT_ONE_TWO_GROUP)?,
+            )
+        },
+        build: "`Sequence::zsobol12(width, height, group)`",
+        spp: SppUse::PixelBlock,
+        promise: "as `sobol12` per pixel; the Z order shared by a group's draws",
+        source: "Bonneel et al. 2025; Ahmed, Wonka 2020",
+        shader: Some(6),
+        pads: true,
+    },
 ];
+
+/// The group size of a joint sequence named `name-G` (`suffix` the `G`; `default` without).
+fn group_by_name(name: &str, suffix: Option<&str>, default: u32) -> Result<u32> {
+    match suffix {
+        None => Ok(default),
+        Some(g) => g.parse::<u32>().map_err(|_| {
+            Error::input(
+                "Sequence::by_name",
+                format!(
+                    "'{name}-{g}': {name}-G takes a group size G, a power of two from 2 to \
+                     {MAX_JOINT_GROUP}"
+                ),
+            )
+        }),
+    }
+}
 
 /// The names of [`ROWS`], in order.
 const NAMES: [&str; ROWS.len()] = {
@@ -417,6 +458,13 @@ impl core::hash::Hash for Sequence {
 /// The dimensions of a group of [`Sequence::zjoint`] by name: the default
 /// [`DimensionLayout`](super::DimensionLayout)'s blocks (the camera's, each bounce's).
 const DEFAULT_JOINT_GROUP: u32 = 8;
+
+/// The dimensions of a group of [`Sequence::sobol12`] and [`Sequence::zsobol12`] by name: two
+/// 2D draws, the table's pairs `(0, 1)` and `(2, 3)`. The (1,2)-Sobol' table's other pairs are
+/// worse than Joe and Kuo's (`t` up to 10 among its first 9 dimensions, against 5), and the
+/// conformance suite's chi-square of two draws of a group of 8 fails (dimensions 1 and 5);
+/// in groups of 4 every pair of the draws has `t <= 3` and the suite passes.
+const DEFAULT_ONE_TWO_GROUP: u32 = 4;
 
 /// The largest group of [`Sequence::zjoint`] (a path of 63 bounces at 8 dimensions each).
 const MAX_JOINT_GROUP: u32 = 512;
@@ -516,6 +564,56 @@ impl Sequence {
     /// with [`gpu_joint_table`](Self::gpu_joint_table).
     pub fn zjoint(width: u32, height: u32, group: u32) -> Result<Self> {
         let context = "Sequence::zjoint";
+        let mut s = Self::z(Kind::ZJoint, context, width, height)?;
+        s.set_group(context, group, &crate::digital::SOBOL)?;
+        Ok(s)
+    }
+
+    /// (1,2)-Sobol' draws from one index per group of `group` dimensions (a power of two
+    /// from 2 to 512; 4, the default by name, is two 2D draws, see below): every draw of a
+    /// group of a pixel sample
+    /// reads the group's index (one padding and one index shuffle per group, keyed by its
+    /// first dimension), and the draw at the group's dimension `o` reads dimensions `o` and
+    /// `o + 1` of the (1,2)-Sobol' sequence of N. Bonneel, D. Coeurjolly, J.-C. Iehl and V.
+    /// Ostromoukhov ("Sobol' Sequences with Guaranteed-Quality 2D Projections", ACM TOG 44(4),
+    /// 2025), each coordinate Owen-scrambled under the draw's own keys. The 2D draws at even
+    /// dimensions of a group are (1,2)-sequences (each aligned block of `2^m` samples, every
+    /// prefix included, a (1,m,2)-net: two samples in each elementary interval of area
+    /// `2^(1-m)`), the first a (0,2)-sequence, where padded `sobol`'s draws are each a
+    /// (0,2)-sequence but pair with each other at random: here the draws of a group are one
+    /// point set, stratified jointly where the table's pairs of dimensions are. Draws past a
+    /// group start a new group (padded to it, as `sobol` pads every draw), so a path of any
+    /// length is served. Larger groups tie more draws together, but through the table's
+    /// other pairs of dimensions, which are worse than Joe and Kuo's: in groups of 8 the
+    /// draws at a group's dimensions 1 and 5 fail the lab's chi-square test of two draws
+    /// (`t = 3` at 4096 samples), in groups of 4 every pair has `t <= 3` at every `2^m`
+    /// (`t <= 1` but for the pairs (0, 3) and (1, 3)). Reads `group + 1` of the table's 692
+    /// dimensions, whose tables (4 KiB each) it builds when it is made. On a GPU: sequence 7 of
+    /// [`WGSL_ZJOINT`](super::WGSL_ZJOINT) with [`gpu_joint_table`](Self::gpu_joint_table).
+    pub fn sobol12(group: u32) -> Result<Self> {
+        let mut s = Self::of(Kind::Sobol12);
+        s.set_group("Sequence::sobol12", group, &crate::digital::ONE_TWO_SOBOL)?;
+        Ok(s)
+    }
+
+    /// [`Sequence::sobol12`] Z-ordered as [`Sequence::zjoint`] is, for an image of `width x
+    /// height` pixels: the draws of a group share one pixel order, and read the (1,2)-Sobol'
+    /// table instead of Joe and Kuo's. On a GPU as `zjoint`.
+    pub fn zsobol12(width: u32, height: u32, group: u32) -> Result<Self> {
+        let context = "Sequence::zsobol12";
+        let mut s = Self::z(Kind::ZSobol12, context, width, height)?;
+        s.set_group(context, group, &crate::digital::ONE_TWO_SOBOL)?;
+        Ok(s)
+    }
+
+    /// Sets the group of a joint sequence (a power of two from 2 to [`MAX_JOINT_GROUP`]) and
+    /// builds the tables of its dimensions `0..=group` of `matrices`.
+    fn set_group(
+        &mut self,
+        context: &'static str,
+        group: u32,
+        matrices: &[crate::digital::Matrix],
+    ) -> Result<()> {
         if !group.is_power_of_two() || !(2..=MAX_JOINT_GROUP).contains(&group) {
             return Err(Error::parameter(
                 context,
@@ -524,13 +622,12 @@ impl Sequence {
                 format!("a power of two from 2 to {MAX_JOINT_GROUP} dimensions"),
             ));
         }
-        let mut s = Self::z(Kind::ZJoint, context, width, height)?;
-        s.group = group;
-        s.joint = crate::digital::SOBOL[..=group as usize]
+        self.group = group;
+        self.joint = matrices[..=group as usize]
             .iter()
             .map(crate::digital::byte_tables)
             .collect();
-        Ok(s)
+        Ok(())
     }
 
     /// Jointly Z-ordered over a base-4 (0,4)-sequence, for an image of `width x height` pixels
@@ -619,21 +716,22 @@ impl Sequence {
         self.kind.row().name
     }
 
-    /// The dimensions of a group whose draws share one index: `zjoint`'s group size, 1 for
-    /// the other sequences.
+    /// The dimensions of a group whose draws share one index: the group size of `zjoint`,
+    /// `zquad` (4), `sobol12` and `zsobol12`; 1 for the other sequences.
     pub fn group(&self) -> u32 {
         self.group
     }
 
-    /// `zjoint`'s and `zquad`'s table for the [`WGSL_ZJOINT`](super::WGSL_ZJOINT) shader
-    /// (`None` for the other sequences): word 0 the group size `G`, then the 32 generator
-    /// columns, in the bit-reversed domain, of each of the dimensions `0..=G` the draws read
-    /// (Sobol' for `zjoint`; for `zquad` the four base-4 Faure matrices and the fifth) (column
+    /// The table of a joint sequence (`zjoint`, `zquad`, `sobol12`, `zsobol12`) for the
+    /// [`WGSL_ZJOINT`](super::WGSL_ZJOINT) shader (`None` for the other sequences): word 0 the
+    /// group size `G`, then the 32 generator columns, in the bit-reversed domain, of each of
+    /// the dimensions `0..=G` the draws read (Sobol' for `zjoint`; for `zquad` the four base-4
+    /// Faure matrices and the fifth; (1,2)-Sobol' for `sobol12` and `zsobol12`) (column
     /// `j` of dimension `d` at word `1 + 32 d + j`: the XOR of the columns of the set bits of a
     /// reversed index is its point, reversed). `1 + 32 (G + 1)` words: 97 for groups of 2,
     /// 161 for `zquad`, 16 417 (64 KiB) for 512. Upload it as the shader's `strata_joint` storage buffer.
     pub fn gpu_joint_table(&self) -> Option<Vec<u32>> {
-        if !matches!(self.kind, Kind::ZJoint | Kind::ZQuad) {
+        if !self.is_joint() {
             return None;
         }
         let dims = &self.joint[..];
@@ -643,6 +741,15 @@ impl Sequence {
             words.extend((0..32).map(|j| t[j / 8][1 << (j % 8)]));
         }
         Some(words)
+    }
+
+    /// Whether the draws of a group share one index (`zjoint`, `zquad`, `sobol12`,
+    /// `zsobol12`).
+    fn is_joint(&self) -> bool {
+        matches!(
+            self.kind,
+            Kind::ZJoint | Kind::ZQuad | Kind::Sobol12 | Kind::ZSobol12
+        )
     }
 
     /// The first dimension of the group of `dim`: the dimension that keys the index of the
@@ -694,7 +801,7 @@ impl Sequence {
             Kind::Random => kernel::random::<X2>(&k(), index).unit_f32(),
             Kind::Lattice => kernel::lattice::<X2>(&k(), index).unit_f32(),
             Kind::Jittered => jittered(&k(), index.get(), spp),
-            Kind::ZJoint | Kind::ZQuad => {
+            Kind::ZJoint | Kind::ZQuad | Kind::Sobol12 | Kind::ZSobol12 => {
                 kernel::joint::<X2>(&self.joint, keys, self.group_start(dim), dim, index).unit_f32()
             }
             Kind::Halton => {
@@ -775,7 +882,12 @@ impl Sequence {
                 join(p, q).reverse_bits().unit_f32()
             }
             Kind::Lattice => join(kernel::lattice(&a, ia), kernel::lattice(&b, ib)).unit_f32(),
-            Kind::Jittered | Kind::Halton | Kind::ZJoint | Kind::ZQuad => {
+            Kind::Jittered
+            | Kind::Halton
+            | Kind::ZJoint
+            | Kind::ZQuad
+            | Kind::Sobol12
+            | Kind::ZSobol12 => {
                 let [x, y] = self.sample_2d(ka, ia, dim, spp);
                 let [z, w] = self.sample_2d(kb, ib, dim.wrapping_add(2), spp);
                 [x, y, z, w]
@@ -805,7 +917,7 @@ impl Sequence {
                 kernel::digital::<[u32; 2]>(self.pair_tables(), &k, index)
             }
             Kind::Lattice => kernel::lattice::<[u32; 2]>(&k, index),
-            Kind::ZJoint | Kind::ZQuad => {
+            Kind::ZJoint | Kind::ZQuad | Kind::Sobol12 | Kind::ZSobol12 => {
                 kernel::joint::<[u32; 2]>(&self.joint, keys, self.group_start(dim), dim, index)
             }
             Kind::Jittered | Kind::Halton => return None,
@@ -843,7 +955,9 @@ impl Sequence {
             | Kind::ZSobol
             | Kind::ZPmj02
             | Kind::ZQuad
-            | Kind::ZJoint => n.checked_next_power_of_two().unwrap_or(1 << 31),
+            | Kind::ZJoint
+            | Kind::Sobol12
+            | Kind::ZSobol12 => n.checked_next_power_of_two().unwrap_or(1 << 31),
         }
     }
 
@@ -894,11 +1008,14 @@ impl Sequence {
             Kind::ZSobol | Kind::ZPmj02 if n <= 1u64 << spp.z_bits() => StrataGrid::net(n, true),
             // every draw's two coordinates are 1D (0, 1)-sequences (only the first draw of a
             // group is a 2D net); the same grids as the lattice's
-            Kind::ZJoint | Kind::ZQuad
+            Kind::ZJoint | Kind::ZQuad | Kind::ZSobol12
                 if n.is_power_of_two() && n <= (1u64 << spp.z_bits()).min(1 << 31) =>
             {
                 StrataGrid::axes(n as u32)
             }
+            // as zjoint: the grids every draw keeps (the 2D draws at even dimensions are
+            // (1,m,2)-nets too, the draw at a group's start a (0,m,2)-net)
+            Kind::Sobol12 if n.is_power_of_two() && n <= 1 << 31 => StrataGrid::axes(n as u32),
             Kind::Lattice if n.is_power_of_two() && n <= 1 << 31 => StrataGrid::axes(n as u32),
             _ => Vec::new(),
         }

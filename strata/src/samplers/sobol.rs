@@ -32,8 +32,8 @@ use alloc::sync::Arc;
 
 use super::{Epochs, MAX_SEQUENCE_LEN};
 use crate::digital::{
-    ByteTables, FAURE4, Matrix, SOBOL, SOBOL_DIMENSIONS, apply, byte_tables, faure4_matrices,
-    lookup, sobol_first_tables,
+    ByteTables, FAURE4, Matrix, ONE_TWO_DIMENSIONS, ONE_TWO_SOBOL, SOBOL, SOBOL_DIMENSIONS, apply,
+    byte_tables, faure4_matrices, lookup, sobol_first_tables,
 };
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
@@ -49,6 +49,9 @@ enum Matrices {
     Sobol,
     /// Faure's base-4 (0,4)-sequence, binary form: four dimensions.
     Faure4,
+    /// (1,2)-Sobol' (Bonneel et al. 2025): 692 dimensions, every pair `(2k, 2k+1)` a
+    /// (1,2)-sequence.
+    OneTwo,
 }
 
 impl Matrices {
@@ -56,7 +59,9 @@ impl Matrices {
     #[inline]
     fn first_tables(self, dim: u32) -> &'static ByteTables {
         match self {
-            Matrices::Sobol => sobol_first_tables(dim).expect("dimension 0 or 1"),
+            Matrices::Sobol | Matrices::OneTwo => {
+                sobol_first_tables(dim).expect("dimension 0 or 1")
+            }
             Matrices::Faure4 => &FAURE4[dim as usize],
         }
     }
@@ -66,6 +71,7 @@ impl Matrices {
         match self {
             Matrices::Sobol => SOBOL.get(dim as usize).copied(),
             Matrices::Faure4 => faure4_matrices()[..4].get(dim as usize).copied(),
+            Matrices::OneTwo => ONE_TWO_SOBOL.get(dim as usize).copied(),
         }
     }
 
@@ -85,6 +91,7 @@ impl Matrices {
         match self {
             Matrices::Sobol => seed,
             Matrices::Faure4 => Seed(mix64(seed.0 ^ 0xfa_0e4d_0004)),
+            Matrices::OneTwo => Seed(mix64(seed.0 ^ 0x0102_50b0_1000)),
         }
     }
 
@@ -93,6 +100,7 @@ impl Matrices {
         match self {
             Matrices::Sobol => NAME,
             Matrices::Faure4 => FAURE4_NAME,
+            Matrices::OneTwo => ONE_TWO_NAME,
         }
     }
 }
@@ -143,10 +151,14 @@ pub fn projection_t_value(sampler: &str, dims: &[u32], m: u32, base: u32) -> Res
     let (matrix, max): (fn(u32) -> Option<Matrix>, u32) = match sampler {
         NAME => (|d| SOBOL.get(d as usize).copied(), MAX_DIMENSIONS),
         FAURE4_NAME => (|d| faure4_matrices().get(d as usize).copied(), 5),
+        ONE_TWO_NAME => (
+            |d| ONE_TWO_SOBOL.get(d as usize).copied(),
+            ONE_TWO_DIMENSIONS,
+        ),
         other => {
             return Err(crate::Error::input(
                 context,
-                format!("'{other}': the t-values are computed for 'sobol' and 'faure4'"),
+                format!("'{other}': the t-values are computed for 'sobol', 'sobol12' and 'faure4'"),
             ));
         }
     };
@@ -328,6 +340,12 @@ const NAME: &str = "sobol";
 /// The name of the base-4 Faure sequence's sampler.
 const FAURE4_NAME: &str = "faure4";
 
+/// The name of the (1,2)-Sobol' sampler.
+const ONE_TWO_NAME: &str = "sobol12";
+
+/// The number of (1,2)-Sobol' dimensions: 692 (Bonneel et al. 2025).
+pub const ONE_TWO_MAX_DIMENSIONS: u32 = ONE_TWO_DIMENSIONS;
+
 /// The scrambled Sobol' sequence in 2D (dimensions 0 and 1: a (0,2)-sequence), progressive.
 ///
 /// ```
@@ -359,6 +377,13 @@ impl Sobol {
     /// its seed hashed apart from Sobol''s.
     pub fn faure4(seed: Seed) -> Self {
         Self::with(Matrices::Faure4, seed)
+    }
+
+    /// Dimensions 0-1 of the (1,2)-Sobol' sequence (`sobol12`, [`SobolNd::one_two`]): Sobol''s
+    /// own (0,2)-sequence, randomized as [`Sobol::new`] is, with its seed hashed apart, so
+    /// that it is the first two dimensions of `SobolNd::one_two` of the same seed.
+    pub fn one_two(seed: Seed) -> Self {
+        Self::with(Matrices::OneTwo, seed)
     }
 
     /// Dimensions 0-1 of the sequence of `matrices` for `seed`.
@@ -442,6 +467,17 @@ impl SobolNd {
         Self::with(Matrices::Sobol, dims, seed)
     }
 
+    /// `dims` dimensions (1 to 692) of the (1,2)-Sobol' sequence (N. Bonneel, D. Coeurjolly,
+    /// J.-C. Iehl, V. Ostromoukhov, "Sobol' Sequences with Guaranteed-Quality 2D Projections",
+    /// ACM TOG 44(4), 2025; [`crate::digital`] has the table's provenance), randomized as
+    /// [`SobolNd::new`] is, its seed hashed apart: every pair of dimensions `(2k, 2k+1)` is a
+    /// (1,2)-sequence (each aligned block of `2^m` points a (1,m,2)-net), the pair `(0, 1)` a
+    /// (0,2)-sequence (Sobol''s own), where Joe and Kuo's pairs have `t` from 3 to 12. Other
+    /// pairs have `t` as large as Joe and Kuo's ([`projection_t_value`] with `"sobol12"`).
+    pub fn one_two(dims: u32, seed: Seed) -> Result<Self> {
+        Self::with(Matrices::OneTwo, dims, seed)
+    }
+
     /// `dims` dimensions (1 to 4) of the binary form of Faure's base-4 (0,4)-sequence
     /// (`faure4`), as [`Sobol::faure4`].
     pub fn faure4(dims: u32, seed: Seed) -> Result<Self> {
@@ -453,6 +489,12 @@ impl SobolNd {
         let seed = matrices.seed(seed);
         match matrices {
             Matrices::Sobol => super::check_dims(NAME, dims, MAX_DIMENSIONS, "")?,
+            Matrices::OneTwo => super::check_dims(
+                ONE_TWO_NAME,
+                dims,
+                ONE_TWO_DIMENSIONS,
+                " dimensions, the (1,2)-Sobol' table's",
+            )?,
             Matrices::Faure4 => super::check_dims(
                 FAURE4_NAME,
                 dims,
@@ -547,6 +589,50 @@ impl SamplerNd for SobolNd {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn one_two_pairs_fill_every_elementary_interval_twice() {
+        // the scrambled points of SobolNd::one_two: in each aligned block of 2^m points, every
+        // pair (2k, 2k+1) puts exactly 2 points in each elementary interval of area 2^(1-m)
+        // (a (1,m,2)-net), pair 0 one in each of area 2^-m; Joe and Kuo's pair (2, 3) does not
+        let dims = 12u32;
+        let n = 1usize << 10;
+        let points = |mut s: SobolNd| {
+            let mut v = vec![0f32; 3 * n * dims as usize];
+            s.fill(&mut v);
+            v
+        };
+        let counts = |v: &[f32], a: usize, b: usize, start: usize, m: u32, t: u32| -> bool {
+            let k = m - t; // cells of area 2^-k
+            (0..=k).all(|x_bits| {
+                let mut c = vec![0u32; 1 << k];
+                for i in start..start + (1 << m) {
+                    let (x, y) = (v[i * dims as usize + a], v[i * dims as usize + b]);
+                    let cx = (x * (1u64 << x_bits) as f32) as usize;
+                    let cy = (y * (1u64 << (k - x_bits)) as f32) as usize;
+                    c[(cy << x_bits) | cx] += 1;
+                }
+                c.iter().all(|&c| c == 1 << t)
+            })
+        };
+        let v = points(SobolNd::one_two(dims, Seed(3)).unwrap());
+        for m in 1..=10u32 {
+            for start in [0, 1 << m, n] {
+                assert!(counts(&v, 0, 1, start, m, 0), "pair 0, m {m}");
+                for k in 1..dims as usize / 2 {
+                    assert!(
+                        counts(&v, 2 * k, 2 * k + 1, start, m, 1),
+                        "pair {k}, m {m}, start {start}"
+                    );
+                }
+            }
+        }
+        let jk = points(SobolNd::new(dims, Seed(3)).unwrap());
+        assert!((1..=10).any(|m| !counts(&jk, 2, 3, 0, m, 1)));
+        assert!(SobolNd::one_two(692, Seed(1)).is_ok());
+        let e = SobolNd::one_two(693, Seed(1)).unwrap_err().to_string();
+        assert!(e.contains("1 to 692"), "{e}");
+    }
 
     #[test]
     fn fill_and_skip_equal_point_by_point_across_an_epoch() {

@@ -100,6 +100,12 @@ fn cases() -> Vec<Case> {
             nd: Some(|_, d| Ok(Box::new(SobolNd::new(d, Seed(1))?))),
         },
         Case {
+            name: "sobol12",
+            counts: CountRule::Any,
+            two: |_| Box::new(Sobol::one_two(Seed(1))),
+            nd: Some(|_, d| Ok(Box::new(SobolNd::one_two(d, Seed(1))?))),
+        },
+        Case {
             name: "faure4",
             counts: CountRule::Any,
             two: |_| Box::new(Sobol::faure4(Seed(1))),
