@@ -853,7 +853,7 @@ mod tests {
                 if s == 1 { 2 ^ p } else { 2 },
                 "line {line}"
             );
-            for q in (2..=s).filter(|q| s % q == 0 && (2..*q).all(|r| q % r != 0)) {
+            for q in (2..=s).filter(|q| s.is_multiple_of(*q) && (2..*q).all(|r| !q.is_multiple_of(r))) {
                 let x = x_pow_2k(s / q, p, s) ^ 2;
                 assert_eq!(gcd(p, x), 1, "line {line}: reducible");
             }
@@ -865,9 +865,9 @@ mod tests {
             let mut factors = Vec::new();
             let mut r = 2;
             while r * r <= n {
-                if n % r == 0 {
+                if n.is_multiple_of(r) {
                     factors.push(r);
-                    while n % r == 0 {
+                    while n.is_multiple_of(r) {
                         n /= r;
                     }
                 }
