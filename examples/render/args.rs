@@ -11,7 +11,7 @@ use crate::scene::SceneKind;
 
 /// The one-line usage, in the message of an unknown flag.
 const USAGE: &str = "render [--samplers a,b,..|all] [--spp N[,N,..]] [--size WxH] \
-[--scene cornell|spheres] [--reference-spp N] [--seed S] [--seeds K] [--out DIR] [--markdown FILE]";
+[--scene cornell|spheres|cornell-direct|studio|studio-direct] [--reference-spp N] [--seed S] [--seeds K] [--out DIR] [--markdown FILE]";
 
 /// The text of `--help`.
 const HELP: &str = "\
@@ -23,7 +23,14 @@ Usage:
 
 Options:
   --samplers a,b,..|all  path-tracer sequences (default all; the Z-ordered ones for the image
-                         size): {SEQUENCES}
+                         size): {SEQUENCES};
+                         also two references written in this program, not in all:
+                         pbrt-padded (pbrt-v4's PaddedSobolSampler, FastOwen) and pbrt-zsobol
+                         (its ZSobolSampler; powers of two), and experiments on a sequence SEQ,
+                         not in all: SEQ+permute (each draw reads its samples through a random
+                         permutation of the pixel's 0..spp, pbrt's pairing; powers of two) and
+                         SEQ+shells (a random permutation inside each shell [2^j, 2^(j+1)) of
+                         the index: every power-of-two prefix keeps its samples)
   --spp N[,N,..]         samples per pixel, one to eight counts (default 4,16,64,256; each 1
                          to 65536; jittered needs squares)
   --size WxH             image size (default 128x128; each side 8 to 1024; every sequence and
@@ -31,8 +38,13 @@ Options:
                          estimate passes 4 GiB is refused before any work, see docs/cli.md)
   --scene NAME           cornell (default: a Cornell box, up to 8 bounces, two lights, a
                          discrete light and lobe choice, Russian roulette, thin lens), spheres
-                         (direct lighting, seven dimensions) or cornell-direct (the Cornell box
-                         in direct lighting: the first diffuse hit's next-event estimate)
+                         (direct lighting, seven dimensions), cornell-direct (the Cornell box
+                         in direct lighting: the first diffuse hit's next-event estimate),
+                         studio (not a box: a checkered floor with glossy tiles, a striped
+                         wall, a plastic, a metal and a textured sphere, one small light, up to
+                         8 bounces, the next direction from a lobe chosen by weight) or
+                         studio-direct (studio in direct lighting: the first hit's next-event
+                         estimate through both lobes)
   --padding nested|uniform  how two draws' samples meet (strata::Padding; default nested:
                          every power-of-two prefix a net; uniform: each block of spp samples
                          reordered per draw by a sharply 2-transitive map)
@@ -47,7 +59,8 @@ Options:
                          its one-draw part (each draw's main effect, the other draws
                          integrated out by 64 Sobol' points) and the interaction part (the
                          rest), and print their RMSE, blurred RMSE and low-band share
-                         (direct-lighting scenes only: spheres, cornell-direct)
+                         (direct-lighting scenes only: spheres, cornell-direct,
+                         studio-direct)
   --markdown FILE        also write the tables into FILE, as its section
                          'render-SCENE-COUNTS' (e.g. render-cornell-4,16,64,256)
   -h, --help             this text
@@ -177,14 +190,17 @@ fn spp(v: &str) -> Result<Vec<u32>, CliError> {
     Ok(spp)
 }
 
-/// `--scene`: `cornell`, `spheres` or `cornell-direct`.
+/// `--scene`: `cornell`, `spheres`, `cornell-direct`, `studio` or `studio-direct`.
 fn scene(v: &str) -> Result<SceneKind, CliError> {
     match v {
         "cornell" => Ok(SceneKind::Cornell),
         "spheres" => Ok(SceneKind::Spheres),
         "cornell-direct" => Ok(SceneKind::CornellDirect),
+        "studio" => Ok(SceneKind::Studio),
+        "studio-direct" => Ok(SceneKind::StudioDirect),
         other => Err(cli_error(format!(
-            "--scene {other:?} is not a scene; allowed: cornell, spheres, cornell-direct"
+            "--scene {other:?} is not a scene; allowed: cornell, spheres, cornell-direct, \
+             studio, studio-direct"
         ))),
     }
 }
@@ -242,10 +258,11 @@ fn check(a: &Args) -> Result<(), CliError> {
             MAX_MEMORY >> 20
         )));
     }
-    if a.interactions && a.scene == SceneKind::Cornell {
+    if a.interactions && matches!(a.scene, SceneKind::Cornell | SceneKind::Studio) {
         return Err(cli_error(
             "--interactions splits the error of a direct-lighting render; allowed with --scene \
-             spheres or cornell-direct (every bounce has too many draws to integrate each out)",
+             spheres, cornell-direct or studio-direct (every bounce has too many draws to \
+             integrate each out)",
         ));
     }
     common::check_output_dir(&a.out)?;

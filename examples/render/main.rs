@@ -34,6 +34,8 @@ mod common;
 
 mod args;
 mod figures;
+mod method;
+mod pbrt;
 mod picture;
 mod report;
 mod scene;

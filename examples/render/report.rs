@@ -4,12 +4,12 @@
 
 use std::path::Path;
 
-use strata::pixel::Sequence;
 use strata_lab::analysis::study;
 use strata_lab::io::{self, LinePlot, Marker, Rgb, Series};
 
 use crate::args::{Args, markdown_section};
 use crate::common::{self, CliError};
+use crate::method::Method;
 use crate::sweep::Row;
 
 /// `render.csv` and its Markdown table: one row per sampler and count, the masked figures
@@ -52,7 +52,7 @@ pub fn results(rows: &[Row]) -> (String, String) {
 /// table, and the plot of RMSE against spp (`convergence.png`) with the slope per sampler.
 pub fn convergence(
     args: &Args,
-    sequences: &[(String, Sequence)],
+    sequences: &[(String, Method)],
     rows: &[Row],
 ) -> (String, LinePlot) {
     // RMSE against spp, with the fitted slope per sampler
@@ -150,7 +150,7 @@ struct Line {
 /// time, sequences on the Pareto front bold) and returns the Markdown table.
 pub fn write_trade(
     args: &Args,
-    sequences: &[(String, Sequence)],
+    sequences: &[(String, Method)],
     rows: &[Row],
 ) -> Result<String, CliError> {
     let targets = trade_targets(args, rows);
@@ -193,7 +193,7 @@ fn on_front(rows: &[Row], front: &[usize], name: &str) -> bool {
 /// The trade table's lines, one per sequence, cheapest first at the last (smallest) target.
 fn trade_lines(
     args: &Args,
-    sequences: &[(String, Sequence)],
+    sequences: &[(String, Method)],
     rows: &[Row],
     targets: &[f64],
 ) -> Vec<Line> {
@@ -289,7 +289,7 @@ fn trade_table(
 /// sequences with a render on it bold and the rest faint.
 fn write_pareto(
     args: &Args,
-    sequences: &[(String, Sequence)],
+    sequences: &[(String, Method)],
     rows: &[Row],
     points: &[(f64, f64)],
     front: &[usize],

@@ -1,6 +1,6 @@
 //! The scenes: their geometry (spheres, possibly moving, and axis-aligned rectangles), their
 //! materials and lights, the thin-lens camera, ray intersection, and the scenes `cornell`,
-//! `spheres` and `cornell-direct`.
+//! `spheres`, `cornell-direct`, `studio` and `studio-direct`.
 
 use glam::{Vec2, Vec3};
 use strata::pixel::warp;
@@ -13,6 +13,12 @@ pub enum SceneKind {
     /// The Cornell box in direct lighting: the first diffuse hit's next-event estimate (and the
     /// lights seen directly or in a mirror), no further bounce.
     CornellDirect,
+    /// Not a box: a checkered floor with glossy tiles, a striped wall, a plastic, a metal and a
+    /// textured sphere under one small light; every bounce.
+    Studio,
+    /// `studio` in direct lighting: the first hit's next-event estimate (through its diffuse
+    /// and glossy lobes), and the light seen directly.
+    StudioDirect,
 }
 
 impl SceneKind {
@@ -22,6 +28,8 @@ impl SceneKind {
             SceneKind::Cornell => "cornell",
             SceneKind::Spheres => "spheres",
             SceneKind::CornellDirect => "cornell-direct",
+            SceneKind::Studio => "studio",
+            SceneKind::StudioDirect => "studio-direct",
         }
     }
 }
@@ -34,6 +42,12 @@ pub fn build(kind: SceneKind) -> Scene {
         SceneKind::CornellDirect => Scene {
             direct: true,
             ..cornell()
+        },
+        SceneKind::Studio => studio(),
+        SceneKind::StudioDirect => Scene {
+            direct: true,
+            kind: SceneKind::StudioDirect,
+            ..studio()
         },
     }
 }
@@ -64,6 +78,62 @@ pub enum Material {
     Surface { albedo: Vec3, mirror: f32 },
     /// An area light, emitting `radiance` on its facing side (black behind).
     Light { radiance: Vec3 },
+    /// A textured diffuse lobe and a glossy (normalized Phong) lobe of colour `specular` and
+    /// exponent `exponent` about the mirror direction: the BRDF is `(1 - gloss) albedo / pi +
+    /// gloss specular (n + 2) / (2 pi) cos^n`. Next-event estimation sees both lobes; the next
+    /// direction comes from one, chosen with its weight.
+    Glossy {
+        texture: Texture,
+        gloss: f32,
+        specular: Vec3,
+        exponent: f32,
+    },
+}
+
+/// A procedural albedo.
+#[derive(Clone, Copy, Debug)]
+pub enum Texture {
+    /// Squares of side `1 / scale` on the x-z plane, alternating `a` and `b`.
+    Checker {
+        a: Vec3,
+        b: Vec3,
+        scale: f32,
+    },
+    /// Stripes of width `1 / scale` along x, alternating `a` and `b`.
+    Stripes {
+        a: Vec3,
+        b: Vec3,
+        scale: f32,
+    },
+    /// Cubes of side `1 / scale` in space, alternating `a` and `b` (a solid texture).
+    Solid {
+        a: Vec3,
+        b: Vec3,
+        scale: f32,
+    },
+    Flat(Vec3),
+}
+
+impl Texture {
+    /// The albedo at `p`.
+    pub fn at(&self, p: Vec3) -> Vec3 {
+        let cell = |v: f32, scale: f32| (v * scale).floor() as i64;
+        let pick = |even: bool, a: Vec3, b: Vec3| if even { a } else { b };
+        match *self {
+            Texture::Checker { a, b, scale } => pick(
+                (cell(p.x, scale) + cell(p.z, scale)).rem_euclid(2) == 0,
+                a,
+                b,
+            ),
+            Texture::Stripes { a, b, scale } => pick(cell(p.x, scale).rem_euclid(2) == 0, a, b),
+            Texture::Solid { a, b, scale } => pick(
+                (cell(p.x, scale) + cell(p.y, scale) + cell(p.z, scale)).rem_euclid(2) == 0,
+                a,
+                b,
+            ),
+            Texture::Flat(a) => a,
+        }
+    }
 }
 
 /// Where a ray meets the scene: its distance, the point, the surface normal and material.
@@ -131,6 +201,8 @@ pub struct Scene {
     pub lights: Vec<(usize, f32)>,
     pub camera: Camera,
     pub kind: SceneKind,
+    /// The radiance of a ray that leaves the scene.
+    pub sky: Vec3,
     /// Direct lighting only: the path ends after the first diffuse hit's next-event estimate.
     pub direct: bool,
 }
@@ -264,6 +336,7 @@ fn cornell() -> Scene {
             0.02,
         ),
         kind: SceneKind::Cornell,
+        sky: Vec3::ZERO,
         direct: false,
     }
 }
@@ -296,7 +369,7 @@ fn cornell_rects() -> Vec<Rect> {
 fn lights_by_power(rects: &[Rect]) -> Vec<(usize, f32)> {
     let power = |r: &Rect| match r.material {
         Material::Light { radiance } => r.area() * (radiance.x + radiance.y + radiance.z),
-        Material::Surface { .. } => 0.0,
+        Material::Surface { .. } | Material::Glossy { .. } => 0.0,
     };
     let total: f32 = rects.iter().map(power).sum();
     rects
@@ -382,6 +455,7 @@ fn spheres() -> Scene {
             0.12,
         ),
         kind: SceneKind::Spheres,
+        sky: Vec3::new(0.05, 0.07, 0.1),
         direct: true,
     }
 }
@@ -390,4 +464,93 @@ fn spheres() -> Scene {
 pub fn checker(p: Vec3) -> f32 {
     let even = ((p.x * 1.5).floor() as i64 + (p.z * 1.5).floor() as i64).rem_euclid(2) == 0;
     if even { 0.75 } else { 0.2 }
+}
+
+/// Not a Cornell box: a floor of diffuse checkers, the dark ones polished (a glossy lobe), a
+/// striped back wall, a red plastic sphere (diffuse and a broad glossy lobe), a metal sphere
+/// (a sharp glossy lobe) and a sphere with a solid checker texture, lit by one small square
+/// light (0.4 x 0.4, seen in the top of the image) and nothing else (no sky).
+fn studio() -> Scene {
+    let floor = Material::Glossy {
+        texture: Texture::Checker {
+            a: Vec3::new(0.75, 0.72, 0.65),
+            b: Vec3::new(0.08, 0.08, 0.1),
+            scale: 1.25,
+        },
+        gloss: 0.25,
+        specular: Vec3::splat(0.9),
+        exponent: 30.0,
+    };
+    let wall = Material::Glossy {
+        texture: Texture::Stripes {
+            a: Vec3::new(0.7, 0.7, 0.72),
+            b: Vec3::new(0.25, 0.35, 0.6),
+            scale: 2.5,
+        },
+        gloss: 0.0,
+        specular: Vec3::ZERO,
+        exponent: 1.0,
+    };
+    let light = Material::Light {
+        radiance: Vec3::new(150.0, 135.0, 110.0),
+    };
+    let rects = vec![
+        rect(1, 0.0, [-4.0, -3.0], [4.0, 4.0], 1.0, floor),
+        rect(2, 4.0, [-4.0, 0.0], [4.0, 4.0], -1.0, wall),
+        rect(1, 2.2, [-0.2, 1.4], [0.2, 1.8], -1.0, light),
+    ];
+    let lights = lights_by_power(&rects);
+    Scene {
+        spheres: vec![
+            Sphere {
+                centre: Vec3::new(-1.15, 0.6, 1.9),
+                radius: 0.6,
+                motion: Vec3::ZERO,
+                material: Material::Glossy {
+                    texture: Texture::Flat(Vec3::new(0.7, 0.12, 0.1)),
+                    gloss: 0.3,
+                    specular: Vec3::splat(0.8),
+                    exponent: 25.0,
+                },
+            },
+            Sphere {
+                centre: Vec3::new(0.55, 0.5, 2.5),
+                radius: 0.5,
+                motion: Vec3::ZERO,
+                material: Material::Glossy {
+                    texture: Texture::Flat(Vec3::new(0.1, 0.1, 0.1)),
+                    gloss: 0.85,
+                    specular: Vec3::new(0.95, 0.8, 0.55),
+                    exponent: 120.0,
+                },
+            },
+            Sphere {
+                centre: Vec3::new(1.45, 0.4, 1.0),
+                radius: 0.4,
+                motion: Vec3::ZERO,
+                material: Material::Glossy {
+                    texture: Texture::Solid {
+                        a: Vec3::new(0.2, 0.55, 0.25),
+                        b: Vec3::new(0.85, 0.85, 0.8),
+                        scale: 6.0,
+                    },
+                    gloss: 0.0,
+                    specular: Vec3::ZERO,
+                    exponent: 1.0,
+                },
+            },
+        ],
+        rects,
+        lights,
+        camera: Camera::new(
+            Vec3::new(0.0, 1.4, -3.0),
+            Vec3::new(0.0, 0.7, 2.0),
+            40.0,
+            5.0,
+            0.03,
+        ),
+        kind: SceneKind::Studio,
+        sky: Vec3::ZERO,
+        direct: false,
+    }
 }

@@ -4,6 +4,8 @@
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use strata::pixel::{DimensionLayout, PixelSampler, Sequence};
+
+use crate::method::Stateless;
 use strata_lab::io::{self, Rgb};
 use strata_lab::spectrum::ErrorImage;
 
@@ -118,7 +120,8 @@ fn sees_emitter(scene: &Scene, size: (u32, u32), pixel: [u32; 2], k: u32) -> boo
                 dir -= 2.0 * dir.dot(n) * n;
                 origin = hit.point + n * 1e-4;
             }
-            Material::Surface { .. } => return false,
+            // a glossy lobe's highlight is a lighting integral: not masked
+            Material::Surface { .. } | Material::Glossy { .. } => return false,
         }
     }
     false
@@ -129,7 +132,7 @@ fn sees_emitter(scene: &Scene, size: (u32, u32), pixel: [u32; 2], k: u32) -> boo
 /// sampler at sample `inner`: averaged over a block of `inner` samples, the path's radiance
 /// with that draw fixed and the others integrated out (the draw's main effect).
 pub struct Mixed<'a> {
-    tested: &'a PixelSampler,
+    tested: &'a dyn Stateless,
     others: &'a PixelSampler,
     pixel: [u32; 2],
     index: u64,
@@ -146,7 +149,7 @@ impl Draws for Mixed<'_> {
         let d = self.dim;
         self.dim += 2;
         if d == self.keep {
-            self.tested.sample_2d(self.pixel, self.index, d).into()
+            self.tested.sample_2d(self.pixel, self.index, d)
         } else {
             self.others.sample_2d(self.pixel, self.inner, d).into()
         }
@@ -183,7 +186,7 @@ const INNER: u64 = 64;
 /// draws).
 pub fn one_draw_errors(
     scene: &Scene,
-    tested: &PixelSampler,
+    tested: &dyn Stateless,
     spp: u32,
     size: (u32, u32),
     reference: &[Vec3],

@@ -5,12 +5,13 @@
 use std::time::Instant;
 
 use glam::Vec3;
-use strata::pixel::{Padding, PixelSampler, Sequence};
+use strata::pixel::{Padding, Sequence};
 use strata_lab::io;
 use strata_lab::spectrum::{self, ErrorImage};
 
 use crate::args::Args;
 use crate::common::CliError;
+use crate::method::{ByCopy, Method, PixelDraws, Stateless, Visit, with_sampler};
 use crate::picture::{
     error_canvas, error_image_canvas, luminance_errors, relative_error, to_canvas,
 };
@@ -41,17 +42,18 @@ pub struct Row {
     pub split: Option<[Masked; 2]>,
 }
 
-/// The sequences of `--samplers` at the image size, each checked against every count.
-pub fn sequences(args: &Args) -> Result<Vec<(String, Sequence)>, CliError> {
-    let sequences: Vec<(String, Sequence)> = args
+/// The samplers of `--samplers` at the image size (the crate's sequences, the references,
+/// the experiments), each checked against every count.
+pub fn sequences(args: &Args) -> Result<Vec<(String, Method)>, CliError> {
+    let sequences: Vec<(String, Method)> = args
         .samplers
         .iter()
-        .map(|n| Ok((n.clone(), Sequence::by_name(n, [args.size.0, args.size.1])?)))
-        .collect::<Result<_, strata::Error>>()?;
-    for (_, seq) in &sequences {
+        .map(|n| Ok((n.clone(), Method::by_name(n, args.size)?)))
+        .collect::<Result<_, CliError>>()?;
+    for (_, method) in &sequences {
         for &spp in &args.spp {
             // refused before any work: the sampler checks its count
-            strata::PixelSampler::new(seq.clone(), spp, strata::Seed(0))?;
+            method.check_spp(spp)?;
         }
     }
     Ok(sequences)
@@ -76,7 +78,7 @@ pub fn reference(args: &Args, scene: &Scene, ref_spp: u32) -> Result<Vec<Vec3>, 
     let start = Instant::now();
     let reference = render(
         scene,
-        Sequence::sobol(),
+        &Method::Crate(Sequence::sobol()),
         ref_spp,
         size,
         0x5eed_0000_0001,
@@ -93,7 +95,7 @@ pub fn reference(args: &Args, scene: &Scene, ref_spp: u32) -> Result<Vec<Vec3>, 
 pub fn rows(
     args: &Args,
     scene: &Scene,
-    sequences: &[(String, Sequence)],
+    sequences: &[(String, Method)],
     reference: &[Vec3],
     emitters: &Emitters,
 ) -> Result<Vec<Row>, CliError> {
@@ -116,7 +118,7 @@ fn measure(
     args: &Args,
     scene: &Scene,
     name: &str,
-    seq: &Sequence,
+    seq: &Method,
     spp: u32,
     reference: &[Vec3],
     emitters: &Emitters,
@@ -133,7 +135,7 @@ fn measure(
         let start = Instant::now();
         let image = render(
             scene,
-            seq.clone(),
+            seq,
             spp,
             size,
             args.seed.wrapping_add(k),
@@ -207,7 +209,7 @@ impl Sums {
 /// One seed's render of a row: its sequence and count, its seed, the image and its
 /// luminance error.
 struct Seed<'a> {
-    seq: &'a Sequence,
+    seq: &'a Method,
     spp: u32,
     seed: u64,
     image: &'a [Vec3],
@@ -245,9 +247,34 @@ fn masked(
         / (emitters.kept as f64 * seeds);
     m.masked.add(&e, seeds);
     if let Some(parts) = &mut m.split {
-        let tested = PixelSampler::new(s.seq.clone(), s.spp, strata::Seed(s.seed))?
-            .with_padding(args.padding);
-        let one = one_draw_errors(scene, &tested, s.spp, size, reference, &emitters.draws);
+        /// The one-draw errors with whichever sampler the row's method is.
+        struct OneDraw<'a> {
+            scene: &'a Scene,
+            spp: u32,
+            size: (u32, u32),
+            reference: &'a [Vec3],
+            draws: &'a [u32],
+        }
+        impl Visit<Vec<f64>> for OneDraw<'_> {
+            fn visit<S: PixelDraws + 'static>(self, s: S) -> Vec<f64> {
+                // the crate's sampler has stateless draws of its own; the others are copied
+                let tested: Box<dyn Stateless> =
+                    match (&s as &dyn std::any::Any).downcast_ref::<strata::PixelSampler>() {
+                        Some(p) => Box::new(p.clone()),
+                        None => Box::new(ByCopy(s)),
+                    };
+                let (scene, size) = (self.scene, self.size);
+                one_draw_errors(scene, &*tested, self.spp, size, self.reference, self.draws)
+            }
+        }
+        let go = OneDraw {
+            scene,
+            spp: s.spp,
+            size,
+            reference,
+            draws: &emitters.draws,
+        };
+        let one = with_sampler(s.seq, s.spp, size, s.seed, args.padding, go)?;
         let rest: Vec<f64> = s.lum.iter().zip(&one).map(|(e, o)| e - o).collect();
         for (part, errors) in parts.iter_mut().zip([&one, &rest]) {
             let p = spectrum::error_image_masked(errors, keep, size.0, size.1)?;

@@ -3,12 +3,11 @@
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use strata::pixel::{Padding, PixelSampler, Sequence, warp};
+use strata::pixel::{Padding, PixelSampler, warp};
 
+use crate::method::{Method, PixelDraws, Visit, with_sampler};
 use crate::scene::{Hit, Material, Scene, SceneKind, checker};
 
-/// The radiance of the sky, seen where a ray of the `spheres` scene leaves it.
-const SKY: Vec3 = Vec3::new(0.05, 0.07, 0.1);
 /// The most bounces of a path.
 pub const MAX_BOUNCES: u32 = 8;
 
@@ -31,8 +30,16 @@ fn basis(n: Vec3) -> (Vec3, Vec3) {
     )
 }
 
-/// Direct light at a diffuse point from one light chosen by `choice`, a point on it by `on`.
-fn next_event(scene: &Scene, p: Vec3, n: Vec3, time: f32, choice: f32, on: Vec2) -> Vec3 {
+/// Direct light at a point from one light chosen by `choice`, a point on it by `on`, through
+/// the BRDF `brdf` (times pi: the albedo of a diffuse surface) towards the light's direction.
+fn next_event(
+    scene: &Scene,
+    p: Vec3,
+    n: Vec3,
+    time: f32,
+    (choice, on): (f32, Vec2),
+    brdf: impl Fn(Vec3) -> Vec3,
+) -> Vec3 {
     let mut c = 0.0;
     let (mut index, mut prob) = scene.lights[scene.lights.len() - 1];
     for &(i, pr) in &scene.lights {
@@ -54,7 +61,7 @@ fn next_event(scene: &Scene, p: Vec3, n: Vec3, time: f32, choice: f32, on: Vec2)
     if cos_s <= 0.0 || cos_l <= 0.0 || !scene.visible(p + n * 1e-4, q, time) {
         return Vec3::ZERO;
     }
-    radiance * (cos_s * cos_l / d2 * light.area() / prob / std::f32::consts::PI)
+    brdf(l) * (radiance * (cos_s * cos_l / d2 * light.area() / prob / std::f32::consts::PI))
 }
 
 /// What the path tracer asks of its sampler: the adapter's draw calls ([`PixelSampler`], or
@@ -97,6 +104,20 @@ struct Path {
     throughput: Vec3,
     sum: Vec3,
     count_emission: bool,
+    /// A diffuse bounce is behind: next-event estimation leaves the glossy lobes out (their
+    /// light after a diffuse bounce is a glossy caustic, left out as the mirror's are).
+    diffused: bool,
+}
+
+/// What a surface hit does: its (textured) diffuse albedo, the probability weights of its
+/// mirror and glossy lobes, and the glossy lobe's colour and exponent.
+#[derive(Clone, Copy)]
+struct Surface {
+    albedo: Vec3,
+    mirror: f32,
+    gloss: f32,
+    specular: Vec3,
+    exponent: f32,
 }
 
 /// Radiance along one camera sample.
@@ -115,6 +136,7 @@ pub fn radiance<S: Draws>(px: u32, py: u32, size: (u32, u32), s: &mut S, scene: 
         throughput: Vec3::ONE,
         sum: Vec3::ZERO,
         count_emission: true,
+        diffused: false,
     };
     for bounce in 0..MAX_BOUNCES {
         if !path.bounce(bounce, s, scene, time) {
@@ -141,9 +163,7 @@ impl Path {
     /// third bounce; false when the path ends.
     fn bounce<S: Draws>(&mut self, bounce: u32, s: &mut S, scene: &Scene, time: f32) -> bool {
         let Some(hit) = scene.intersect(self.origin, self.dir, time) else {
-            if scene.kind == SceneKind::Spheres {
-                self.sum += self.throughput * SKY;
-            }
+            self.sum += self.throughput * scene.sky;
             return false;
         };
         let Some(surface) = self.surface(&hit, scene) else {
@@ -164,38 +184,66 @@ impl Path {
         true
     }
 
-    /// The albedo (with the `spheres` ground's checkerboard) and mirror weight of the surface
-    /// hit; `None` at a light, whose emission is added when it counts.
-    fn surface(&mut self, hit: &Hit, scene: &Scene) -> Option<(Vec3, f32)> {
-        let (albedo, mirror) = match hit.material {
+    /// The surface hit: its albedo (with the `spheres` ground's checkerboard, or the
+    /// material's texture) and lobes; `None` at a light, whose emission is added when it counts.
+    fn surface(&mut self, hit: &Hit, scene: &Scene) -> Option<Surface> {
+        let plain = |albedo, mirror| Surface {
+            albedo,
+            mirror,
+            gloss: 0.0,
+            specular: Vec3::ZERO,
+            exponent: 1.0,
+        };
+        match hit.material {
             Material::Light { radiance } => {
                 if self.count_emission && hit.normal.dot(self.dir) < 0.0 {
                     self.sum += self.throughput * radiance;
                 }
-                return None;
+                None
             }
-            Material::Surface { albedo, mirror } => (albedo, mirror),
-        };
-        let albedo = if scene.kind == SceneKind::Spheres && hit.normal == Vec3::Y {
-            albedo * checker(hit.point)
-        } else {
-            albedo
-        };
-        Some((albedo, mirror))
+            Material::Surface { albedo, mirror } => {
+                let albedo = if scene.kind == SceneKind::Spheres && hit.normal == Vec3::Y {
+                    albedo * checker(hit.point)
+                } else {
+                    albedo
+                };
+                Some(plain(albedo, mirror))
+            }
+            Material::Glossy {
+                texture,
+                gloss,
+                specular,
+                exponent,
+            } => Some(Surface {
+                albedo: texture.at(hit.point),
+                mirror: 0.0,
+                gloss,
+                specular,
+                exponent,
+            }),
+        }
     }
 
-    /// The next ray from `hit`, whose surface has `(albedo, mirror)`: the mirror lobe, chosen
-    /// with its weight, or next-event estimation and a cosine-sampled direction; false when
-    /// the path ends there (direct lighting only in `spheres` and `cornell-direct`).
+    /// The next ray from `hit`, whose surface is `surface`: the mirror lobe, chosen with its
+    /// weight, or next-event estimation (through the diffuse and the glossy lobe) and a
+    /// direction sampled from the glossy lobe or the cosine, chosen by the lobes' weights;
+    /// false when the path ends there (direct lighting only in `spheres`, `cornell-direct` and
+    /// `studio-direct`).
     fn scatter<S: Draws>(
         &mut self,
         s: &mut S,
         base: u32,
         scene: &Scene,
         hit: &Hit,
-        (albedo, mirror): (Vec3, f32),
+        surface: Surface,
         time: f32,
     ) -> bool {
+        let Surface {
+            albedo,
+            mirror,
+            gloss,
+            ..
+        } = surface;
         // face the normal towards the incoming ray
         let n = if hit.normal.dot(self.dir) < 0.0 {
             hit.normal
@@ -211,35 +259,103 @@ impl Path {
             // specular chain only; caustics (diffuse, mirror, light) are left out, in the
             // reference too, as their variance would drown every sampler's difference
         } else {
-            let choice = draw_1d(s, base, LIGHT_CHOICE);
-            let on = draw_2d(s, base, LIGHT_POINT);
-            self.sum +=
-                self.throughput * albedo * next_event(scene, hit.point, n, time, choice, on);
+            let light = (
+                draw_1d(s, base, LIGHT_CHOICE),
+                draw_2d(s, base, LIGHT_POINT),
+            );
+            let reflected = self.dir - 2.0 * self.dir.dot(n) * n;
+            let direct = if gloss > 0.0 && !self.diffused {
+                // both lobes towards the light (times pi)
+                let lobe = (surface.exponent + 2.0) / 2.0;
+                let brdf = |l: Vec3| {
+                    (1.0 - gloss) * albedo
+                        + gloss
+                            * surface.specular
+                            * (lobe * reflected.dot(l).max(0.0).powf(surface.exponent))
+                };
+                next_event(scene, hit.point, n, time, light, brdf)
+            } else {
+                next_event(scene, hit.point, n, time, light, |_| albedo)
+            };
+            self.sum += self.throughput * direct;
             if scene.direct {
                 return false; // direct lighting only
             }
-            let local = Vec3::from(warp::cosine_hemisphere(draw_2d(s, base, DIRECTION).into()));
-            let (t, b) = basis(n);
-            self.dir = (t * local.x + b * local.y + n * local.z).normalize();
+            let u = draw_2d(s, base, DIRECTION);
+            if gloss > 0.0 && draw_1d(s, base, LOBE) < gloss {
+                // the glossy lobe, chosen with its own weight: the weights cancel
+                let Some((dir, weight)) = phong(reflected, n, surface.exponent, u) else {
+                    return false;
+                };
+                self.throughput *= surface.specular * weight;
+                self.dir = dir;
+            } else {
+                let local = Vec3::from(warp::cosine_hemisphere(u.into()));
+                let (t, b) = basis(n);
+                self.dir = (t * local.x + b * local.y + n * local.z).normalize();
+                self.throughput *= albedo; // cosine sampling: f cos / pdf = albedo
+                self.diffused = true;
+            }
             self.origin = hit.point + n * 1e-4;
-            self.throughput *= albedo; // cosine sampling: f cos / pdf = albedo
             self.count_emission = false; // next-event estimation counted the lights
         }
         true
     }
 }
 
-/// Renders the image (linear radiance, row-major) with `spp` samples of `sequence`.
+/// A direction sampled from the normalized Phong lobe of exponent `exponent` around
+/// `reflected`, by `u`, above the surface of normal `n`, with its weight `f cos / pdf`
+/// (without the lobe's colour): `(n + 2) / (n + 1) cos`. `None` below the surface.
+fn phong(reflected: Vec3, n: Vec3, exponent: f32, u: Vec2) -> Option<(Vec3, f32)> {
+    let cos_a = u.x.powf(1.0 / (exponent + 1.0));
+    let sin_a = (1.0 - cos_a * cos_a).max(0.0).sqrt();
+    let phi = std::f32::consts::TAU * u.y;
+    let (t, b) = basis(reflected);
+    let dir = (t * (sin_a * phi.cos()) + b * (sin_a * phi.sin()) + reflected * cos_a).normalize();
+    let cos = dir.dot(n);
+    (cos > 0.0).then_some((dir, (exponent + 2.0) / (exponent + 1.0) * cos))
+}
+
+/// Renders the image (linear radiance, row-major) with `spp` samples of `method` (the crate's
+/// sequences with `padding`).
 pub fn render(
     scene: &Scene,
-    sequence: Sequence,
+    method: &Method,
     spp: u32,
     size: (u32, u32),
     seed: u64,
     progress: Option<&str>,
     padding: Padding,
 ) -> Result<Vec<Vec3>, strata::Error> {
-    let sampler = PixelSampler::new(sequence, spp, strata::Seed(seed))?.with_padding(padding);
+    /// [`render_with`] for whichever sampler `method` is.
+    struct Go<'a> {
+        scene: &'a Scene,
+        spp: u32,
+        size: (u32, u32),
+        progress: Option<&'a str>,
+    }
+    impl Visit<Vec<Vec3>> for Go<'_> {
+        fn visit<S: PixelDraws + 'static>(self, s: S) -> Vec<Vec3> {
+            render_with(self.scene, s, self.spp, self.size, self.progress)
+        }
+    }
+    let go = Go {
+        scene,
+        spp,
+        size,
+        progress,
+    };
+    with_sampler(method, spp, size, seed, padding, go)
+}
+
+/// Renders the image with `spp` samples per pixel of `sampler` (cloned per row).
+fn render_with<S: PixelDraws>(
+    scene: &Scene,
+    sampler: S,
+    spp: u32,
+    size: (u32, u32),
+    progress: Option<&str>,
+) -> Vec<Vec3> {
     let rows_done = std::sync::atomic::AtomicU32::new(0);
     let rows: Vec<Vec<Vec3>> = (0..size.1)
         .into_par_iter()
@@ -249,7 +365,7 @@ pub fn render(
                 .map(|x| {
                     let mut sum = Vec3::ZERO;
                     for i in 0..spp {
-                        s.start_pixel_sample([x, y], i as u64, 0);
+                        s.start([x, y], i);
                         sum += radiance(x, y, size, &mut s, scene);
                     }
                     sum / spp as f32
@@ -266,5 +382,5 @@ pub fn render(
             row
         })
         .collect();
-    Ok(rows.concat())
+    rows.concat()
 }
