@@ -8,6 +8,7 @@ use strata::pixel::{Padding, Sequence};
 use crate::common::{self, CliError, cli_error, parse_int, string_value};
 use crate::outln;
 use crate::scene::SceneKind;
+use crate::trace::Layout;
 
 /// The one-line usage, in the message of an unknown flag.
 const USAGE: &str = "render [--samplers a,b,..|all] [--spp N[,N,..]] [--size WxH] \
@@ -48,6 +49,16 @@ Options:
   --padding nested|uniform  how two draws' samples meet (strata::Padding; default nested:
                          every power-of-two prefix a net; uniform: each block of spp samples
                          reordered per draw by a sharply 2-transitive map)
+  --layout bounce|interacting  where a path's draws go (default bounce: the camera's and each
+                         bounce's own block; interacting: the film position with the first
+                         light point and each direction with the next light point in one
+                         aligned group of four dimensions, for zquad and sobol12-4/zsobol12-4)
+  --frames F             also a sequence of F frames (2 to 64) of the static camera per
+                         sampler, count and seed, whose pixels exchange their draws within
+                         tiles between frames so that the error follows a blue-noise mask
+                         (Heitz and Belcour 2019; strata::pixel::frames), measured over
+                         frames 2 to F beside frame 1: a table on stdout and in --markdown
+  --frame-tile T         the tiles' side of --frames (1 to 64, default 4)
   --reference-spp N      samples per pixel of the reference (default 16 x the largest count,
                          at least 1024, at most 65536; never below the largest count)
   --seed S               seed of the samplers (u64, default 1; the reference has its own)
@@ -90,6 +101,12 @@ pub struct Args {
     pub size: (u32, u32),
     pub scene: SceneKind,
     pub padding: Padding,
+    /// Where the draws of a path go.
+    pub layout: Layout,
+    /// `--frames F`: the frames of the a-posteriori permutation study (0: none).
+    pub frames: u32,
+    /// `--frame-tile T`: its tiles' side.
+    pub frame_tile: u32,
     pub reference_spp: Option<u32>,
     pub seed: u64,
     pub seeds: u32,
@@ -109,6 +126,9 @@ pub fn parse() -> Result<Option<Args>, CliError> {
         size: (128, 128),
         scene: SceneKind::Cornell,
         padding: Padding::Nested,
+        layout: Layout::Bounce,
+        frames: 0,
+        frame_tile: 4,
         reference_spp: None,
         seed: 1,
         seeds: 4,
@@ -127,6 +147,20 @@ pub fn parse() -> Result<Option<Args>, CliError> {
             }
             Long("scene") => a.scene = scene(&string_value("--scene", p.value()?)?)?,
             Long("padding") => a.padding = padding(&string_value("--padding", p.value()?)?)?,
+            Long("layout") => a.layout = layout(&string_value("--layout", p.value()?)?)?,
+            Long("frames") => {
+                let v = string_value("--frames", p.value()?)?;
+                a.frames = parse_int("--frames", &v, 2, 64)? as u32;
+            }
+            Long("frame-tile") => {
+                let v = string_value("--frame-tile", p.value()?)?;
+                a.frame_tile = parse_int(
+                    "--frame-tile",
+                    &v,
+                    1,
+                    strata::pixel::frames::MAX_TILE as u64,
+                )? as u32;
+            }
             Long("size") => a.size = size(&string_value("--size", p.value()?)?)?,
             Long("seeds") => {
                 let v = string_value("--seeds", p.value()?)?;
@@ -205,6 +239,17 @@ fn scene(v: &str) -> Result<SceneKind, CliError> {
     }
 }
 
+/// `--layout`: `bounce` or `interacting`.
+fn layout(v: &str) -> Result<Layout, CliError> {
+    match v {
+        "bounce" => Ok(Layout::Bounce),
+        "interacting" => Ok(Layout::Interacting),
+        other => Err(cli_error(format!(
+            "--layout {other:?} is not a layout; allowed: bounce, interacting"
+        ))),
+    }
+}
+
 /// `--padding`: `nested` or `uniform`.
 fn padding(v: &str) -> Result<Padding, CliError> {
     match v {
@@ -275,7 +320,16 @@ fn check(a: &Args) -> Result<(), CliError> {
 /// The name of the `--markdown` section a run writes: `render-SCENE-COUNTS`.
 pub fn markdown_section(args: &Args) -> String {
     let counts: Vec<String> = args.spp.iter().map(|n| n.to_string()).collect();
-    format!("render-{}-{}", args.scene.name(), counts.join(","))
+    let layout = match args.layout {
+        Layout::Bounce => "",
+        Layout::Interacting => "-interacting",
+    };
+    let frames = if args.frames > 0 { "-frames" } else { "" };
+    format!(
+        "render-{}-{}{layout}{frames}",
+        args.scene.name(),
+        counts.join(",")
+    )
 }
 
 /// The largest image side.

@@ -34,6 +34,7 @@ mod common;
 
 mod args;
 mod figures;
+mod frames;
 mod method;
 mod pbrt;
 mod picture;
@@ -55,7 +56,8 @@ fn main() -> ExitCode {
             return Ok(());
         };
         let sequences = sweep::sequences(&args)?;
-        let scene = scene::build(args.scene);
+        let mut scene = scene::build(args.scene);
+        scene.layout = args.layout;
         let ref_spp = sweep::reference_spp(&args);
         let reference = sweep::reference(&args, &scene, ref_spp)?;
         let emitters = split::emitters(&args, &scene, &reference)?;
@@ -72,6 +74,22 @@ fn main() -> ExitCode {
             outln!("\n{t}")?;
         }
 
+        let frames = (args.frames > 0)
+            .then(|| {
+                frames::table(
+                    &args,
+                    &scene,
+                    &sequences,
+                    &reference,
+                    &emitters,
+                    args.frames,
+                    args.frame_tile,
+                )
+            })
+            .transpose()?;
+        if let Some(t) = &frames {
+            outln!("\n{t}")?;
+        }
         let (table, plot) = report::convergence(&args, &sequences, &rows);
         outln!("\n{table}")?;
         let trade = report::write_trade(&args, &sequences, &rows)?;
@@ -82,6 +100,7 @@ fn main() -> ExitCode {
                 full: &full,
                 trade: &trade,
                 split: split.as_deref(),
+                frames: frames.as_deref(),
                 masked: emitters.keep.len() - emitters.kept,
             };
             report::write_markdown(path, &args, ref_spp, &tables)?;

@@ -205,6 +205,8 @@ pub struct Scene {
     pub sky: Vec3,
     /// Direct lighting only: the path ends after the first diffuse hit's next-event estimate.
     pub direct: bool,
+    /// Where the draws of a path go (`--layout`).
+    pub layout: crate::trace::Layout,
 }
 
 /// A thin-lens camera looking along `forward`, focused at distance `focus`.
@@ -338,6 +340,7 @@ fn cornell() -> Scene {
         kind: SceneKind::Cornell,
         sky: Vec3::ZERO,
         direct: false,
+        layout: crate::trace::Layout::Bounce,
     }
 }
 
@@ -457,6 +460,7 @@ fn spheres() -> Scene {
         kind: SceneKind::Spheres,
         sky: Vec3::new(0.05, 0.07, 0.1),
         direct: true,
+        layout: crate::trace::Layout::Bounce,
     }
 }
 
@@ -552,5 +556,6 @@ fn studio() -> Scene {
         kind: SceneKind::Studio,
         sky: Vec3::ZERO,
         direct: false,
+        layout: crate::trace::Layout::Bounce,
     }
 }

@@ -13,7 +13,7 @@ use crate::args::Args;
 use crate::common::CliError;
 use crate::picture::{luminance, to_canvas};
 use crate::scene::{Material, Scene, SceneKind};
-use crate::trace::{Draws, LIGHT_CHOICE, LIGHT_POINT, LOBE, MAX_BOUNCES, radiance};
+use crate::trace::{Draws, MAX_BOUNCES, radiance};
 
 /// The pixels kept in the masked figures, and the draws the interaction split integrates out
 /// one by one.
@@ -74,12 +74,7 @@ pub fn emitters(args: &Args, scene: &Scene, reference: &[Vec3]) -> Result<Emitte
         keep.len() - kept,
         keep.len()
     );
-    let b0 = DimensionLayout::default().bounce_start(0);
-    let mut draws = vec![0, 2];
-    if args.scene == SceneKind::Spheres {
-        draws.push(4);
-    }
-    draws.extend([b0 + LOBE, b0 + LIGHT_CHOICE, b0 + LIGHT_POINT]);
+    let draws = scene.layout.split_draws(args.scene == SceneKind::Spheres);
     Ok(Emitters { keep, kept, draws })
 }
 

@@ -3,6 +3,7 @@
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
+use strata::pixel::frames::SeedPermutation;
 use strata::pixel::{Padding, PixelSampler, warp};
 
 use crate::method::{Method, PixelDraws, Visit, with_sampler};
@@ -18,6 +19,73 @@ pub const LIGHT_CHOICE: u32 = 1;
 pub const LIGHT_POINT: u32 = 2; // 2-3
 const DIRECTION: u32 = 4; // 4-5
 const ROULETTE: u32 = 6;
+
+/// Where the draws of a path go (`--layout`).
+///
+/// * `bounce` (the default): the camera's block holds the film position (0-1), the lens
+///   (2-3) and the time (4); each bounce's block its lobe choice (0), light choice (1), light
+///   point (2-3), direction (4-5) and Russian roulette (6).
+/// * `interacting`: the draws that meet in one integrand share an aligned group of
+///   dimensions, so that a joint sequence (`zquad`, `zjoint`, `sobol12`, `zsobol12`)
+///   stratifies them together: the film position with the first hit's light point and light
+///   choice (camera 0-1, 2-3 and 4; the time at 5, the lens at 6-7), and each bounce's
+///   direction (its block's 0-1) with the next hit's light point (2-3) and light choice (4);
+///   the lobe choice at 5, Russian roulette at 6. Bounce `k`'s light draws are then in bounce
+///   `k - 1`'s block (the camera's for the first). Groups of 4 hold a position and the light
+///   point it meets, groups of 8 the light choice too.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Layout {
+    Bounce,
+    Interacting,
+}
+
+impl Layout {
+    /// The offsets in a bounce's block of its lobe choice and its direction, and of the
+    /// roulette.
+    fn offsets(self) -> (u32, u32, u32) {
+        match self {
+            Layout::Bounce => (LOBE, DIRECTION, ROULETTE),
+            Layout::Interacting => (5, 0, 6),
+        }
+    }
+
+    /// The dimensions of bounce `k`'s light choice and light point, its block starting at
+    /// `base` (the default [`strata::pixel::DimensionLayout`]: eight dimensions for the camera
+    /// and per bounce).
+    fn light(self, k: u32, base: u32) -> (u32, u32) {
+        match self {
+            Layout::Bounce => (base + LIGHT_CHOICE, base + LIGHT_POINT),
+            Layout::Interacting => {
+                let from = if k == 0 { 0 } else { base - 8 };
+                (from + 4, from + 2)
+            }
+        }
+    }
+
+    /// The first dimensions of the draws of a direct-lighting path (the camera's and the first
+    /// bounce's), which the interaction split takes one at a time: the film position, the
+    /// lens, the time (`spheres` only), the lobe choice, the light choice and the light point.
+    pub fn split_draws(self, time: bool) -> Vec<u32> {
+        let b0 = strata::pixel::DimensionLayout::default().bounce_start(0);
+        let (lens, t) = self.camera();
+        let (lobe, _, _) = self.offsets();
+        let (choice, point) = self.light(0, b0);
+        let mut draws = vec![0, lens];
+        if time {
+            draws.push(t);
+        }
+        draws.extend([b0 + lobe, choice, point]);
+        draws
+    }
+
+    /// The camera's dimensions of the lens and the time.
+    fn camera(self) -> (u32, u32) {
+        match self {
+            Layout::Bounce => (2, 4),
+            Layout::Interacting => (6, 5),
+        }
+    }
+}
 
 /// An orthonormal basis around `n` (Duff et al. 2017).
 fn basis(n: Vec3) -> (Vec3, Vec3) {
@@ -123,8 +191,11 @@ struct Surface {
 /// Radiance along one camera sample.
 pub fn radiance<S: Draws>(px: u32, py: u32, size: (u32, u32), s: &mut S, scene: &Scene) -> Vec3 {
     let film = s.get_pixel_2d();
+    let (lens_dim, time_dim) = scene.layout.camera();
+    s.set_dimension(lens_dim);
     let lens = s.get_2d();
     let time = if scene.kind == SceneKind::Spheres {
+        s.set_dimension(time_dim);
         s.get_1d()
     } else {
         0.0
@@ -171,12 +242,12 @@ impl Path {
         };
         s.start_bounce(bounce);
         let base = s.dimension();
-        if !self.scatter(s, base, scene, &hit, surface, time) {
+        if !self.scatter(s, (bounce, base), scene, &hit, surface, time) {
             return false;
         }
         if bounce >= 2 {
             let q = self.throughput.max_element().clamp(0.05, 0.95);
-            if draw_1d(s, base, ROULETTE) >= q {
+            if draw_1d(s, base, scene.layout.offsets().2) >= q {
                 return false;
             }
             self.throughput /= q;
@@ -232,7 +303,7 @@ impl Path {
     fn scatter<S: Draws>(
         &mut self,
         s: &mut S,
-        base: u32,
+        (bounce, base): (u32, u32),
         scene: &Scene,
         hit: &Hit,
         surface: Surface,
@@ -250,7 +321,9 @@ impl Path {
         } else {
             -hit.normal
         };
-        if mirror > 0.0 && draw_1d(s, base, LOBE) < mirror {
+        let (lobe, direction, _) = scene.layout.offsets();
+        let (choice, point) = scene.layout.light(bounce, base);
+        if mirror > 0.0 && draw_1d(s, base, lobe) < mirror {
             // the mirror lobe, chosen with its own weight: the weights cancel
             self.throughput *= albedo;
             self.dir -= 2.0 * self.dir.dot(n) * n;
@@ -259,10 +332,7 @@ impl Path {
             // specular chain only; caustics (diffuse, mirror, light) are left out, in the
             // reference too, as their variance would drown every sampler's difference
         } else {
-            let light = (
-                draw_1d(s, base, LIGHT_CHOICE),
-                draw_2d(s, base, LIGHT_POINT),
-            );
+            let light = (draw_1d(s, choice, 0), draw_2d(s, point, 0));
             let reflected = self.dir - 2.0 * self.dir.dot(n) * n;
             let direct = if gloss > 0.0 && !self.diffused {
                 // both lobes towards the light (times pi)
@@ -281,8 +351,8 @@ impl Path {
             if scene.direct {
                 return false; // direct lighting only
             }
-            let u = draw_2d(s, base, DIRECTION);
-            if gloss > 0.0 && draw_1d(s, base, LOBE) < gloss {
+            let u = draw_2d(s, base, direction);
+            if gloss > 0.0 && draw_1d(s, base, lobe) < gloss {
                 // the glossy lobe, chosen with its own weight: the weights cancel
                 let Some((dir, weight)) = phong(reflected, n, surface.exponent, u) else {
                     return false;
@@ -327,16 +397,51 @@ pub fn render(
     progress: Option<&str>,
     padding: Padding,
 ) -> Result<Vec<Vec3>, strata::Error> {
+    render_inner(scene, method, spp, size, seed, progress, padding, None)
+}
+
+/// [`render`] with each pixel taking the draws of the pixel `seeds` gives it (`--frames`).
+pub fn render_remapped(
+    scene: &Scene,
+    method: &Method,
+    spp: u32,
+    size: (u32, u32),
+    seed: u64,
+    padding: Padding,
+    seeds: Option<&SeedPermutation>,
+) -> Result<Vec<Vec3>, strata::Error> {
+    render_inner(scene, method, spp, size, seed, None, padding, seeds)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn render_inner(
+    scene: &Scene,
+    method: &Method,
+    spp: u32,
+    size: (u32, u32),
+    seed: u64,
+    progress: Option<&str>,
+    padding: Padding,
+    seeds: Option<&SeedPermutation>,
+) -> Result<Vec<Vec3>, strata::Error> {
     /// [`render_with`] for whichever sampler `method` is.
     struct Go<'a> {
         scene: &'a Scene,
         spp: u32,
         size: (u32, u32),
         progress: Option<&'a str>,
+        seeds: Option<&'a SeedPermutation>,
     }
     impl Visit<Vec<Vec3>> for Go<'_> {
         fn visit<S: PixelDraws + 'static>(self, s: S) -> Vec<Vec3> {
-            render_with(self.scene, s, self.spp, self.size, self.progress)
+            render_with(
+                self.scene,
+                s,
+                self.spp,
+                self.size,
+                self.progress,
+                self.seeds,
+            )
         }
     }
     let go = Go {
@@ -344,17 +449,20 @@ pub fn render(
         spp,
         size,
         progress,
+        seeds,
     };
     with_sampler(method, spp, size, seed, padding, go)
 }
 
-/// Renders the image with `spp` samples per pixel of `sampler` (cloned per row).
+/// Renders the image with `spp` samples per pixel of `sampler` (cloned per row), each pixel
+/// taking the draws of the pixel `seeds` gives it (its own without).
 fn render_with<S: PixelDraws>(
     scene: &Scene,
     sampler: S,
     spp: u32,
     size: (u32, u32),
     progress: Option<&str>,
+    seeds: Option<&SeedPermutation>,
 ) -> Vec<Vec3> {
     let rows_done = std::sync::atomic::AtomicU32::new(0);
     let rows: Vec<Vec<Vec3>> = (0..size.1)
@@ -364,8 +472,9 @@ fn render_with<S: PixelDraws>(
             let row = (0..size.0)
                 .map(|x| {
                     let mut sum = Vec3::ZERO;
+                    let from = seeds.map_or([x, y], |p| p.source([x, y]));
                     for i in 0..spp {
-                        s.start([x, y], i);
+                        s.start(from, i);
                         sum += radiance(x, y, size, &mut s, scene);
                     }
                     sum / spp as f32

@@ -853,7 +853,9 @@ mod tests {
                 if s == 1 { 2 ^ p } else { 2 },
                 "line {line}"
             );
-            for q in (2..=s).filter(|q| s.is_multiple_of(*q) && (2..*q).all(|r| !q.is_multiple_of(r))) {
+            for q in
+                (2..=s).filter(|q| s.is_multiple_of(*q) && (2..*q).all(|r| !q.is_multiple_of(r)))
+            {
                 let x = x_pow_2k(s / q, p, s) ^ 2;
                 assert_eq!(gcd(p, x), 1, "line {line}: reducible");
             }
