@@ -268,9 +268,17 @@ fn number(token: &str, line: usize, column: usize) -> Result<f64> {
         )
     })?;
     if !in_unit(v) {
+        // the text as written, and the number it reads as when that differs (0.99999999999999999
+        // is 1 as a double)
+        let text = token.trim();
+        let read = if text.parse::<f64>().ok().map(|x| x.to_string()) == Some(text.to_string()) {
+            String::new()
+        } else {
+            format!(" (read as {v})")
+        };
         return Err(Error::input(
             CONTEXT,
-            format!("line {line}, column {column}: {v} is outside [0, 1)"),
+            format!("line {line}, column {column}: '{text}'{read} is outside [0, 1)"),
         ));
     }
     Ok(v)

@@ -275,10 +275,51 @@ pub fn write_markdown_section(
         args.join(" "),
         body.trim_end()
     );
+    // programs run side by side into one file take turns: the read, the splice and the
+    // rename under one lock, or the last writer's copy would drop the others' sections
+    let _turn = DirectoryLock::take(path)?;
     let old = read_markdown(path)?;
     let new = splice_section(path, &old, name, &section)?;
     strata_lab::io::write_text(path, &new)?;
     Ok(())
+}
+
+/// An exclusive advisory lock (`flock`) on the directory of a file, held until dropped: the
+/// file itself cannot carry it, since each writer renames a new file over it. On systems
+/// other than Linux, no lock (concurrent `--markdown` runs into one file may lose sections).
+struct DirectoryLock {
+    #[cfg(target_os = "linux")]
+    _dir: std::fs::File,
+}
+
+impl DirectoryLock {
+    fn take(path: &std::path::Path) -> Result<Self, CliError> {
+        #[cfg(target_os = "linux")]
+        {
+            use std::os::fd::AsRawFd;
+            let dir = match path.parent() {
+                Some(d) if !d.as_os_str().is_empty() => d,
+                _ => std::path::Path::new("."),
+            };
+            let f = std::fs::create_dir_all(dir)
+                .and_then(|()| std::fs::File::open(dir))
+                .map_err(|e| cli_error(format!("{}: {e}", dir.display())))?;
+            // SAFETY: flock on a file descriptor this function owns, open for its lifetime
+            if unsafe { libc::flock(f.as_raw_fd(), libc::LOCK_EX) } != 0 {
+                let e = std::io::Error::last_os_error();
+                return Err(cli_error(format!(
+                    "{}: cannot lock the directory for --markdown: {e}",
+                    dir.display()
+                )));
+            }
+            Ok(DirectoryLock { _dir: f })
+        }
+        #[cfg(not(target_os = "linux"))]
+        {
+            let _ = path;
+            Ok(DirectoryLock {})
+        }
+    }
 }
 
 /// `arg` as a shell word: as it is when it holds only letters, digits and `_ . / , = : + - @ %`,

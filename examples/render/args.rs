@@ -195,11 +195,13 @@ fn samplers(v: &str, a: &mut Args) -> Result<(), CliError> {
     if v == "all" {
         a.samplers = every_sequence();
     } else {
-        a.samplers = v
-            .split(',')
-            .map(|s| s.trim().to_string())
-            .filter(|s| !s.is_empty())
-            .collect();
+        // each name once, in the order given (a repeated name rendered twice before)
+        a.samplers = Vec::new();
+        for name in v.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+            if !a.samplers.iter().any(|n| n == name) {
+                a.samplers.push(name.to_string());
+            }
+        }
         if a.samplers.is_empty() {
             return Err(cli_error("--samplers needs at least one name (or all)"));
         }

@@ -349,11 +349,14 @@ const MAX_LISTED_RANGE: u64 = 1 << 24;
 #[pyfunction]
 fn allowed_counts(name: &str, lo: u64, hi: u64) -> PyResult<Vec<u64>> {
     let e = registry::find(name).map_err(to_py_err)?;
-    if matches!(e.counts, CountRule::Any) && hi.saturating_sub(lo) >= MAX_LISTED_RANGE {
+    // the counts listed: 1 to 2^31 (a fixed-count set's largest count)
+    let (from, to) = (lo.max(1), hi.min(strata::counts::MAX_FIXED_COUNT));
+    if matches!(e.counts, CountRule::Any) && to.saturating_sub(from) >= MAX_LISTED_RANGE {
         return Err(value_error(format!(
-            "{} takes any count; listing {lo} to {hi} would make {} numbers (at most {MAX_LISTED_RANGE})",
+            "{} takes any count; listing {from} to {to} would make {} numbers (at most \
+             {MAX_LISTED_RANGE}): ask for a narrower range",
             e.name,
-            hi as u128 - lo as u128 + 1
+            to - from + 1
         )));
     }
     Ok(e.counts.counts_between(lo, hi).collect())

@@ -36,6 +36,11 @@ GOOD = np.random.default_rng(0).random((64, 2))
         (lambda: ss.points("sobol", 4, seed=True), TypeError, "seed must be .*; not a bool"),
         (lambda: ss.points("sobol", 4, seed=-2**70), ValueError, "as numpy.random.default_rng refuses them"),
         (lambda: ss.points("oa-bose", 49, dims=9), ValueError, "oa-bose"),
+        # issue 38's second hostile pass: numpy's "Maximum allowed dimension exceeded" and an
+        # 8 TiB MemoryError said nothing about n
+        (lambda: ss.points("sobol", 2**64 - 1), ValueError, r"at most 2\^31 values per call"),
+        (lambda: ss.points("sobol", 2**40), ValueError, r"n x dims = 1099511627776 x 2"),
+        (lambda: ss.allowed_counts("random", 0, 2**64 - 1), ValueError, r"listing 1 to 2147483648 would make 2147483648 numbers"),
     ],
 )
 def test_points_arguments(call, exc, match):

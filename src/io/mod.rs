@@ -43,7 +43,8 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
 /// A regular file, or a path where nothing exists yet, is written to a temporary file in the
 /// same directory, flushed to the disk and renamed over the target, so that a full disk or a
 /// crash in mid-write leaves the old file whole (a symbolic link is followed: its target is
-/// replaced, the link kept; the old file's permissions are kept). On Linux the temporary file
+/// replaced, the link kept, and a link to nothing yet makes its target; the old file's
+/// permissions are kept). On Linux the temporary file
 /// has no name while it is written (`O_TMPFILE`), so an interrupted program (Ctrl-C, a kill)
 /// leaves nothing behind; it is named (`.strata-PID-N.tmp`, short whatever the target's name)
 /// only for the instant between being linked into the directory and renamed over the target.
@@ -93,11 +94,13 @@ pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
         }
         Err(_) => {}
     }
-    // follow a symbolic link to the file it names
+    // follow a symbolic link to the file it names, also one whose target does not exist yet
+    // (a dangling link: the file is made where it points, the link kept, as a shell's
+    // redirection does)
     let target = if meta.is_ok() {
         std::fs::canonicalize(path).map_err(fail)?
     } else {
-        path.to_path_buf()
+        dangling_target(path).map_err(fail)?
     };
     create_parent(&target)?;
     let dir = match target.parent() {
@@ -127,6 +130,27 @@ pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&tmp);
         fail(e)
     })
+}
+
+/// Where `path` leads when it does not exist: itself, or for a symbolic link (a chain of them)
+/// whose target does not exist, that target (relative targets from the link's directory).
+fn dangling_target(path: &Path) -> std::io::Result<std::path::PathBuf> {
+    let mut at = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&at) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let to = std::fs::read_link(&at)?;
+                at = match at.parent() {
+                    Some(dir) if to.is_relative() => dir.join(to),
+                    _ => to,
+                };
+            }
+            _ => return Ok(at),
+        }
+    }
+    Err(std::io::Error::other(
+        "too many levels of symbolic links (more than 40)",
+    ))
 }
 
 /// The temporary file of [`write_file`]: unnamed on Linux, linked under its name when it is

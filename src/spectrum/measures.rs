@@ -23,7 +23,9 @@
 use std::f64::consts::PI;
 
 use super::check_points;
-use crate::grid::{TorusGrid, relative_radius_max};
+use rayon::prelude::*;
+
+use crate::grid::{TorusGrid, relative_radius_max, torus_distance_squared};
 use strata::Point2;
 use strata::{Error, Result};
 
@@ -50,24 +52,143 @@ pub struct PointSetMeasures {
     pub oscillations: Option<f64>,
 }
 
-/// Nearest-neighbour distances of a point set on the torus (`None` for a single point).
+/// Nearest-neighbour distances of a point set on the torus (`None` for a single point), by a
+/// balanced k-d tree: `O(n log n)` for any spread of the points, coincident or clustered ones
+/// included (a uniform grid of cells is quadratic when most points share a cell: issue 38's
+/// second hostile pass, 2^17 copies of one point took 127 s).
 pub fn nearest_neighbour_distances(points: &[Point2]) -> Option<Vec<f64>> {
     if points.len() < 2 {
         return None;
     }
-    let grid = TorusGrid::from_points(points.iter().map(|p| [p[0] as f64, p[1] as f64]));
+    let pts: Vec<[f64; 2]> = points.iter().map(|p| [p[0] as f64, p[1] as f64]).collect();
+    let tree = KdTree::new(&pts);
     Some(
-        grid.points()
-            .iter()
-            .enumerate()
-            .map(|(i, &p)| {
-                grid.nearest(p, Some(i))
-                    .expect("two or more points")
-                    .1
-                    .sqrt()
-            })
+        (0..pts.len())
+            .into_par_iter()
+            .map(|i| tree.nearest(i).sqrt())
             .collect(),
     )
+}
+
+/// The distances the tree computed (tests: its cost).
+#[cfg(test)]
+static EVALUATIONS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// A k-d tree over points of the unit torus, implicit: the order of `order` is the tree (a
+/// node is a range, split at its middle element on the axis of its depth), with leaves of at
+/// most [`KdTree::LEAF`] points.
+struct KdTree<'a> {
+    points: &'a [[f64; 2]],
+    order: Vec<u32>,
+}
+
+impl<'a> KdTree<'a> {
+    const LEAF: usize = 8;
+
+    fn new(points: &'a [[f64; 2]]) -> Self {
+        let mut order: Vec<u32> = (0..points.len() as u32).collect();
+        Self::build(points, &mut order, 0);
+        KdTree { points, order }
+    }
+
+    /// Orders `range` as the subtree at `depth`: its middle element the median on the axis
+    /// of the depth, the halves on either side built alike.
+    fn build(points: &[[f64; 2]], range: &mut [u32], depth: usize) {
+        if range.len() <= Self::LEAF {
+            return;
+        }
+        let axis = depth % 2;
+        let mid = range.len() / 2;
+        range.select_nth_unstable_by(mid, |&a, &b| {
+            points[a as usize][axis].total_cmp(&points[b as usize][axis])
+        });
+        let (lo, hi) = range.split_at_mut(mid);
+        Self::build(points, lo, depth + 1);
+        Self::build(points, &mut hi[1..], depth + 1);
+    }
+
+    /// The squared toroidal distance from point `i` to its nearest other point (the same
+    /// values as [`torus_distance_squared`] gives, the minimum over the others).
+    fn nearest(&self, i: usize) -> f64 {
+        let mut best = f64::INFINITY;
+        self.search(
+            i,
+            0,
+            self.order.len(),
+            0,
+            [[0.0, 1.0], [0.0, 1.0]],
+            &mut best,
+        );
+        best
+    }
+
+    /// The lower bound of the toroidal distance (squared) from `q` to the box `b`.
+    fn box_bound(q: [f64; 2], b: [[f64; 2]; 2]) -> f64 {
+        let mut d2 = 0.0;
+        for axis in 0..2 {
+            let [lo, hi] = b[axis];
+            let c = q[axis];
+            if c < lo || c > hi {
+                // straight to the nearer end, or around the circle to the farther one
+                let (a, z) = ((c - lo).abs(), (c - hi).abs());
+                let d = a.min(z).min(1.0 - a.max(z)).max(0.0);
+                d2 += d * d;
+            }
+        }
+        d2
+    }
+
+    fn search(
+        &self,
+        i: usize,
+        lo: usize,
+        hi: usize,
+        depth: usize,
+        b: [[f64; 2]; 2],
+        best: &mut f64,
+    ) {
+        let q = self.points[i];
+        // nothing beats a coincident point; (a margin for the bound's rounding: a box is
+        // skipped only when clearly farther)
+        if *best == 0.0 || Self::box_bound(q, b) * (1.0 - 1e-9) > *best {
+            return;
+        }
+        if hi - lo <= Self::LEAF {
+            #[cfg(test)]
+            EVALUATIONS.fetch_add((hi - lo) as u64, std::sync::atomic::Ordering::Relaxed);
+            for &j in &self.order[lo..hi] {
+                if j as usize != i {
+                    let d2 = torus_distance_squared(q, self.points[j as usize]);
+                    if d2 < *best {
+                        *best = d2;
+                    }
+                }
+            }
+            return;
+        }
+        let axis = depth % 2;
+        let mid = lo + (hi - lo) / 2;
+        let m = self.order[mid] as usize;
+        let split = self.points[m][axis];
+        if m != i {
+            let d2 = torus_distance_squared(q, self.points[m]);
+            if d2 < *best {
+                *best = d2;
+            }
+        }
+        let (mut left, mut right) = (b, b);
+        left[axis][1] = split;
+        right[axis][0] = split;
+        let halves = [(lo, mid, left), (mid + 1, hi, right)];
+        // the half holding q first
+        let order = if q[axis] < split { [0, 1] } else { [1, 0] };
+        for k in order {
+            let (a, z, bx) = halves[k];
+            if a < z {
+                self.search(i, a, z, depth + 1, bx, best);
+            }
+        }
+    }
 }
 
 /// The PSA measures of one or more realizations of a pattern (all with the same count).
@@ -280,6 +401,69 @@ pub(crate) fn bessel_j0(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn kd_tree_distances_are_the_brute_force_ones() {
+        // bit for bit: the minimum over the others of the same toroidal formula, for random,
+        // clustered, coincident, edge-hugging and lattice sets
+        let hash = |k: u64| (strata::hash::mix64(k) >> 40) as f32 / (1u64 << 24) as f32;
+        let mut sets: Vec<Vec<Point2>> = Vec::new();
+        sets.push((0..500).map(|i| [hash(2 * i), hash(2 * i + 1)]).collect());
+        sets.push((0..300).map(|i| [0.5 + hash(i) * 1e-4, 0.5]).collect());
+        sets.push(vec![[0.25, 0.75]; 40]);
+        sets.push(
+            (0..200)
+                .map(|i| [hash(i) * 1e-3, 0.999 + hash(i + 7) * 1e-3])
+                .collect(),
+        );
+        sets.push(
+            (0..256)
+                .map(|i| [(i % 16) as f32 / 16.0, (i / 16) as f32 / 16.0])
+                .collect(),
+        );
+        sets.push(vec![[0.0, 0.0], [0.999_999_94, 0.999_999_94]]);
+        for pts in &sets {
+            let got = nearest_neighbour_distances(pts).unwrap();
+            for (i, p) in pts.iter().enumerate() {
+                let q = [p[0] as f64, p[1] as f64];
+                let want = (0..pts.len())
+                    .filter(|&j| j != i)
+                    .map(|j| torus_distance_squared(q, [pts[j][0] as f64, pts[j][1] as f64]))
+                    .fold(f64::INFINITY, f64::min)
+                    .sqrt();
+                assert_eq!(
+                    got[i].to_bits(),
+                    want.to_bits(),
+                    "point {i} of {}",
+                    pts.len()
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn coincident_and_clustered_points_cost_n_log_n_distances() {
+        // 2^17 copies of one point took 127 s with the grid of cells (quadratic); the tree
+        // computes a few dozen distances per point whatever the spread
+        let n = 1usize << 17;
+        let hash = |k: u64| (strata::hash::mix64(k) >> 40) as f32 / (1u64 << 24) as f32;
+        for pts in [
+            vec![[0.5f32, 0.5]; n],
+            (0..n as u64)
+                .map(|i| [0.5 + hash(i) * 1e-6, 0.5 + hash(i + n as u64) * 1e-6])
+                .collect(),
+            (0..n as u64)
+                .map(|i| [hash(i), hash(i + n as u64)])
+                .collect(),
+        ] {
+            let before = EVALUATIONS.load(std::sync::atomic::Ordering::Relaxed);
+            let d = nearest_neighbour_distances(&pts).unwrap();
+            assert_eq!(d.len(), n);
+            let per_point =
+                (EVALUATIONS.load(std::sync::atomic::Ordering::Relaxed) - before) / n as u64;
+            assert!(per_point < 200, "{per_point} distances per point");
+        }
+    }
 
     #[test]
     fn bessel_j0_matches_tabulated_values() {

@@ -35,7 +35,11 @@ impl CountRule {
         match self {
             CountRule::Any => n >= 1,
             CountRule::Square => n >= 1 && n.isqrt().pow(2) == n,
-            CountRule::OaPower(t) => oa_root(n, *t).is_some(),
+            CountRule::OaPower(t) => {
+                (1..=MAX_OA_STRENGTH).contains(t)
+                    && (4..=MAX_FIXED_COUNT).contains(&n)
+                    && oa_root(n, *t).is_some()
+            }
             CountRule::Fibonacci => fibonacci_numbers().any(|f| f == n),
             CountRule::PowerOfTwo => n.is_power_of_two(),
         }
@@ -86,7 +90,8 @@ impl CountRule {
     }
 
     /// The allowed count nearest to `n` (the smaller one on a tie): a count [`check`] accepts,
-    /// so at least 1 and at most [`MAX_FIXED_COUNT`], for every `n`.
+    /// so at least 1 and at most [`MAX_FIXED_COUNT`], for every `n` (but for `OaPower(t)` with
+    /// `t` 0 or above [`MAX_OA_STRENGTH`], which allows no count: 1).
     ///
     /// [`check`]: CountRule::check
     pub fn nearest(&self, n: u64) -> u64 {
@@ -113,9 +118,23 @@ impl CountRule {
                 let r = n.isqrt();
                 pick(r * r, (r + 1) * (r + 1))
             }
-            CountRule::OaPower(_) => {
-                let all = self.counts_between(1, n.saturating_mul(4).max(1 << 12).min(max));
-                all.min_by_key(|&c| c.abs_diff(n)).unwrap_or(4)
+            CountRule::OaPower(t) if !(1..=MAX_OA_STRENGTH).contains(t) => 1,
+            CountRule::OaPower(t) => {
+                let power = |q: u32| (q as u64).pow(*t);
+                match oa_bracket(n, *t, max) {
+                    (Some(b), Some(a)) => {
+                        let (lo, hi) = (power(b), power(a));
+                        if n - lo <= hi - n { lo } else { hi }
+                    }
+                    (Some(b), None) => power(b),
+                    (None, Some(a)) => power(a),
+                    // nothing at most `max` (a limit below the smallest count): the smallest
+                    (None, None) => (2u64..)
+                        .filter(|&q| supported_symbols(q as u32))
+                        .map(|q| q.pow(*t))
+                        .find(|&c| c >= 4)
+                        .unwrap_or(4),
+                }
             }
             CountRule::Fibonacci => fibonacci_numbers()
                 .take_while(|&f| f <= max)
@@ -147,10 +166,13 @@ impl CountRule {
                 };
                 Box::new((lo..=max.isqrt()).map(|s| s * s))
             }
+            CountRule::OaPower(t) if !(1..=MAX_OA_STRENGTH).contains(&t) => {
+                Box::new(core::iter::empty())
+            }
             CountRule::OaPower(t) => Box::new(
                 (2u64..)
                     .map_while(move |q| q.checked_pow(t).filter(|&c| c <= max).map(|c| (q, c)))
-                    .filter(move |&(q, c)| c >= min && supported_symbols(q as u32))
+                    .filter(move |&(q, c)| c >= min.max(4) && supported_symbols(q as u32))
                     .map(|(_, c)| c),
             ),
             CountRule::Fibonacci => {
@@ -241,30 +263,39 @@ fn oa_root(n: u64, t: u32) -> Option<u64> {
     (q >= 2 && q.checked_pow(t) == Some(n) && supported).then_some(q)
 }
 
+/// The supported `q` with `q^t` at most `count`, and the one with `q^t` at least `count` and
+/// at most `max` (each `None` where there is none), for strengths `t` from 1 to
+/// [`MAX_OA_STRENGTH`]: a walk from the `t`-th root to the nearest supported `q` on each side
+/// (primes are dense: a few hundred steps at most below `2^31`).
+fn oa_bracket(count: u64, t: u32, max: u64) -> (Option<u32>, Option<u32>) {
+    let floor = root_floor(count, t).min(u32::MAX as u64) as u32;
+    let ceil = if (floor as u64).checked_pow(t) == Some(count) {
+        floor
+    } else {
+        floor.saturating_add(1)
+    };
+    let power = |q: u32| (q as u64).checked_pow(t);
+    let below = (2..=floor.max(1))
+        .rev()
+        .find(|&q| supported_symbols(q) && power(q).is_some_and(|c| (4..=count).contains(&c)));
+    let above = (ceil.max(2)..)
+        .map_while(|q| power(q).filter(|&c| c <= max).map(|_| q))
+        .find(|&q| supported_symbols(q) && power(q).is_some_and(|c| c >= 4));
+    (below, above)
+}
+
+/// The largest strength `t` of [`CountRule::OaPower`] that allows a count (`2^31` is the
+/// largest count, and `q >= 2`); strengths 0 and above it allow none.
+pub const MAX_OA_STRENGTH: u32 = 31;
+
 /// The allowed symbol counts nearest to a requested sample count, for error messages: the
 /// supported `q` with `q^t` just below and above `count` (the one above only up to `max`).
 fn nearest_oa_counts(count: u64, t: u32, max: u64) -> String {
-    let supported = supported_symbols;
-    let floor = root_floor(count, t);
-    let ceil = if floor.checked_pow(t) == Some(count) {
-        floor
-    } else {
-        floor + 1
-    };
-    let below = (2..=floor.max(2) as u32 + 1)
-        .rev()
-        .find(|&q| supported(q) && (q as u64).pow(t) <= count);
-    let above = (ceil.max(2) as u32..)
-        .map_while(|q| (q as u64).checked_pow(t).filter(|&c| c <= max).map(|_| q))
-        .find(|&q| supported(q) && (q as u64).pow(t) >= count);
-    match (below, above) {
-        (Some(b), Some(a)) if b != a => format!(
-            "{} ({b}^{t}) or {} ({a}^{t})",
-            (b as u64).pow(t),
-            (a as u64).pow(t)
-        ),
-        (_, Some(a)) => format!("{} ({a}^{t})", (a as u64).pow(t)),
-        (Some(b), None) => format!("{} ({b}^{t})", (b as u64).pow(t)),
+    let show = |q: u32| format!("{} ({q}^{t})", (q as u64).pow(t));
+    match oa_bracket(count, t, max) {
+        (Some(b), Some(a)) if b != a => format!("{} or {}", show(b), show(a)),
+        (_, Some(a)) => show(a),
+        (Some(b), None) => show(b),
         (None, None) => "none".into(),
     }
 }
@@ -272,6 +303,16 @@ fn nearest_oa_counts(count: u64, t: u32, max: u64) -> String {
 /// Checks `count = q^t` for a supported `q` and `count <= max`, returning `q` (the orthogonal
 /// arrays' check, [`CountRule::OaPower`]).
 fn check_oa_count(name: &'static str, count: u64, t: u32, max: u64) -> Result<u32> {
+    if !(1..=MAX_OA_STRENGTH).contains(&t) {
+        return Err(Error::count(
+            name,
+            count,
+            format!(
+                "an orthogonal array of strength {t} has no count: strengths are 1 to \
+                 {MAX_OA_STRENGTH}"
+            ),
+        ));
+    }
     // the limit is named when it is what refuses the count (the rest of the message is the
     // same for callers with different limits)
     let rule = || {
@@ -456,5 +497,35 @@ mod tests {
         assert_eq!(CountRule::PowerOfTwo.nearest(5), 4);
         assert_eq!(CountRule::PowerOfTwo.nearest(6), 4);
         assert_eq!(CountRule::PowerOfTwo.nearest(7), 8);
+    }
+
+    /// Strengths that allow no count, and strength 1 at the largest counts (the second
+    /// hostile pass of issue 38: `OaPower(0).nearest` never returned, `OaPower(1)` searched
+    /// 2^31 candidates, `OaPower(40)` suggested 4, `OaPower(u32::MAX)` wrapped).
+    #[test]
+    fn every_strength_answers_at_once() {
+        for t in [0u32, 32, 40, u32::MAX] {
+            let r = CountRule::OaPower(t);
+            assert_eq!(r.nearest(5), 1);
+            assert_eq!(r.nearest(u64::MAX), 1);
+            assert!(!r.allows(4) && !r.allows(1 << 31));
+            assert_eq!(r.counts_between(1, u64::MAX).count(), 0);
+            let e = r.check("x", 5).unwrap_err().to_string();
+            assert!(e.contains("strengths are 1 to 31"), "{e}");
+        }
+        let one = CountRule::OaPower(1);
+        for n in [1u64, 5, 1000, 1 << 31, u64::MAX] {
+            let c = one.nearest(n);
+            assert!(one.check("x", c).is_ok(), "{n}: {c}");
+        }
+        assert_eq!(one.nearest(1 << 31), 2_147_483_647); // the largest prime below 2^31
+        assert_eq!(CountRule::OaPower(31).nearest(5), 1 << 31);
+        for t in 2..=31 {
+            let r = CountRule::OaPower(t);
+            for n in [0u64, 1, 3, 100, 1 << 20, MAX_FIXED_COUNT, u64::MAX] {
+                let c = r.nearest(n);
+                assert!(r.check("x", c).is_ok(), "t {t}, {n}: {c}");
+            }
+        }
     }
 }

@@ -112,6 +112,10 @@ def nearest_count(name: str, n: int) -> int:
     return int(_strata.nearest_count(name, _v.whole(n, "n", 0, _v.U64_MAX)))
 
 
+#: The most values ``points`` makes in one call (2^31 float32: 8 GiB).
+MAX_VALUES = 1 << 31
+
+
 def points(name: str, n: int, *, seed: Any = 1, dims: int = 2, **params: Any) -> np.ndarray:
     """The first ``n`` points of sampler ``name``: an ``(n, dims)`` float32 array in [0, 1).
 
@@ -139,6 +143,12 @@ def points(name: str, n: int, *, seed: Any = 1, dims: int = 2, **params: Any) ->
     err = _strata.count_error(name, n)
     if err is not None:
         raise ValueError(err)
+    if n * dims > MAX_VALUES:
+        raise ValueError(
+            f"points: n x dims = {n} x {dims} = {n * dims} values ({4 * n * dims / 2**30:.3g} GiB "
+            f"of float32); allowed: at most 2^31 values per call (8 GiB): draw a progressive "
+            f"sampler in parts with Engine.random, or fewer dimensions"
+        )
     out = np.empty((n, dims), dtype=np.float32)
     _strata.Sampler(name, n, seed, dims, **p).fill(out)
     return out
