@@ -90,6 +90,10 @@ fn main() -> ExitCode {
         if let Some(t) = &frames {
             outln!("\n{t}")?;
         }
+        let ratios = report::ratios(&rows);
+        if let Some(t) = &ratios {
+            outln!("\n{t}")?;
+        }
         let (table, plot) = report::convergence(&args, &sequences, &rows);
         outln!("\n{table}")?;
         let trade = report::write_trade(&args, &sequences, &rows)?;
@@ -101,6 +105,7 @@ fn main() -> ExitCode {
                 trade: &trade,
                 split: split.as_deref(),
                 frames: frames.as_deref(),
+                ratios: ratios.as_deref(),
                 masked: emitters.keep.len() - emitters.kept,
             };
             report::write_markdown(path, &args, ref_spp, &tables)?;

@@ -48,6 +48,47 @@ pub fn results(rows: &[Row]) -> (String, String) {
     (csv, full)
 }
 
+/// The baseline of [`ratios`].
+const BASELINE: &str = "sobol";
+
+/// Every render's figures as ratios to `sobol`'s at the same count in the same run (`None`
+/// without `sobol`): per-pixel RMSE and the low-band share of the error, over all pixels and
+/// without those that see an emitter, and (with `--interactions`, at the smallest count) the
+/// interaction part's low band.
+pub fn ratios(rows: &[Row]) -> Option<String> {
+    let base = |spp: u32| rows.iter().find(|r| r.name == BASELINE && r.spp == spp);
+    rows.iter().any(|r| r.name == BASELINE).then_some(())?;
+    let mut t = format!(
+        "Ratios to `{BASELINE}` at the same count, same run (below 1: better; the low-band \
+         share below 1 is bluer).\n\n| sampler | spp | rmse | masked rmse | lowband | masked \
+         lowband | interaction lowband |\n|---|---|---|---|---|---|---|\n"
+    );
+    let ratio = |a: f64, b: f64| {
+        if b > 0.0 && a.is_finite() {
+            format!("{:.3}", a / b)
+        } else {
+            "-".to_string()
+        }
+    };
+    for r in rows.iter().filter(|r| r.name != BASELINE) {
+        let Some(b) = base(r.spp) else { continue };
+        let interaction = match (&r.split, &b.split) {
+            (Some([_, mine]), Some([_, theirs])) => ratio(mine.lowband, theirs.lowband),
+            _ => "-".to_string(),
+        };
+        t.push_str(&format!(
+            "| {} | {} | {} | {} | {} | {} | {interaction} |\n",
+            r.name,
+            r.spp,
+            ratio(r.rmse, b.rmse),
+            ratio(r.masked.rmse, b.masked.rmse),
+            ratio(r.lowband, b.lowband),
+            ratio(r.masked.lowband, b.masked.lowband),
+        ));
+    }
+    Some(t)
+}
+
 /// The RMSE per sampler (rows) and count (columns) with the fitted slope, as a Markdown
 /// table, and the plot of RMSE against spp (`convergence.png`) with the slope per sampler.
 pub fn convergence(
@@ -107,6 +148,7 @@ pub struct Tables<'a> {
     pub trade: &'a str,
     pub split: Option<&'a str>,
     pub frames: Option<&'a str>,
+    pub ratios: Option<&'a str>,
     pub masked: usize,
 }
 
@@ -125,14 +167,15 @@ pub fn write_markdown(path: &Path, args: &Args, ref_spp: u32, t: &Tables) -> Res
              (signed luminance error): its RMSE after a Gaussian blur of sigma 1 and 2 \
              pixels, and the share of its power below 1/8 cycle per pixel (white \
              error: about 0.05); 'masked': the same without the {} pixels that see \
-             an emitter, directly or in a mirror.\n\n{full}\n{trade}{}{}",
+             an emitter, directly or in a mirror.\n\n{full}\n{trade}{}{}{}",
             args.scene.name(),
             size.0,
             size.1,
             args.seeds,
             t.masked,
             t.split.map_or(String::new(), |s| format!("\n{s}")),
-            t.frames.map_or(String::new(), |s| format!("\n{s}"))
+            t.frames.map_or(String::new(), |s| format!("\n{s}")),
+            t.ratios.map_or(String::new(), |s| format!("\n{s}"))
         ),
     )
 }
