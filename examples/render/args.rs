@@ -46,9 +46,10 @@ Options:
                          8 bounces, the next direction from a lobe chosen by weight) or
                          studio-direct (studio in direct lighting: the first hit's next-event
                          estimate through both lobes)
-  --padding nested|uniform  how two draws' samples meet (strata::Padding; default nested:
-                         every power-of-two prefix a net; uniform: each block of spp samples
-                         reordered per draw by a sharply 2-transitive map)
+  --padding nested|uniform|shells  how two draws' samples meet (strata::Padding; default
+                         nested: every power-of-two prefix a net; uniform: each block of spp
+                         samples reordered per draw by a sharply 2-transitive map; shells:
+                         each dyadic shell [2^j, 2^(j+1)) reordered so, every prefix a net)
   --layout bounce|interacting  where a path's draws go (default bounce: the camera's and each
                          bounce's own block; interacting: the film position with the first
                          light point and each direction with the next light point in one
@@ -257,8 +258,9 @@ fn padding(v: &str) -> Result<Padding, CliError> {
     match v {
         "nested" => Ok(Padding::Nested),
         "uniform" => Ok(Padding::Uniform),
+        "shells" => Ok(Padding::Shells),
         other => Err(cli_error(format!(
-            "--padding {other:?} is not a padding; allowed: nested, uniform"
+            "--padding {other:?} is not a padding; allowed: nested, uniform, shells"
         ))),
     }
 }

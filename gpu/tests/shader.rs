@@ -61,15 +61,25 @@ fn the_gpu_computes_the_cpu_bits() {
         .collect();
     assert!(sequences.len() >= 10, "{sequences:?}");
     let grid = COUNT / 2;
-    for (k, sequence) in sequences.into_iter().enumerate() {
+    // every sequence with the nested padding, and with the shell padding those it changes
+    let cases = sequences.into_iter().flat_map(|s| {
+        [
+            (s.clone(), strata::Padding::Nested),
+            (s, strata::Padding::Shells),
+        ]
+    });
+    for (k, (sequence, padding)) in cases.enumerate() {
         let name = match sequence.group() {
             1 => sequence.name().to_string(),
             g => format!("{}-{g}", sequence.name()),
         };
+        let name = format!("{name} ({padding:?})");
         let joint = sequence.gpu_joint_table().unwrap_or(vec![0]);
         // the Z-ordered ones with 16 samples per pixel: the grid's indices up to 255 cross each
         // pixel's block; the others ignore the count
-        let s = PixelSampler::new(sequence, 16, Seed(0x5eed + k as u64)).unwrap();
+        let s = PixelSampler::new(sequence, 16, Seed(0x5eed + k as u64))
+            .unwrap()
+            .with_padding(padding);
         let params = s.gpu_parameters().expect("a kernel sequence");
         let got = gpu.draw(&params, &joint, COUNT, grid).unwrap();
         assert_eq!(got.len(), 2 * COUNT as usize);

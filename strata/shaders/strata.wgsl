@@ -22,6 +22,8 @@ struct StrataParameters {
     key: vec4<u32>,
     resolution: vec2<u32>,
     sequence: u32,
+    // bits 0-7: log2 of the samples per pixel rounded up to a power of two (the Z-ordered
+    // sequences' block of each pixel); bit 8: the shell padding (`Padding::Shells`)
     z_bits: u32,
 }
 
@@ -208,6 +210,50 @@ struct StrataSample {
     index: u32,
 }
 
+// Irreducible polynomials of GF(2^m) for m = 0..16, without their x^m term.
+const STRATA_GF_POLY = array<u32, 17>(
+    0u, 0x1u, 0x3u, 0x3u, 0x3u, 0x5u, 0x3u, 0x3u, 0x1du, 0x11u, 0x9u, 0x5u, 0x53u, 0x1bu, 0x443u,
+    0x3u, 0x100bu,
+);
+
+// a b in GF(2^m) (m <= 16, a, b < 2^m).
+fn strata_gf_mul(a_in: u32, b: u32, m: u32) -> u32 {
+    let reduce = (1u << m) | STRATA_GF_POLY[min(m, 16u)];
+    var a = a_in;
+    var r = 0u;
+    for (var i = 0u; i < m; i++) {
+        r ^= a & (0u - ((b >> i) & 1u));
+        a <<= 1u;
+        a ^= reduce & (0u - ((a >> m) & 1u));
+    }
+    return r;
+}
+
+// The position of `index` inside its aligned block of 2^bits mapped by x -> alpha x + beta over
+// GF(2^bits), keyed by `key`, the draw's dimension and the block (bits 1 to 16; others keep).
+fn strata_uniform_block(index: u32, bits: u32, key: u32, dim: u32) -> u32 {
+    if (bits == 0u || bits > 16u) {
+        return index;
+    }
+    let mask = (1u << bits) - 1u;
+    let h = strata_hash32(index >> bits, strata_hash32(dim, key ^ 0x70616431u));
+    var alpha = 1u + h % max(mask, 1u);
+    if (bits == 1u) {
+        alpha = 1u;
+    }
+    let beta = strata_hash32(h, 0x70616431u) & mask;
+    return (index & ~mask) | (strata_gf_mul(alpha, index & mask, bits) ^ beta);
+}
+
+// The shell padding: the index's position inside its dyadic shell [2^j, 2^(j+1)) mapped so
+// (indices 0 and 1 stay), keyed by the pixel's first key word.
+fn strata_shell_block(index: u32, key: u32, dim: u32) -> u32 {
+    if (index < 2u) {
+        return index;
+    }
+    return strata_uniform_block(index, 31u - countLeadingZeros(index), key, dim);
+}
+
 fn strata_sample(
     params: StrataParameters,
     pixel: vec2<u32>,
@@ -216,11 +262,14 @@ fn strata_sample(
 ) -> StrataSample {
     var keys = strata_pixel_keys(params.key, pixel);
     var i = index;
+    if ((params.z_bits & 0x100u) != 0u) {
+        i = strata_shell_block(index, keys.x, dim);
+    }
     let seq = params.sequence;
     if (seq == 4u || seq == 5u || seq == 6u) {
         // the pixel's block of the global sequence, along a scrambled Z curve
         let inside = pixel.x < params.resolution.x && pixel.y < params.resolution.y;
-        let bits = params.z_bits;
+        let bits = params.z_bits & 0xffu;
         if (inside && bits < 32u && (index >> bits) == 0u) {
             // the pixel's place for this draw: its Morton code under a nested base-4 scramble
             // of the image's digits, keyed by the image and the draw
@@ -232,7 +281,7 @@ fn strata_sample(
                 tile = z >> (32u - bits);
             }
             keys = strata_tile_keys(params.key, tile);
-            i = (z << bits) | index;
+            i = (z << bits) | i;
         }
     }
     return StrataSample(keys, i);

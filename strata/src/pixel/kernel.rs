@@ -227,6 +227,17 @@ pub(crate) fn uniform_block(index: u32, bits: u32, key: u32, dim: u32) -> u32 {
     (index & !mask) | (gf_mul(alpha, index & mask, bits) ^ beta)
 }
 
+/// Shell padding: the index's position inside its dyadic shell `[2^j, 2^(j+1))` (`j >= 1`;
+/// indices 0 and 1 stay) mapped as [`uniform_block`] maps a block of `2^j` (which is the
+/// shell: `2^j` is a multiple of `2^j`), so every power-of-two prefix keeps its samples.
+#[inline(always)]
+pub(crate) fn shell_block(index: u32, key: u32, dim: u32) -> u32 {
+    if index < 2 {
+        return index;
+    }
+    uniform_block(index, 31 - index.leading_zeros(), key, dim)
+}
+
 /// The keys of one draw: what randomizes the draw at a dimension of a pixel (public for tests
 /// that study the randomization itself, such as the lab's pair test of index shuffles).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -274,10 +274,13 @@ pub struct GpuParameters {
     /// `log2` of the samples per pixel rounded up to a power of two (the Z-ordered sequences'
     /// block of each pixel).
     pub z_bits: u32,
+    /// The padding: 0 [`Padding::Nested`], 1 [`Padding::Shells`] (the shader has no other).
+    pub padding: u32,
 }
 
 impl GpuParameters {
-    /// The parameters as the eight words of the shader's uniform.
+    /// The parameters as the eight words of the shader's uniform (word 7: `z_bits` in bits
+    /// 0-7, `padding` in bit 8).
     pub fn words(&self) -> [u32; 8] {
         let k = self.key;
         [
@@ -288,7 +291,7 @@ impl GpuParameters {
             self.resolution[0],
             self.resolution[1],
             self.sequence,
-            self.z_bits,
+            self.z_bits | self.padding << 8,
         ]
     }
 }
@@ -310,7 +313,20 @@ pub enum Padding {
     /// by independent uniform permutations, and each whole block is still the net it was; its
     /// prefixes are not. For renderers that take all `spp` samples (a power of two).
     Uniform,
+    /// As `Nested`, then each draw maps the sample's position inside its dyadic shell
+    /// `[2^j, 2^(j+1))` (samples 0 and 1 stay) by a random `x -> a x + b` over GF(2^j), keyed by
+    /// the pixel, the draw and the shell (for `j <= 16`: samples from `2^17` on keep the
+    /// nested order). Every power-of-two prefix is a union of whole shells, so it holds the
+    /// same samples as under `Nested` and stays the (0,m,2)-net it was, at every count and
+    /// without knowing the count; inside each shell two draws meet as under independent
+    /// uniform permutations (the family is sharply 2-transitive), not tied by the nested
+    /// scramble's tree. pbrt-v4's padded Sobol' permutes the whole pixel's samples at random
+    /// per draw, which pairs as well but keeps only the whole `spp` a net.
+    Shells,
 }
+
+/// The `bits` of a [`SampleState::pad`] that mean [`Padding::Shells`].
+const SHELLS: u32 = u32::MAX;
 
 /// The keys and the index the draws of one pixel sample read: the pixel's own copy, or, for
 /// the Z-ordered sequences inside the pixel's block, the keys of the global sequence's first
@@ -339,11 +355,15 @@ impl SampleState {
     }
 
     /// The pixel's sample index for the draw at `dim`: itself, or with [`Padding::Uniform`]
-    /// its position inside its block mapped anew for the draw ([`kernel::uniform_block`]).
+    /// its position inside its block mapped anew for the draw, with [`Padding::Shells`] its
+    /// position inside its dyadic shell ([`kernel::uniform_block`], [`kernel::shell_block`]).
     #[inline(always)]
     fn padded(&self, dim: u32) -> SampleIndex {
         match self.pad {
             None => self.index,
+            Some((key, SHELLS)) => {
+                SampleIndex::new(kernel::shell_block(self.index.get(), key, dim))
+            }
             Some((key, bits)) => {
                 SampleIndex::new(kernel::uniform_block(self.index.get(), bits, key, dim))
             }
@@ -497,7 +517,11 @@ impl PixelSampler {
     pub fn promised_strata(&self, n: u64) -> Vec<crate::StrataGrid> {
         // uniform padding reorders each block: only whole blocks keep the promises
         let bits = self.spp.z_bits();
-        if self.current_pads() && bits <= 16 && !n.is_multiple_of(1u64 << bits) {
+        if self.padding == Padding::Uniform
+            && self.current_pads()
+            && bits <= 16
+            && !n.is_multiple_of(1u64 << bits)
+        {
             return Vec::new();
         }
         self.sequence.promised_strata(&self.spp, n)
@@ -505,22 +529,25 @@ impl PixelSampler {
 
     /// Whether [`Padding::Uniform`] is in use and changes this sequence.
     fn current_pads(&self) -> bool {
-        self.padding == Padding::Uniform && self.sequence.pads_uniformly()
+        self.padding != Padding::Nested && self.sequence.pads_uniformly()
     }
 
     /// What the [`WGSL`] shader needs to compute this sampler's draws; `None` for `jittered`
     /// and `halton`, which run on the CPU only, and under [`Padding::Uniform`] (the shader has
-    /// the nested padding only). The joint sequences (6 and 7) also need [`WGSL_ZJOINT`] and their table
+    /// the nested and the shell padding). The joint sequences (6 and 7) also need [`WGSL_ZJOINT`] and their table
     /// ([`Sequence::gpu_joint_table`]).
     pub fn gpu_parameters(&self) -> Option<GpuParameters> {
-        if self.current_pads() {
-            return None;
-        }
+        let padding = match self.padding {
+            Padding::Uniform if self.current_pads() => return None,
+            Padding::Shells if self.current_pads() => 1,
+            _ => 0,
+        };
         Some(GpuParameters {
             key: self.key.words(),
             resolution: self.sequence.resolution().unwrap_or([0, 0]),
             sequence: self.sequence.kind().row().shader?,
             z_bits: self.spp.z_bits(),
+            padding,
         })
     }
 
@@ -731,7 +758,13 @@ impl PixelSampler {
             epoch,
             own,
             z,
-            pad: self.current_pads().then(|| (own.0[0], self.spp.z_bits())),
+            pad: self.current_pads().then(|| {
+                let bits = match self.padding {
+                    Padding::Shells => SHELLS,
+                    _ => self.spp.z_bits(),
+                };
+                (own.0[0], bits)
+            }),
         }
     }
 
