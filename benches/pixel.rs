@@ -21,7 +21,7 @@ use criterion::measurement::WallTime;
 use criterion::{
     BenchmarkGroup, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main,
 };
-use strata::pixel::{PixelSampler, Sequence};
+use strata::pixel::{Padding, PixelSampler, Sequence};
 use strata::samplers::{SobolNd, sobol};
 use strata::{SamplerNd, Seed};
 
@@ -129,6 +129,16 @@ fn pixel(c: &mut Criterion) {
         });
         g.bench_function(BenchmarkId::from_parameter(format!("{name}-get_4d")), |b| {
             b.iter(|| black_box(get_4d(&mut s, shape)))
+        });
+    }
+    // what the default padding (shells) costs over the nested shuffle alone
+    for name in ["sobol", "zsobol"] {
+        let sequence = Sequence::by_name(name, [shape.side, shape.side]).unwrap();
+        let mut s = PixelSampler::new(sequence, shape.spp, Seed(1))
+            .unwrap()
+            .with_padding(Padding::Nested);
+        g.bench_function(BenchmarkId::from_parameter(format!("{name}-nested")), |b| {
+            b.iter(|| black_box(get_2d(&mut s, shape)))
         });
     }
     g.bench_function(BenchmarkId::from_parameter("sobol_burley-sample"), |b| {

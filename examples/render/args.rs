@@ -47,9 +47,10 @@ Options:
                          studio-direct (studio in direct lighting: the first hit's next-event
                          estimate through both lobes)
   --padding nested|uniform|shells  how two draws' samples meet (strata::Padding; default
-                         nested: every power-of-two prefix a net; uniform: each block of spp
-                         samples reordered per draw by a sharply 2-transitive map; shells:
-                         each dyadic shell [2^j, 2^(j+1)) reordered so, every prefix a net)
+                         shells: each dyadic shell [2^j, 2^(j+1)) of the index reordered per
+                         draw by a sharply 2-transitive map, every power-of-two prefix a net;
+                         nested: the nested index shuffle alone, every prefix a net; uniform:
+                         each block of spp samples reordered per draw, only whole blocks nets)
   --layout bounce|interacting  where a path's draws go (default bounce: the camera's and each
                          bounce's own block; interacting: the film position with the first
                          light point and each direction with the next light point in one
@@ -74,7 +75,8 @@ Options:
                          (direct-lighting scenes only: spheres, cornell-direct,
                          studio-direct)
   --markdown FILE        also write the tables into FILE, as its section
-                         'render-SCENE-COUNTS' (e.g. render-cornell-4,16,64,256)
+                         'render-SCENE-COUNTS' (e.g. render-cornell-4,16,64,256), followed by
+                         -interacting, -frames, -nested or -uniform with those options
   -h, --help             this text
 
 Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband,
@@ -126,7 +128,7 @@ pub fn parse() -> Result<Option<Args>, CliError> {
         spp: vec![4, 16, 64, 256],
         size: (128, 128),
         scene: SceneKind::Cornell,
-        padding: Padding::Nested,
+        padding: Padding::default(),
         layout: Layout::Bounce,
         frames: 0,
         frame_tile: 4,
@@ -321,7 +323,9 @@ fn check(a: &Args) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The name of the `--markdown` section a run writes: `render-SCENE-COUNTS`.
+/// The name of the `--markdown` section a run writes: `render-SCENE-COUNTS`, then
+/// `-interacting`, `-frames`, `-nested` or `-uniform` for a run with that layout, frames or
+/// padding.
 pub fn markdown_section(args: &Args) -> String {
     let counts: Vec<String> = args.spp.iter().map(|n| n.to_string()).collect();
     let layout = match args.layout {
@@ -329,8 +333,13 @@ pub fn markdown_section(args: &Args) -> String {
         Layout::Interacting => "-interacting",
     };
     let frames = if args.frames > 0 { "-frames" } else { "" };
+    let padding = match args.padding {
+        Padding::Nested => "-nested",
+        Padding::Uniform => "-uniform",
+        _ => "",
+    };
     format!(
-        "render-{}-{}{layout}{frames}",
+        "render-{}-{}{layout}{frames}{padding}",
         args.scene.name(),
         counts.join(",")
     )

@@ -85,22 +85,21 @@
 //!
 //! A pixel sample's draws (film position, lens, light, direction, ...) are *padded*: each
 //! draw is its own 2D sequence, and which sample of one draw goes with which sample of another
-//! decides the error of everything the draws do together. [`Padding::Nested`] (the default)
-//! shuffles each draw's index by a nested scramble, so that every power-of-two prefix of every
-//! draw is a (0,m,2)-net and a renderer may stop at any power of two; two draws are then paired
-//! by a tree automorphism rather than by chance. [`Padding::Uniform`]
-//! ([`PixelSampler::with_padding`]) also reorders each aligned block of `spp` samples
-//! (rounded up to a power of two) per draw by a random `x -> a x + b` over GF(2^m): a sharply
-//! 2-transitive family, so two draws meet as under independent uniform permutations, while
-//! each whole block stays the net it was (its prefixes do not). `render --padding nested|uniform` measures
-//! the two (the repository's `docs/results.md`, section "Padding").
-//!
-//! The default stays `Nested` because
-//! it is the one that keeps every prefix a net (progressive and adaptive renderers stop
-//! anywhere) and the one the [`WGSL`] shader computes ([`PixelSampler::gpu_parameters`] is
-//! `None` under `Uniform`); a renderer that always takes its `spp` samples should choose
-//! `Uniform`. `random`, `jittered` and `halton` already permute whole blocks and are unchanged
-//! by it.
+//! decides the error of everything the draws do together. Each draw first shuffles its index
+//! by a nested scramble, so that every power-of-two prefix of every draw is a (0,m,2)-net. Left
+//! there ([`Padding::Nested`]), two draws are paired by a tree automorphism: sibling samples
+//! stay together across draws, and pairs of draws cover a grid less evenly than chance would.
+//! [`Padding::Shells`] (the default) then reorders each dyadic shell `[2^j, 2^(j+1))` of the
+//! index per draw by a random `x -> a x + b` over GF(2^j), a sharply 2-transitive family: two
+//! draws meet as under independent uniform permutations inside each shell, and since every
+//! power-of-two prefix is a union of whole shells, every prefix still holds the net it held, so
+//! a renderer may stop at any power of two. pbrt-v4's padded Sobol' permutes the whole pixel's
+//! samples per draw, which pairs the same way but keeps only the whole `spp` a net;
+//! [`Padding::Uniform`] does that over each aligned block of `spp` samples (rounded up to a
+//! power of two), for the record. The [`WGSL`] shader computes `Nested` and `Shells`
+//! ([`PixelSampler::gpu_parameters`] is `None` under `Uniform`). `random`, `jittered` and
+//! `halton` already permute whole blocks, and the joint sequences draw several dimensions from
+//! one index, so none of them is changed by the padding. `render --padding` compares the three.
 //!
 //! # Dimensions in a renderer that bounces
 //!
@@ -305,7 +304,6 @@ pub enum Padding {
     /// Each draw shuffles the sample index by a nested (tree-preserving) scramble: every
     /// power-of-two prefix of every draw is a (0,m,2)-net, so a renderer may stop at any power
     /// of two; two draws' strata are then paired by a tree automorphism rather than by chance.
-    #[default]
     Nested,
     /// As `Nested`, then each draw maps the sample's position inside each aligned block of
     /// `B` samples (`B` = samples per pixel rounded up to a power of two, at most `2^16`) by a
@@ -321,7 +319,8 @@ pub enum Padding {
     /// without knowing the count; inside each shell two draws meet as under independent
     /// uniform permutations (the family is sharply 2-transitive), not tied by the nested
     /// scramble's tree. pbrt-v4's padded Sobol' permutes the whole pixel's samples at random
-    /// per draw, which pairs as well but keeps only the whole `spp` a net.
+    /// per draw, which pairs as well but keeps only the whole `spp` a net. The default.
+    #[default]
     Shells,
 }
 
@@ -460,7 +459,7 @@ impl PixelSampler {
                 z: None,
                 pad: None,
             },
-            padding: Padding::Nested,
+            padding: Padding::Shells,
             z_tile0: kernel::tile_keys(&key, 0),
             z_places: [0; 64],
             z_valid: 0,

@@ -470,7 +470,11 @@ fn any_order_of_draws_gives_the_stateless_values() {
         .iter()
         .map(|n| Sequence::by_name(n, [3, 2]).unwrap())
     {
-        for padding in [strata::Padding::Nested, strata::Padding::Uniform] {
+        for padding in [
+            strata::Padding::Nested,
+            strata::Padding::Uniform,
+            strata::Padding::Shells,
+        ] {
             let mut s = PixelSampler::new(seq.clone(), 16, strata::Seed(5))
                 .unwrap()
                 .with_padding(padding);
@@ -522,7 +526,9 @@ fn uniform_padding_keeps_each_block_and_reorders_it_per_draw() {
     use strata::Padding;
     for name in ["sobol", "pmj02", "lattice", "zsobol", "zpmj02"] {
         let seq = Sequence::by_name(name, [16, 16]).unwrap();
-        let nested = PixelSampler::new(seq.clone(), 16, strata::Seed(5)).unwrap();
+        let nested = PixelSampler::new(seq.clone(), 16, strata::Seed(5))
+            .unwrap()
+            .with_padding(Padding::Nested);
         let uniform = nested.clone().with_padding(Padding::Uniform);
         assert_eq!(uniform.padding(), Padding::Uniform);
         let mut reordered = 0;
@@ -587,7 +593,11 @@ fn zjoint_in_groups_of_two_is_zsobol() {
     let zsobol = Sequence::zsobol(5, 3).unwrap();
     let joint = Sequence::by_name("zjoint-2", [5, 3]).unwrap();
     assert_eq!(joint.group(), 2);
-    for padding in [strata::Padding::Nested, strata::Padding::Uniform] {
+    for padding in [
+        strata::Padding::Nested,
+        strata::Padding::Uniform,
+        strata::Padding::Shells,
+    ] {
         let a = PixelSampler::new(zsobol.clone(), 16, strata::Seed(3))
             .unwrap()
             .with_padding(padding);
@@ -730,7 +740,11 @@ fn a_filled_pixel_sample_is_the_stateless_draws() {
         .iter()
         .map(|n| Sequence::by_name(n, [3, 2]).unwrap())
     {
-        for padding in [strata::Padding::Nested, strata::Padding::Uniform] {
+        for padding in [
+            strata::Padding::Nested,
+            strata::Padding::Uniform,
+            strata::Padding::Shells,
+        ] {
             let mut s = PixelSampler::new(seq.clone(), 16, strata::Seed(9))
                 .unwrap()
                 .with_padding(padding);
