@@ -124,7 +124,7 @@ impl Strata {
     /// [`place`](Strata::place) for both coordinates of a 2D point whose axes have the same
     /// number of strata; written lane-wise so that the compiler keeps both in one SIMD register.
     #[inline]
-    pub fn place2(&self, k: [u32; 2], jitter: [u32; 2]) -> Point2 {
+    pub(crate) fn place2(&self, k: [u32; 2], jitter: [u32; 2]) -> Point2 {
         #[cfg(target_arch = "x86_64")]
         if self.n <= MAX_SIMD_STRATA {
             // SAFETY: SSE2 is part of the x86_64 baseline; k < n <= 2^31 fits in i32.
@@ -167,7 +167,7 @@ impl Strata {
 
     /// The point at offset `u` in `[0, 1)` inside stratum `k` (`k < n`).
     #[inline]
-    pub fn place_f64(&self, k: u64, u: f64) -> f32 {
+    pub(crate) fn place_f64(&self, k: u64, u: f64) -> f32 {
         // through i64 where it fits: one instruction instead of u64's sequence
         let k = if k <= i64::MAX as u64 {
             k as i64 as f64

@@ -237,7 +237,7 @@ impl Permutation {
     /// multiplications overlap (faster than two calls to [`apply`](Permutation::apply)); the
     /// results are identical to `apply`'s.
     #[inline]
-    pub fn apply2(&self, i: [u32; 2]) -> [u32; 2] {
+    pub(crate) fn apply2(&self, i: [u32; 2]) -> [u32; 2] {
         debug_assert!(i[0] < self.len && i[1] < self.len);
         let (mut a, mut b) = (self.fold(i[0]), self.fold(i[1]));
         let (mut a_done, mut b_done) = (false, false);

@@ -32,9 +32,9 @@
 //! Evaluation is by byte tables in the bit-reversed domain (four 256-entry tables per
 //! dimension, one per byte of the reversed index: the index shuffle of [`crate::scramble`]
 //! leaves its result reversed, and the Owen scramble wants the value reversed, so neither side
-//! reverses), and for dimensions 0-1 of both sequences also by a handful of shifts and XORs
-//! from the plain index ([`sobol01_rev`], [`pmj02_rev`]): the form the WGSL shader uses, where a
-//! table would be per-thread memory. A test checks that the two agree.
+//! reverses). The WGSL shader computes dimensions 0-1 of both sequences instead by a handful
+//! of shifts and XORs from the plain index, since a table would be per-thread memory; the
+//! tests carry that form in Rust (`sobol01_rev`, `pmj02_rev`) and check it against the tables.
 
 use crate::prelude::*;
 
@@ -327,15 +327,9 @@ pub(crate) static PMJ02: PairTables = PairTables::new(&pmj02_matrices());
 /// bit-reversed, computed without tables: dimension 0 (van der Corput) reversed is the index
 /// itself; dimension 1 (Pascal mod 2: digit `r` is the XOR of the index bits `c` with `r` a
 /// submask of `c`) is the superset-sum transform, five shift-mask-XOR steps.
-///
-/// ```
-/// use strata::digital::sobol01_rev;
-/// // the first four points: (0, 0), (1/2, 1/2), (1/4, 3/4), (3/4, 1/4)
-/// let p: Vec<[u32; 2]> = (0..4).map(|i| sobol01_rev(i).map(u32::reverse_bits)).collect();
-/// assert_eq!(p, [[0, 0], [1 << 31, 1 << 31], [1 << 30, 3 << 30], [3 << 30, 1 << 30]]);
-/// ```
+#[cfg(test)]
 #[inline]
-pub const fn sobol01_rev(index: u32) -> [u32; 2] {
+pub(crate) const fn sobol01_rev(index: u32) -> [u32; 2] {
     let mut y = index;
     y ^= (y >> 1) & 0x5555_5555;
     y ^= (y >> 2) & 0x3333_3333;
@@ -352,21 +346,16 @@ pub const fn sobol01_rev(index: u32) -> [u32; 2] {
 /// t^2)`, where `U` and `V` are the polynomials whose coefficients are the even and the odd
 /// index bits; `y` is `U(t + t^2) + (1 + t) V(t + t^2)`. Substituting `t + t^2` is four
 /// shift-mask-XOR steps on the spread bits.
-///
-/// ```
-/// use strata::digital::{pmj02_rev, sobol01_rev};
-/// // both are (0,2)-sequences: the first two points are (0, 0) and (1/2, 1/2)
-/// assert_eq!(pmj02_rev(1).map(u32::reverse_bits), [1 << 31, 1 << 31]);
-/// assert_eq!(pmj02_rev(0), sobol01_rev(0));
-/// ```
+#[cfg(test)]
 #[inline]
-pub const fn pmj02_rev(index: u32) -> [u32; 2] {
+pub(crate) const fn pmj02_rev(index: u32) -> [u32; 2] {
     let u = substitute(index & 0x5555_5555);
     let v = substitute((index >> 1) & 0x5555_5555);
     let x = u ^ (v << 1);
     [x, x ^ v]
 }
 
+#[cfg(test)]
 /// `W(t + t^2)` over GF(2) for `W(t) = sum_a w_a t^a`, `w_a` at bit `2a` (`a < 16`), as
 /// coefficients by bit. Bottom-up doubling: blocks of `2^(k+1)` bits hold the results for
 /// `2^k` coefficients; merging two blocks adds `(t^(2^k) + t^(2^(k+1))) P_hi`, and `P_hi` already

@@ -21,7 +21,7 @@ use crate::error::{Error, Result};
 use crate::prelude::*;
 
 /// The largest side of a [`BlueNoiseMask`].
-pub const MAX_MASK_SIDE: u32 = 256;
+pub(crate) const MAX_MASK_SIDE: u32 = 256;
 
 /// The largest side of a tile of [`SeedPermutation`].
 pub const MAX_TILE: u32 = 64;
@@ -100,11 +100,6 @@ impl BlueNoiseMask {
         Ok(BlueNoiseMask { side, ranks })
     }
 
-    /// The side of the mask.
-    pub fn side(&self) -> u32 {
-        self.side
-    }
-
     /// The rank at `pixel`, the mask repeated over the plane (`0..side^2`).
     #[inline]
     pub fn rank(&self, pixel: [u32; 2]) -> u32 {
@@ -171,11 +166,6 @@ impl SeedPermutation {
             tile,
             source: (0..width * height).collect(),
         })
-    }
-
-    /// The image's width and height.
-    pub fn size(&self) -> [u32; 2] {
-        [self.width, self.height]
     }
 
     /// The pixel whose draws `pixel` takes (`pixel` itself outside the image).

@@ -32,7 +32,7 @@ const FIBONACCI: &str = "fibonacci";
 
 /// The first 100 components of Cools, Kuo and Nuyens' embedded base-2 generating vector
 /// (`lattice-32001-1024-1048576.3600`); all odd.
-pub const GENERATOR: [u32; 100] = [
+pub(crate) const GENERATOR: [u32; 100] = [
     1, 182667, 469891, 498753, 110745, 446247, 250185, 118627, 245333, 283199, 408519, 391023,
     246327, 126539, 399185, 461527, 300343, 69681, 516695, 436179, 106383, 238523, 413283, 70841,
     47719, 300129, 113029, 123925, 410745, 211325, 17489, 511893, 40767, 186077, 519471, 255369,
