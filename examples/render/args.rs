@@ -60,6 +60,7 @@ Options:
                          tiles between frames so that the error follows a blue-noise mask
                          (Heitz and Belcour 2019; strata::pixel::frames), measured over
                          frames 2 to F beside frame 1: a table on stdout and in --markdown
+                         (with --interactions, the interaction part's low band too)
   --frame-tile T         the tiles' side of --frames (1 to 64, default 4)
   --reference-spp N      samples per pixel of the reference (default 16 x the largest count,
                          at least 1024, at most 65536; never below the largest count)

@@ -27,6 +27,9 @@ const MASK_SEED: u64 = 0x6d61_736b;
 struct Figures {
     plain: [f64; 4],
     permuted: [f64; 4],
+    /// With `--interactions`, at the smallest count: the masked low-band share of the
+    /// interaction part of the plain frame's and of the permuted frames' error.
+    interaction: Option<[f64; 2]>,
 }
 
 /// The luminance of an image, per pixel (the scalar the permutation ranks).
@@ -56,10 +59,13 @@ pub fn table(
          mask (Heitz and Belcour 2019; `strata::pixel::frames`), {frames} frames, frame 1 \
          excluded, {} seeds; 'plain': frame 1 (no permutation). RMSE of the luminance error, \
          and the share of its power below 1/8 cycle per pixel (white: about 0.05); 'masked': \
-         without the pixels that see an emitter.\n\n\
+         without the pixels that see an emitter; 'interaction': with `--interactions`, at the \
+         smallest count, the masked low-band share of the error's interaction part (the error \
+         less its one-draw part, as in the render's split, each pixel with the draws it took).\n\n\
          | sampler | spp | plain rmse | plain lowband | frames rmse | frames lowband | \
-         masked plain rmse | masked plain lowband | masked frames rmse | masked frames lowband |\n\
-         |---|---|---|---|---|---|---|---|---|---|\n",
+         masked plain rmse | masked plain lowband | masked frames rmse | masked frames lowband | \
+         plain interaction lowband | frames interaction lowband |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
         args.seeds
     );
     for (name, method) in sequences {
@@ -70,7 +76,7 @@ pub fn table(
             let cell = |v: f64| format!("{v:.5}");
             let share = |v: f64| format!("{v:.4}");
             out.push_str(&format!(
-                "| {name} | {spp} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                "| {name} | {spp} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
                 cell(f.plain[0]),
                 share(f.plain[1]),
                 cell(f.permuted[0]),
@@ -79,6 +85,8 @@ pub fn table(
                 share(f.plain[3]),
                 cell(f.permuted[2]),
                 share(f.permuted[3]),
+                f.interaction.map_or("-".into(), |i| share(i[0])),
+                f.interaction.map_or("-".into(), |i| share(i[1])),
             ));
             eprintln!("frames: {name} at {spp} spp done");
         }
@@ -104,6 +112,8 @@ fn measure(
     let mut permuted = [0.0f64; 4];
     let seeds = args.seeds as f64;
     let later = (frames - 1) as f64 * seeds;
+    let split = args.interactions && spp == args.spp[0] && emitters.kept > 0;
+    let mut interaction = [0.0f64; 2];
     for k in 0..args.seeds as u64 {
         let mut seeds_of = SeedPermutation::new(w, h, tile)?;
         for frame in 0..frames {
@@ -132,6 +142,21 @@ fn measure(
             } else {
                 (&mut permuted, later)
             };
+            if split {
+                let one = crate::split::one_draw_with(
+                    args,
+                    scene,
+                    method,
+                    spp,
+                    args.seed.wrapping_add(k),
+                    reference,
+                    &emitters.draws,
+                    Some(&seeds_of),
+                )?;
+                let rest: Vec<f64> = lum.iter().zip(&one).map(|(e, o)| e - o).collect();
+                let part = spectrum::error_image_masked(&rest, &emitters.keep, w, h)?;
+                interaction[(frame > 0) as usize] += part.lowband / n;
+            }
             for (a, b) in into.iter_mut().zip(figures) {
                 *a += b / n;
             }
@@ -142,5 +167,9 @@ fn measure(
         f[0] = f[0].sqrt();
         f[2] = f[2].sqrt();
     }
-    Ok(Figures { plain, permuted })
+    Ok(Figures {
+        plain,
+        permuted,
+        interaction: split.then_some(interaction),
+    })
 }

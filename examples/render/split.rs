@@ -5,7 +5,8 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use strata::pixel::{DimensionLayout, PixelSampler, Sequence};
 
-use crate::method::Stateless;
+use crate::method::{ByCopy, Method, PixelDraws, Stateless, Visit, with_sampler};
+use strata::pixel::frames::SeedPermutation;
 use strata_lab::io::{self, Rgb};
 use strata_lab::spectrum::ErrorImage;
 
@@ -247,4 +248,84 @@ pub fn interaction_table(rows: &[crate::sweep::Row]) -> Option<String> {
         }
     }
     any.then_some(t)
+}
+
+/// A sampler whose pixels take the draws of the pixels a [`SeedPermutation`] gives them.
+struct Remapped<'a> {
+    inner: Box<dyn Stateless + 'a>,
+    seeds: Option<&'a SeedPermutation>,
+}
+
+impl Stateless for Remapped<'_> {
+    fn sample_1d(&self, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
+        let from = self.seeds.map_or(pixel, |p| p.source(pixel));
+        self.inner.sample_1d(from, index, dim)
+    }
+    fn sample_2d(&self, pixel: [u32; 2], index: u64, dim: u32) -> Vec2 {
+        let from = self.seeds.map_or(pixel, |p| p.source(pixel));
+        self.inner.sample_2d(from, index, dim)
+    }
+}
+
+/// [`one_draw_errors`] of the sampler of `method` at `spp` for `seed` (the crate's sequences
+/// with `--padding`), each pixel taking the draws of the pixel `seeds` gives it (its own
+/// without), as `render` draws them.
+#[allow(clippy::too_many_arguments)]
+pub fn one_draw_with(
+    args: &Args,
+    scene: &Scene,
+    method: &Method,
+    spp: u32,
+    seed: u64,
+    reference: &[Vec3],
+    draws: &[u32],
+    seeds: Option<&SeedPermutation>,
+) -> Result<Vec<f64>, CliError> {
+    /// The one-draw errors with whichever sampler the method is.
+    struct OneDraw<'a> {
+        scene: &'a Scene,
+        spp: u32,
+        size: (u32, u32),
+        reference: &'a [Vec3],
+        draws: &'a [u32],
+        seeds: Option<&'a SeedPermutation>,
+    }
+    impl Visit<Vec<f64>> for OneDraw<'_> {
+        fn visit<S: PixelDraws + 'static>(self, s: S) -> Vec<f64> {
+            // the crate's sampler has stateless draws of its own; the others are copied
+            let inner: Box<dyn Stateless> =
+                match (&s as &dyn std::any::Any).downcast_ref::<strata::PixelSampler>() {
+                    Some(p) => Box::new(p.clone()),
+                    None => Box::new(ByCopy(s)),
+                };
+            let tested = Remapped {
+                inner,
+                seeds: self.seeds,
+            };
+            one_draw_errors(
+                self.scene,
+                &tested,
+                self.spp,
+                self.size,
+                self.reference,
+                self.draws,
+            )
+        }
+    }
+    let go = OneDraw {
+        scene,
+        spp,
+        size: args.size,
+        reference,
+        draws,
+        seeds,
+    };
+    Ok(with_sampler(
+        method,
+        spp,
+        args.size,
+        seed,
+        args.padding,
+        go,
+    )?)
 }

@@ -11,12 +11,12 @@ use strata_lab::spectrum::{self, ErrorImage};
 
 use crate::args::Args;
 use crate::common::CliError;
-use crate::method::{ByCopy, Method, PixelDraws, Stateless, Visit, with_sampler};
+use crate::method::Method;
 use crate::picture::{
     error_canvas, error_image_canvas, luminance_errors, relative_error, to_canvas,
 };
 use crate::scene::Scene;
-use crate::split::{Emitters, Masked, one_draw_errors};
+use crate::split::{Emitters, Masked};
 use crate::trace::render;
 
 /// One sequence at one count: the numbers of `render.csv` and the pictures' images.
@@ -260,34 +260,16 @@ fn masked(
         / (emitters.kept as f64 * seeds);
     m.masked.add(&e, seeds);
     if let Some(parts) = &mut m.split {
-        /// The one-draw errors with whichever sampler the row's method is.
-        struct OneDraw<'a> {
-            scene: &'a Scene,
-            spp: u32,
-            size: (u32, u32),
-            reference: &'a [Vec3],
-            draws: &'a [u32],
-        }
-        impl Visit<Vec<f64>> for OneDraw<'_> {
-            fn visit<S: PixelDraws + 'static>(self, s: S) -> Vec<f64> {
-                // the crate's sampler has stateless draws of its own; the others are copied
-                let tested: Box<dyn Stateless> =
-                    match (&s as &dyn std::any::Any).downcast_ref::<strata::PixelSampler>() {
-                        Some(p) => Box::new(p.clone()),
-                        None => Box::new(ByCopy(s)),
-                    };
-                let (scene, size) = (self.scene, self.size);
-                one_draw_errors(scene, &*tested, self.spp, size, self.reference, self.draws)
-            }
-        }
-        let go = OneDraw {
+        let one = crate::split::one_draw_with(
+            args,
             scene,
-            spp: s.spp,
-            size,
+            s.seq,
+            s.spp,
+            s.seed,
             reference,
-            draws: &emitters.draws,
-        };
-        let one = with_sampler(s.seq, s.spp, size, s.seed, args.padding, go)?;
+            &emitters.draws,
+            None,
+        )?;
         let rest: Vec<f64> = s.lum.iter().zip(&one).map(|(e, o)| e - o).collect();
         for (part, errors) in parts.iter_mut().zip([&one, &rest]) {
             let p = spectrum::error_image_masked(errors, keep, size.0, size.1)?;

@@ -529,6 +529,104 @@ fn render_splits_the_error_into_one_draw_and_interaction_parts() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+#[test]
+fn render_runs_the_frames_and_the_interacting_layout() {
+    // issue 39: --layout interacting and --frames with their tables, the ratios to sobol and the
+    // section name of each option in --markdown
+    let dir = std::env::temp_dir().join(format!("strata-render-frames-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let md = dir.join("results.md");
+    let (code, out, err) = run_example(
+        "render",
+        &[
+            "--scene",
+            "cornell-direct",
+            "--samplers",
+            "sobol,zquad",
+            "--spp",
+            "1,2",
+            "--size",
+            "16x16",
+            "--reference-spp",
+            "16",
+            "--seeds",
+            "1",
+            "--layout",
+            "interacting",
+            "--frames",
+            "2",
+            "--frame-tile",
+            "4",
+            "--interactions",
+            "--padding",
+            "nested",
+            "--out",
+            dir.join("out").to_str().unwrap(),
+            "--markdown",
+            md.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    // the frames table: a row per sampler and count, figures finite, the interaction part's low
+    // band at the smallest count only
+    let frames: Vec<Vec<String>> = out
+        .lines()
+        .skip_while(|l| !l.contains("| plain rmse |"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .map(|l| l.split('|').map(|c| c.trim().to_string()).collect())
+        .collect();
+    let names: Vec<(&str, &str)> = frames
+        .iter()
+        .map(|r| (r[1].as_str(), r[2].as_str()))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            ("sobol", "1"),
+            ("sobol", "2"),
+            ("zquad", "1"),
+            ("zquad", "2")
+        ],
+        "{out}"
+    );
+    for r in &frames {
+        let values: Vec<f64> = r[3..11].iter().map(|c| c.parse().unwrap()).collect();
+        assert!(values.iter().all(|v| v.is_finite() && *v >= 0.0), "{r:?}");
+        let split = &r[11..13];
+        if r[2] == "1" {
+            assert!(
+                split
+                    .iter()
+                    .all(|c| c.parse::<f64>().is_ok_and(|v| v > 0.0)),
+                "{r:?}"
+            );
+        } else {
+            assert_eq!(split, ["-", "-"], "{r:?}");
+        }
+    }
+    // the ratios to sobol: zquad's rows, sobol's own none
+    assert!(out.contains("Ratios to `sobol`"), "{out}");
+    assert!(out.lines().any(|l| l.starts_with("| zquad | 1 |")), "{out}");
+    let md = std::fs::read_to_string(&md).unwrap();
+    assert!(
+        md.contains("<!-- begin render-cornell-direct-1,2-interacting-frames-nested -->"),
+        "{md}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+    for (args, says) in [
+        (vec!["--frames", "1"], "--frames"),
+        (vec!["--frames", "65"], "--frames"),
+        (vec!["--frames", "2", "--frame-tile", "0"], "--frame-tile"),
+        (vec!["--layout", "sideways"], "bounce, interacting"),
+        (vec!["--padding", "tight"], "shells"),
+    ] {
+        let (code, _, err) = run_example("render", &args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
+}
+
 /// `run_example` with raw stdout bytes.
 fn run_example_bytes(name: &str, args: &[&str]) -> (i32, Vec<u8>, String) {
     let bin = example_bin(name).expect("the example is built by `cargo test`");
