@@ -181,6 +181,18 @@ def write_section(path, name, a, res, elapsed):
         cells = [f"{m:.4f} +- {s:.4f}" for m, s, _, _ in row.values()]
         body += f"| {cname} | " + " | ".join(cells) + f" | {row['optimised'][0] / row['random'][0]:.2f} |\n"
     begin, end = f"<!-- begin {name} -->\n", f"<!-- end {name} -->"
+    # the programs' lock: an exclusive flock on the file's directory while it is rewritten
+    import fcntl
+    lock = os.open(os.path.dirname(os.path.abspath(path)), os.O_RDONLY)
+    fcntl.flock(lock, fcntl.LOCK_EX)
+    try:
+        _rewrite(path, name, begin, end, body)
+    finally:
+        os.close(lock)
+
+
+def _rewrite(path, name, begin, end, body):
+    """Replaces (or appends) the section `name` of `path` with `body`."""
     text = open(path, encoding="utf-8").read() if os.path.exists(path) else ""
     i, j = text.find(begin), text.find(end)
     if i >= 0 and j > i:
