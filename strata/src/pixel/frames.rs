@@ -39,7 +39,7 @@ pub struct BlueNoiseMask {
 }
 
 impl BlueNoiseMask {
-    /// The mask of `side x side` pixels (4 to [`MAX_MASK_SIDE`], a power of two) for `seed`.
+    /// The mask of `side x side` pixels (a power of two from 4 to 256) for `seed`.
     /// `O(side^4)` time (about 0.1 s at 64 on one core), `O(side^2)` memory.
     pub fn new(side: u32, seed: u64) -> Result<Self> {
         if !side.is_power_of_two() || !(4..=MAX_MASK_SIDE).contains(&side) {

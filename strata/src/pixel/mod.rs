@@ -313,9 +313,12 @@ pub enum Padding {
     Uniform,
     /// As `Nested`, then each draw maps the sample's position inside its dyadic shell
     /// `[2^j, 2^(j+1))` (samples 0 and 1 stay) by a random `x -> a x + b` over GF(2^j), keyed by
-    /// the pixel, the draw and the shell (for `j <= 16`: samples from `2^17` on keep the
-    /// nested order). Every power-of-two prefix is a union of whole shells, so it holds the
-    /// same samples as under `Nested` and stays the (0,m,2)-net it was, at every count and
+    /// the pixel and the draw (for `j <= 16`: samples from `2^17` on keep the nested order).
+    /// It costs three hashes, a division and a GF(2^j) product per draw: in the pixel bench a
+    /// draw takes about 2.5 times the nested one's time (the repository's `docs/results.md`,
+    /// `bench-pixel`), which `render`'s times do not show (a path costs far more). Every
+    /// power-of-two prefix is a union of whole shells, so it holds the same samples as under
+    /// `Nested` and stays the (0,m,2)-net it was, at every count and
     /// without knowing the count; inside each shell two draws meet as under independent
     /// uniform permutations (the family is sharply 2-transitive), not tied by the nested
     /// scramble's tree. pbrt-v4's padded Sobol' permutes the whole pixel's samples at random
