@@ -85,7 +85,7 @@ use crate::analysis::Integrand;
 use crate::stats;
 use strata::Seed;
 use strata::StrataGrid;
-use strata::pixel::{PixelSampler, Sequence};
+use strata::pixel::{Padding, PixelSampler, Sequence};
 use strata::{Error, Result};
 
 /// What the suite draws values from.
@@ -143,6 +143,12 @@ impl SequenceSource {
         })
     }
 
+    /// The same source with another [`Padding`] (the adapter's default without this).
+    pub fn with_padding(mut self, padding: Padding) -> Self {
+        self.sampler = self.sampler.with_padding(padding);
+        self
+    }
+
     fn seeded(&self, seed: u64) -> PixelSampler {
         PixelSampler::new(
             self.sampler.sequence().clone(),
@@ -150,6 +156,7 @@ impl SequenceSource {
             Seed(seed),
         )
         .expect("checked in new")
+        .with_padding(self.sampler.padding())
     }
 }
 
