@@ -46,8 +46,9 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
 /// replaced, the link kept, and a link to nothing yet makes its target; the old file's
 /// permissions are kept). On Linux the temporary file
 /// has no name while it is written (`O_TMPFILE`), so an interrupted program (Ctrl-C, a kill)
-/// leaves nothing behind; it is named (`.strata-PID-N.tmp`, short whatever the target's name)
-/// only for the instant between being linked into the directory and renamed over the target.
+/// leaves nothing behind: a new file is linked under its own name when complete, and one that
+/// replaces a file is named (`.strata-PID-N.tmp`, short whatever the target's name) only for
+/// the instant between being linked into the directory and renamed over the target.
 /// A target the user could not write is refused, not replaced: a read-only file (no write
 /// permission bit) or one that cannot be opened for writing. Anything else (a device such as
 /// `/dev/stdout` or `/dev/full`, a pipe) is written in place and flushed, and a failed write is
@@ -122,6 +123,15 @@ pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
             f.set_permissions(m.permissions())?;
         }
         if unnamed {
+            // a new file is linked under its own name at once (nothing named is ever left);
+            // one that exists is replaced through the short-lived temporary name
+            if meta.is_err() {
+                match temporary::link(&f, &target) {
+                    Ok(()) => return Ok(()),
+                    Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+                    Err(e) => return Err(e),
+                }
+            }
             temporary::link(&f, &tmp)?;
         }
         std::fs::rename(&tmp, &target)
