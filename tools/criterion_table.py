@@ -17,25 +17,14 @@ import json
 import os
 import sys
 
+from markdown_section import write_section
+
 
 def human(ns):
     for unit, scale in (("s", 1e9), ("ms", 1e6), ("us", 1e3)):
         if ns >= scale:
             return f"{ns / scale:.3g} {unit}"
     return f"{ns:.3g} ns"
-
-
-def write_section(path, name, body):
-    """Replaces (or appends) the section NAME of the Markdown file PATH."""
-    begin, end = f"<!-- begin {name} -->", f"<!-- end {name} -->"
-    text = open(path).read() if os.path.exists(path) else ""
-    block = f"{begin}\n{body}\n{end}"
-    if begin in text and end in text:
-        head, rest = text.split(begin, 1)
-        text = head + block + rest.split(end, 1)[1]
-    else:
-        text = text.rstrip("\n") + "\n\n" + block + "\n"
-    open(path, "w").write(text)
 
 
 def main():

@@ -16,6 +16,8 @@ import sys
 import tempfile
 import time
 
+from markdown_section import write_section
+
 COMMANDS = [
     ("main job", ["cargo", "run", "--release", "--example", "spectrum"]),
     ("tests", ["cargo", "test"]),
@@ -69,18 +71,7 @@ def main() -> None:
     )
     print(body)
     if markdown:
-        begin, end = "<!-- begin quick-start -->\n", "<!-- end quick-start -->"
-        text = open(markdown, encoding="utf-8").read() if os.path.exists(markdown) else ""
-        a, b = text.find(begin), text.find(end)
-        if a >= 0 and b > a:
-            text = text[: a + len(begin)] + body + text[b:]
-        else:
-            text = text.rstrip() + "\n\n## Quick start\n\n" + begin + body + end + "\n"
-        tmp = markdown + ".tmp"
-        with open(tmp, "w", encoding="utf-8") as f:
-            f.write(text)
-        os.replace(tmp, markdown)
-
+        write_section(markdown, "quick-start", body, heading="## Quick start")
 
 if __name__ == "__main__":
     main()

@@ -14,6 +14,10 @@ import argparse, ctypes, os, subprocess, time, json
 import numpy as np
 import strata_sampling as ss
 
+import sys as _sys
+_sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from markdown_section import write_section  # noqa: E402 (tools/)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 W = 64; N = W * W
 
@@ -159,9 +163,9 @@ def optimise(lib, X, fs, iters, sigma, R, seed, log):
     log(f"  incremental-vs-recomputed S max err {np.abs(S - S2).max():.2e}")
     return pi.astype(np.int64), el
 
-def write_section(path, name, a, res, elapsed):
-    """Writes the table into the Markdown file `path` as the section `name` (replaced in place
-    if it is there, else appended), through a temporary file renamed over it."""
+def write_table(path, name, a, res, elapsed):
+    """Writes the table into the Markdown file `path` as the section `name`
+    (`tools/markdown_section.py`)."""
     import shlex, sys
     cmd = " ".join(shlex.quote(x) for x in ["python3", "tools/tile_study/tile_study.py"] + sys.argv[1:])
     training = ("pure-interaction products of two draws only" if a.only_interaction else
@@ -180,29 +184,7 @@ def write_section(path, name, a, res, elapsed):
     for cname, row in res.items():
         cells = [f"{m:.4f} +- {s:.4f}" for m, s, _, _ in row.values()]
         body += f"| {cname} | " + " | ".join(cells) + f" | {row['optimised'][0] / row['random'][0]:.2f} |\n"
-    begin, end = f"<!-- begin {name} -->\n", f"<!-- end {name} -->"
-    # the programs' lock: an exclusive flock on the file's directory while it is rewritten
-    import fcntl
-    lock = os.open(os.path.dirname(os.path.abspath(path)), os.O_RDONLY)
-    fcntl.flock(lock, fcntl.LOCK_EX)
-    try:
-        _rewrite(path, name, begin, end, body)
-    finally:
-        os.close(lock)
-
-
-def _rewrite(path, name, begin, end, body):
-    """Replaces (or appends) the section `name` of `path` with `body`."""
-    text = open(path, encoding="utf-8").read() if os.path.exists(path) else ""
-    i, j = text.find(begin), text.find(end)
-    if i >= 0 and j > i:
-        text = text[: i + len(begin)] + body + "\n" + text[j:]
-    else:
-        text = text.rstrip() + "\n\n" + begin + body + "\n" + end + "\n"
-    tmp = path + ".tile-study.tmp"
-    with open(tmp, "w", encoding="utf-8") as f:
-        f.write(text)
-    os.replace(tmp, path)
+    write_section(path, name, body)
 
 
 def main():
@@ -233,7 +215,7 @@ def main():
             + f"   {row['optimised'][0]/row['random'][0]:.2f}")
     if a.markdown:
         mode = "pureint-only" if a.only_interaction else ("mixed-pureint" if a.train_interaction else "mixed")
-        write_section(a.markdown, f"tile-study-D{a.D}-{mode}", a, res, el)
+        write_table(a.markdown, f"tile-study-D{a.D}-{mode}", a, res, el)
     if a.out:
         np.save(a.out + "_perm.npy", pi_opt)
         json.dump({c: {k: list(v) for k, v in r.items()} for c, r in res.items()}, open(a.out + ".json", "w"), indent=1)
