@@ -314,9 +314,8 @@ pub enum Padding {
     /// As `Nested`, then each draw maps the sample's position inside its dyadic shell
     /// `[2^j, 2^(j+1))` (samples 0 and 1 stay) by a random `x -> a x + b` over GF(2^j), keyed by
     /// the pixel and the draw (for `j <= 16`: samples from `2^17` on keep the nested order).
-    /// It costs three hashes, a division and a GF(2^j) product per draw: in the pixel bench a
-    /// draw takes about 2.5 times the nested one's time (the repository's `docs/results.md`,
-    /// `bench-pixel`), which `render`'s times do not show (a path costs far more). Every
+    /// It costs three hashes, a division and a GF(2^j) product per draw (the pixel bench times
+    /// it beside `Nested`: the repository's `docs/results.md`, `bench-pixel`). Every
     /// power-of-two prefix is a union of whole shells, so it holds the same samples as under
     /// `Nested` and stays the (0,m,2)-net it was, at every count and
     /// without knowing the count; inside each shell two draws meet as under independent
