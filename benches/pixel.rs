@@ -1,16 +1,18 @@
 //! The path-tracer adapter against `sobol_burley` (Owen-scrambled Sobol', the crate a renderer
-//! would pick instead), in one run, single thread.
+//! would pick instead), in one run, single thread, every sequence with the default padding.
 //!
 //! * `pixel/get_2d`: a 32 x 32 "image" at 16 spp, four 2D values (dimensions 0-7) per pixel
 //!   sample, as a path tracer asks for them: every adapter sequence by `get_2d` and by
-//!   `get_4d`, and the peer's `sample_4d` with a per-pixel seed (two calls per pixel sample) and
-//!   its scalar `sample`. Time per 2D value.
-//! * `pixel/65536x8` and `pixel/4096x4`: Sobol' and pmj02 at 65536 pixel samples x 8 dimensions
-//!   (64 x 64 pixels x 16 spp) and 4096 x 4 (16 x 16 x 16), beside the peer's `sample_4d`.
+//!   `get_4d` (a sampler made per image, as a renderer makes it), `sobol` and `zsobol` with the
+//!   nested padding, and the peer's `sample_4d` with a per-pixel seed (two calls per pixel
+//!   sample) and its scalar `sample`. Time per 2D value.
+//! * `pixel/one-pixel-4096` and `pixel/one-pixel-65536`: one pixel at 4096 and 65536 samples,
+//!   four 2D values per sample (the cost of a draw deep into a pixel's sequence), every
+//!   sequence the kernel draws beside the peer's `sample_4d`.
 //! * `pixel/one-value`: one value per call, `sobol::owen_scrambled(index, dim, seed)` against
-//!   `sobol_burley::sample(index, dim, seed)`: time per value.
+//!   `sobol_burley::sample(index, dim, seed)` over dimensions 0-31: time per value.
 //! * `pixel/whole-point`: a 4D point of a research sequence per call, `SobolNd::fill` against
-//!   `sample_4d`: time per point.
+//!   `sample_4d`: time per point; `pixel/construct`: `SobolNd::new` at 8 dimensions.
 //!
 //! `cargo bench --bench pixel`; `python3 tools/criterion_table.py pixel sobol_burley-sample_4d`.
 
@@ -114,15 +116,18 @@ fn group<'a>(c: &'a mut Criterion, name: &str, elements: u64) -> BenchmarkGroup<
     g
 }
 
-fn pixel(c: &mut Criterion) {
-    let shape = Shape {
-        side: 32,
-        spp: 16,
-        pairs: 4,
-    };
-    let mut g = group(c, "pixel/get_2d", shape.values());
-    for name in Sequence::NAMES {
-        let sequence = Sequence::by_name(name, [shape.side, shape.side]).unwrap();
+/// The sequences a shape times: every one at the image shape, the kernel's at one pixel.
+fn sequences(shape: Shape, one_pixel: bool) -> Vec<(&'static str, Sequence)> {
+    Sequence::NAMES
+        .iter()
+        .map(|&name| (name, Sequence::by_name(name, [shape.side, shape.side]).unwrap()))
+        .filter(|(_, s)| !one_pixel || s.runs_on_gpu())
+        .collect()
+}
+
+fn adapter_group(c: &mut Criterion, label: &str, shape: Shape, one_pixel: bool) {
+    let mut g = group(c, label, shape.values());
+    for (name, sequence) in sequences(shape, one_pixel) {
         let mut s = PixelSampler::new(sequence, shape.spp, Seed(1)).unwrap();
         g.bench_function(BenchmarkId::from_parameter(name), |b| {
             b.iter(|| black_box(get_2d(&mut s, shape)))
@@ -131,70 +136,50 @@ fn pixel(c: &mut Criterion) {
             b.iter(|| black_box(get_4d(&mut s, shape)))
         });
     }
-    // what the default padding (shells) costs over the nested shuffle alone
-    for name in ["sobol", "zsobol"] {
-        let sequence = Sequence::by_name(name, [shape.side, shape.side]).unwrap();
-        let mut s = PixelSampler::new(sequence, shape.spp, Seed(1))
-            .unwrap()
-            .with_padding(Padding::Nested);
-        g.bench_function(BenchmarkId::from_parameter(format!("{name}-nested")), |b| {
-            b.iter(|| black_box(get_2d(&mut s, shape)))
+    if !one_pixel {
+        // the nested padding alone, for the record
+        for name in ["sobol", "zsobol"] {
+            let sequence = Sequence::by_name(name, [shape.side, shape.side]).unwrap();
+            let mut s = PixelSampler::new(sequence, shape.spp, Seed(1))
+                .unwrap()
+                .with_padding(Padding::Nested);
+            g.bench_function(BenchmarkId::from_parameter(format!("{name}-nested")), |b| {
+                b.iter(|| black_box(get_2d(&mut s, shape)))
+            });
+        }
+        g.bench_function(BenchmarkId::from_parameter("sobol_burley-sample"), |b| {
+            b.iter(|| black_box(peer_scalar(shape)))
         });
     }
-    g.bench_function(BenchmarkId::from_parameter("sobol_burley-sample"), |b| {
-        b.iter(|| black_box(peer_scalar(shape)))
-    });
     g.bench_function(BenchmarkId::from_parameter("sobol_burley-sample_4d"), |b| {
         b.iter(|| black_box(peer_4d(shape)))
     });
     g.finish();
+}
 
-    for (label, shape) in [
-        (
-            "pixel/65536x8",
-            Shape {
-                side: 64,
-                spp: 16,
-                pairs: 4,
-            },
-        ),
-        (
-            "pixel/4096x4",
-            Shape {
-                side: 16,
-                spp: 16,
-                pairs: 2,
-            },
-        ),
-    ] {
-        let mut g = group(c, label, shape.values());
-        for name in ["sobol", "pmj02"] {
-            let mut s = PixelSampler::new(
-                Sequence::by_name(name, [256, 256]).unwrap(),
-                shape.spp,
-                Seed(1),
-            )
-            .unwrap();
-            g.bench_function(BenchmarkId::from_parameter(name), |b| {
-                b.iter(|| black_box(get_2d(&mut s, shape)))
-            });
-            g.bench_function(BenchmarkId::from_parameter(format!("{name}-get_4d")), |b| {
-                b.iter(|| black_box(get_4d(&mut s, shape)))
-            });
-        }
-        g.bench_function(BenchmarkId::from_parameter("sobol_burley-sample_4d"), |b| {
-            b.iter(|| black_box(peer_4d(shape)))
-        });
-        g.finish();
+fn pixel(c: &mut Criterion) {
+    let image = Shape {
+        side: 32,
+        spp: 16,
+        pairs: 4,
+    };
+    adapter_group(c, "pixel/get_2d", image, false);
+    for spp in [4096, 65536] {
+        let shape = Shape {
+            side: 1,
+            spp,
+            pairs: 4,
+        };
+        adapter_group(c, &format!("pixel/one-pixel-{spp}"), shape, true);
     }
 
-    // one value per call: 4096 indices x 8 dimensions, one seed per index block
-    let mut g = group(c, "pixel/one-value", 4096 * 8);
+    // one value per call: 4096 indices x 32 dimensions, one seed per index block
+    let mut g = group(c, "pixel/one-value", 4096 * 32);
     g.bench_function(BenchmarkId::from_parameter("owen_scrambled"), |b| {
         b.iter(|| {
             let mut acc = 0.0f32;
             for i in 0..4096u32 {
-                for d in 0..8 {
+                for d in 0..32 {
                     acc += sobol::owen_scrambled(i, d, (i >> 4) as u64).unwrap_or(0.0);
                 }
             }
@@ -205,7 +190,7 @@ fn pixel(c: &mut Criterion) {
         b.iter(|| {
             let mut acc = 0.0f32;
             for i in 0..4096u32 {
-                for d in 0..8 {
+                for d in 0..32 {
                     acc += sobol_burley::sample(i, d, i >> 4);
                 }
             }
@@ -233,6 +218,13 @@ fn pixel(c: &mut Criterion) {
             }
             black_box(acc)
         })
+    });
+    g.finish();
+
+    // construction: what a sampler of 8 dimensions costs before its first point
+    let mut g = group(c, "pixel/construct", 1);
+    g.bench_function(BenchmarkId::from_parameter("SobolNd-new-8"), |b| {
+        b.iter(|| black_box(SobolNd::new(8, Seed(3)).unwrap()))
     });
     g.finish();
 }

@@ -191,14 +191,16 @@ pub(crate) const fn byte_tables(m: &Matrix) -> ByteTables {
 /// The point of a digital sequence at a bit-reversed index, bit-reversed, from its byte tables.
 #[inline(always)]
 pub(crate) fn lookup(t: &ByteTables, index_rev: u32) -> u32 {
-    t[0][(index_rev & 0xff) as usize]
-        ^ t[1][((index_rev >> 8) & 0xff) as usize]
-        ^ t[2][((index_rev >> 16) & 0xff) as usize]
-        ^ t[3][(index_rev >> 24) as usize]
+    let high = t[2][((index_rev >> 16) & 0xff) as usize] ^ t[3][(index_rev >> 24) as usize];
+    // an index below 2^16 (every prefix the padding keeps in place) has no low reversed bytes
+    if index_rev & 0xffff == 0 {
+        return high;
+    }
+    high ^ t[0][(index_rev & 0xff) as usize] ^ t[1][((index_rev >> 8) & 0xff) as usize]
 }
 
-/// The byte tables of two dimensions interleaved, so that one lookup per byte gives both
-/// (the 2D draws of the path-tracer adapter read them).
+/// The byte tables of two dimensions interleaved, so that one lookup per byte gives both (the
+/// 2D draws of the path-tracer adapter read them).
 pub(crate) struct PairTables([[[u32; 2]; 256]; 4]);
 
 impl core::fmt::Debug for PairTables {
@@ -228,13 +230,21 @@ impl PairTables {
     #[inline(always)]
     pub(crate) fn point_rev(&self, index_rev: u32) -> [u32; 2] {
         let t = &self.0;
-        let (a, b, c, d) = (
-            t[0][(index_rev & 0xff) as usize],
-            t[1][((index_rev >> 8) & 0xff) as usize],
+        let (c, d) = (
             t[2][((index_rev >> 16) & 0xff) as usize],
             t[3][(index_rev >> 24) as usize],
         );
-        [a[0] ^ b[0] ^ c[0] ^ d[0], a[1] ^ b[1] ^ c[1] ^ d[1]]
+        let high = [c[0] ^ d[0], c[1] ^ d[1]];
+        // an index below 2^16 (every prefix the padding keeps in place) has no low reversed
+        // bytes
+        if index_rev & 0xffff == 0 {
+            return high;
+        }
+        let (a, b) = (
+            t[0][(index_rev & 0xff) as usize],
+            t[1][((index_rev >> 8) & 0xff) as usize],
+        );
+        [high[0] ^ a[0] ^ b[0], high[1] ^ a[1] ^ b[1]]
     }
 }
 

@@ -24,7 +24,6 @@
 //!    `sobol`, `pmj02`, `zsobol`, `zpmj02`; the lattice point at the shuffled index plus a
 //!    toroidal shift for `lattice`; two hashes of an affine map of the index for `random`.
 
-use super::SampleIndex;
 use crate::digital::{ByteTables, PairTables, lookup};
 use crate::hash::{hash32, mix64, stream_seed};
 use crate::morton::morton;
@@ -174,70 +173,6 @@ fn digit_affine_rev(mut n: u32, key: u32) -> u32 {
     n ^ k.wrapping_mul(0x2c1b_3c6d)
 }
 
-/// Where sample `index` (below `2^32`) of the pixel at place `z` reads along the global
-/// sequence of a Z-ordered sequence whose pixels take blocks of `2^bits` samples: the tile and
-/// the index inside it, `(tile, z 2^bits + index mod 2^32)`; `None` past the pixel's block.
-#[inline]
-pub(crate) fn z_global(z: u32, bits: u32, index: u32) -> Option<(u32, u32)> {
-    if bits >= 32 || index >> bits != 0 {
-        return None;
-    }
-    let tile = if bits == 0 { 0 } else { z >> (32 - bits) };
-    Some((tile, (z << bits) | index))
-}
-
-/// Irreducible polynomials of GF(2^m) for `m = 0..=16`, without their `x^m` term.
-const GF_POLY: [u32; 17] = [
-    0, 0x1, 0x3, 0x3, 0x3, 0x5, 0x3, 0x3, 0x1d, 0x11, 0x9, 0x5, 0x53, 0x1b, 0x443, 0x3, 0x100b,
-];
-
-/// `a b` in GF(2^m) (`m <= 16`, `a, b < 2^m`), the polynomials of [`GF_POLY`]; branch-free.
-#[inline(always)]
-pub(crate) fn gf_mul(a: u32, b: u32, m: u32) -> u32 {
-    let top = 1u32 << m;
-    let reduce = top | GF_POLY[(m as usize).min(16)];
-    let (mut a, mut r) = (a, 0u32);
-    for i in 0..m {
-        r ^= a & 0u32.wrapping_sub((b >> i) & 1);
-        a <<= 1;
-        a ^= reduce & 0u32.wrapping_sub((a >> m) & 1);
-    }
-    r
-}
-
-/// Salt of the keys of [`uniform_block`].
-const UNIFORM_PAD: u32 = 0x7061_6431;
-
-/// Uniform padding: the index's position inside its aligned block of `2^bits` samples mapped
-/// by `x -> alpha x + beta` over GF(2^bits), `alpha != 0` and `beta` keyed by `key`, the draw's
-/// dimension and the block. The maps `alpha x + beta` are sharply 2-transitive, so two draws'
-/// samples meet pair by pair as under independent uniform permutations (the second moments of
-/// a product of two draws are those of uniform padding), and each block keeps its points: a
-/// net at `2^bits` stays a net. Blocks wider than `2^16` keep their order.
-#[inline(always)]
-pub(crate) fn uniform_block(index: u32, bits: u32, key: u32, dim: u32) -> u32 {
-    if bits == 0 || bits > 16 {
-        return index;
-    }
-    let mask = (1u32 << bits) - 1;
-    let h = hash32(index >> bits, hash32(dim, key ^ UNIFORM_PAD));
-    let alpha = 1 + h % mask.max(1);
-    let alpha = if bits == 1 { 1 } else { alpha };
-    let beta = hash32(h, UNIFORM_PAD) & mask;
-    (index & !mask) | (gf_mul(alpha, index & mask, bits) ^ beta)
-}
-
-/// Shell padding: the index's position inside its dyadic shell `[2^j, 2^(j+1))` (`j >= 1`;
-/// indices 0 and 1 stay) mapped as [`uniform_block`] maps a block of `2^j` (which is the
-/// shell: `2^j` is a multiple of `2^j`), so every power-of-two prefix keeps its samples.
-#[inline(always)]
-pub(crate) fn shell_block(index: u32, key: u32, dim: u32) -> u32 {
-    if index < 2 {
-        return index;
-    }
-    uniform_block(index, 31 - index.leading_zeros(), key, dim)
-}
-
 /// The keys of one draw: what randomizes the draw at a dimension of a pixel (public for tests
 /// that study the randomization itself, such as the lab's pair test of index shuffles).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -272,6 +207,21 @@ impl DrawKeys {
         }
     }
 
+    /// The value keys alone of the draw at `dim` (`DrawKeys::new(p, dim).v`).
+    #[inline(always)]
+    pub(crate) fn values(p: &PixelKeys, dim: u32) -> [u32; 2] {
+        let h = Self::hash(p, dim);
+        [h ^ p.0[2], h ^ p.0[3]]
+    }
+
+    /// The shuffle key `h` alone of the draw at `dim` (`DrawKeys::new(p, dim).h`): one
+    /// multiply-xorshift of `dim ^ p0`, a bijection of the dimension.
+    #[inline(always)]
+    pub(crate) fn hash(p: &PixelKeys, dim: u32) -> u32 {
+        let x = (dim ^ p.0[0]).wrapping_mul(0x7feb_352d);
+        x ^ (x >> 15)
+    }
+
     /// A well-mixed 64-bit stream of the draw, for the sequences that are not part of the
     /// kernel (`jittered`, `halton`).
     #[inline]
@@ -286,57 +236,44 @@ impl DrawKeys {
 /// hash inputs in another order, a permutation of each other's values, which the pair test
 /// catches.)
 #[inline(always)]
-pub(crate) fn random<P: Pair>(k: &DrawKeys, index: SampleIndex) -> P {
+pub(crate) fn random<P: Pair>(k: &DrawKeys, index: u32) -> P {
     let m = P::new([k.e | 1, k.e.rotate_left(16) | 1]);
-    lowbias_lanes(P::splat(index.get()).mul(m).add(P::new(k.v)))
+    lowbias_lanes(P::splat(index).mul(m).add(P::new(k.v)))
 }
 
-/// The shuffled index of a draw, bit-reversed: the first `2^m` samples of a draw go to an
-/// aligned block of `2^m` indices of the sequence, in an order of their own.
+/// [`Padding::Nested`](super::Padding::Nested): the nested shuffle of a bit-reversed index
+/// under the draw's keys (aligned blocks of `2^m` indices go to aligned blocks, in an order of
+/// their own), bit-reversed.
 #[inline(always)]
-pub(crate) fn shuffled(k: &DrawKeys, index: SampleIndex) -> u32 {
-    shuffle_lanes(index.reversed(), k.e, k.h)
+pub(crate) fn shuffled(k: &DrawKeys, index_rev: u32) -> u32 {
+    shuffle_lanes(index_rev, k.e, k.h)
 }
 
-/// `sobol`, `pmj02`, `zsobol`, `zpmj02`: the digital (0,2)-sequence of `table` at the shuffled
-/// index, each coordinate Owen-scrambled under its value key; values in natural bit order.
+/// `sobol`, `pmj02`, `zsobol`, `zpmj02`: the digital (0,2)-sequence of `table` at the draw's
+/// (padded, bit-reversed) index, each coordinate Owen-scrambled under its value key `v`;
+/// values in natural bit order.
 #[inline(always)]
-pub(crate) fn digital<P: Pair>(table: &PairTables, k: &DrawKeys, index: SampleIndex) -> P {
-    let p = P::new(table.point_rev(shuffled(k, index)));
-    owen_scramble_lanes(p, P::new(k.v)).reverse_bits()
+pub(crate) fn digital<P: Pair>(table: &PairTables, v: [u32; 2], index_rev: u32) -> P {
+    let p = P::new(table.point_rev(index_rev));
+    owen_scramble_lanes(p, P::new(v)).reverse_bits()
 }
 
-/// `zjoint`, `zquad`: dimensions `o` and `o + 1` (`o = dim - group`) of the multi-dimensional
-/// digital sequence of `tables` (Sobol', or the base-4 Faure sequence) at the index of the draw's group, shuffled once for the whole group
-/// (under the keys of its first dimension `group`), each coordinate Owen-scrambled under the
-/// draw's own value keys; values in natural bit order. With `group == dim` this is
-/// [`digital`] over Sobol' dimensions 0 and 1.
+/// The joint sequences: dimensions `o` and `o + 1` (`o` the draw's offset in its group) of the
+/// multi-dimensional digital sequence of `tables` at the group's (padded, bit-reversed) index,
+/// each coordinate Owen-scrambled under the draw's own value keys `v`; values in natural bit
+/// order. At `o = 0` over Sobol' this is [`digital`] over Sobol' dimensions 0 and 1.
 #[inline(always)]
-pub(crate) fn joint<P: Pair>(
-    tables: &[ByteTables],
-    keys: &PixelKeys,
-    group: u32,
-    dim: u32,
-    index: SampleIndex,
-) -> P {
-    let k = DrawKeys::new(keys, dim);
-    // (the group's first draw shuffles under its own keys)
-    let s = if dim == group {
-        shuffled(&k, index)
-    } else {
-        shuffled(&DrawKeys::new(keys, group), index)
-    };
-    let o = (dim - group) as usize;
-    let p = P::new([lookup(&tables[o], s), lookup(&tables[o + 1], s)]);
-    owen_scramble_lanes(p, P::new(k.v)).reverse_bits()
+pub(crate) fn joint<P: Pair>(tables: &[ByteTables], v: [u32; 2], o: u32, index_rev: u32) -> P {
+    let o = o as usize;
+    let p = P::new([lookup(&tables[o], index_rev), lookup(&tables[o + 1], index_rev)]);
+    owen_scramble_lanes(p, P::new(v)).reverse_bits()
 }
 
-/// `lattice`: the rank-1 lattice point at the shuffled index (the shuffled index reversed is
-/// its radical inverse, the lattice's `phi_2`), shifted on the torus by the value keys.
+/// `lattice`: the rank-1 lattice point at the draw's (padded, bit-reversed) index (a reversed
+/// index is its radical inverse, the lattice's `phi_2`), shifted on the torus by `v`.
 #[inline(always)]
-pub(crate) fn lattice<P: Pair>(k: &DrawKeys, index: SampleIndex) -> P {
-    let r = shuffled(k, index);
-    lattice::point_lanes(r, P::new(k.v))
+pub(crate) fn lattice<P: Pair>(v: [u32; 2], index_rev: u32) -> P {
+    lattice::point_lanes(index_rev, P::new(v))
 }
 
 #[cfg(test)]
@@ -353,19 +290,19 @@ mod tests {
             for dim in [0u32, 2, 9, 1000, u32::MAX] {
                 let k = DrawKeys::new(&p, dim);
                 for i in [0u32, 1, 2, 3, 77, 65535, 65536, u32::MAX] {
-                    let s = SampleIndex::new(i);
+                    let r = shuffled(&k, i.reverse_bits());
                     for table in [&SOBOL01, &PMJ02] {
-                        let want: [u32; 2] = digital(table, &k, s);
-                        assert_eq!(digital::<X2>(table, &k, s).to_array(), want);
+                        let want: [u32; 2] = digital(table, k.v, r);
+                        assert_eq!(digital::<X2>(table, k.v, r).to_array(), want);
                         assert_eq!(
-                            digital::<X2>(table, &k, s).unit_f32().map(f32::to_bits),
+                            digital::<X2>(table, k.v, r).unit_f32().map(f32::to_bits),
                             want.unit_f32().map(f32::to_bits)
                         );
                     }
-                    let want: [u32; 2] = random(&k, s);
-                    assert_eq!(random::<X2>(&k, s).to_array(), want);
-                    let want: [u32; 2] = lattice(&k, s);
-                    assert_eq!(lattice::<X2>(&k, s).to_array(), want);
+                    let want: [u32; 2] = random(&k, i);
+                    assert_eq!(random::<X2>(&k, i).to_array(), want);
+                    let want: [u32; 2] = lattice(k.v, r);
+                    assert_eq!(lattice::<X2>(k.v, r).to_array(), want);
                 }
             }
         }
@@ -406,75 +343,13 @@ mod tests {
         assert_eq!(z_mask([65, 2]), (1 << 14) - 1);
         assert_eq!(z_mask([65536, 1]), u32::MAX);
         assert_eq!(z_pixel(&key, [64, 64], [64, 0]), None);
-        assert_eq!(z_global(5, 4, 3), Some((0, 5 * 16 + 3)));
-        assert_eq!(z_global(5, 4, 16), None);
-        assert_eq!(
-            z_global(u32::MAX, 31, 7),
-            Some(((1 << 31) - 1, (u32::MAX << 31) | 7))
-        );
-        assert_eq!(z_global(9, 0, 0), Some((0, 9)));
-        assert_eq!(z_global(9, 0, 1), None);
-    }
 
-    #[test]
-    fn gf_multiplication_is_a_field_and_uniform_blocks_are_2_transitive() {
-        // every nonzero element has an inverse: multiplication by it is a bijection
-        for m in 1..=16u32 {
-            let n = 1u32 << m;
-            let alphas: Vec<u32> = if m <= 8 {
-                (1..n).collect()
-            } else {
-                (1..40u32)
-                    .map(|k| k.wrapping_mul(2_654_435_761) % (n - 1) + 1)
-                    .collect()
-            };
-            for a in alphas {
-                let mut seen = vec![false; n as usize];
-                for x in 0..n {
-                    let y = gf_mul(a, x, m);
-                    assert!(y < n && !seen[y as usize], "m {m}: {a} x {x}");
-                    seen[y as usize] = true;
-                }
-            }
-        }
-        // the padding is a bijection of each block, and over keys every ordered pair of
-        // positions goes to every ordered pair of positions equally often (chi-square)
-        for bits in [2u32, 3, 6] {
-            let n = 1u32 << bits;
-            for block in [0u32, 5] {
-                let mut seen = std::collections::HashSet::new();
-                for i in 0..n {
-                    let j = uniform_block(block * n + i, bits, 77, 3);
-                    assert_eq!(j / n, block);
-                    assert!(seen.insert(j));
-                }
-            }
-            let cells = (n * (n - 1)) as usize;
-            let mut counts = vec![0u32; cells];
-            let trials = 200 * cells as u32;
-            for key in 0..trials {
-                let (a, b) = (
-                    uniform_block(0, bits, key, 1),
-                    uniform_block(1, bits, key, 1),
-                );
-                counts[(a * (n - 1) + if b > a { b - 1 } else { b }) as usize] += 1;
-            }
-            let e = trials as f64 / cells as f64;
-            let chi2: f64 = counts.iter().map(|&c| (c as f64 - e).powi(2) / e).sum();
-            // df = cells - 1; mean df, sd sqrt(2 df): 6 sd is a false alarm below 1e-6
-            let df = (cells - 1) as f64;
-            assert!(
-                chi2 < df + 6.0 * (2.0 * df).sqrt(),
-                "bits {bits}: chi2 {chi2} df {df}"
-            );
-        }
     }
 
     #[test]
     fn each_draw_orders_the_pixels_anew_with_every_digit_permutation() {
-        // issue 25: the pixel order was the same for every draw; now each draw permutes the
-        // base-4 digit of every 2x2 block, and over draws every one of the 24 permutations
-        // appears, for the finest digit and for a coarser one
+        // each draw permutes the base-4 digit of every 2x2 block, and over draws every one of
+        // the 24 permutations appears, for the finest digit and for a coarser one
         let key = Key::new(Seed(3));
         let res = [64, 64];
         for (level, origin) in [(0u32, [10u32, 6u32]), (2, [16, 32])] {

@@ -160,6 +160,7 @@
 
 pub mod frames;
 mod kernel;
+mod padding;
 mod rng;
 mod sequence;
 #[cfg(feature = "std")]
@@ -168,60 +169,21 @@ pub mod warp;
 pub use kernel::DrawKeys;
 use kernel::Key;
 pub use rng::PixelRng;
-use sequence::SamplesPerPixel;
 pub use sequence::Sequence;
+use sequence::{Points, SamplesPerPixel};
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::prelude::*;
 use crate::sampler::Seed;
+use crate::scramble::{Lanes, X2, join, owen_scramble_lanes};
 use kernel::{PixelKeys, ZPixel};
+use padding::Shell;
 
 /// The WGSL port of the draw kernel (`shaders/strata.wgsl`): a shader module to include, with
-/// `strata_get_2d`, `strata_draw` and the parameter struct `StrataParameters` (see the
+/// `strata_get_2d`, `strata_draw` and the parameter struct `StrataParameters`, reading the
+/// storage buffer `strata_tables` that the including shader declares (see the
 /// [module docs](self#on-a-gpu)).
 pub const WGSL: &str = include_str!("../../shaders/strata.wgsl");
-
-/// The WGSL draws of the joint sequences, `zjoint`, `zquad`, `zsobol12` and `sobol12`
-/// (`shaders/strata_zjoint.wgsl`): `strata_joint_draw` and
-/// `strata_joint_get_2d`, with the arguments of [`WGSL`]'s `strata_draw` and `strata_get_2d`.
-/// Include it after [`WGSL`], and declare the storage buffer it reads, at a binding of your
-/// choice, filled with [`Sequence::gpu_joint_table`]:
-///
-/// ```wgsl
-/// @group(0) @binding(3) var<storage, read> strata_joint: array<u32>;
-/// ```
-pub const WGSL_ZJOINT: &str = include_str!("../../shaders/strata_zjoint.wgsl");
-
-/// A sample index below `2^32` with its bit reversal, which the nets-based sequences need
-/// and which is the same for every draw of a pixel sample: computed once per sample.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct SampleIndex {
-    index: u32,
-    reversed: u32,
-}
-
-impl SampleIndex {
-    /// The index `index`.
-    #[inline]
-    pub(crate) fn new(index: u32) -> Self {
-        SampleIndex {
-            index,
-            reversed: index.reverse_bits(),
-        }
-    }
-
-    /// The index.
-    #[inline]
-    pub(crate) fn get(&self) -> u32 {
-        self.index
-    }
-
-    /// The index with its 32 bits reversed.
-    #[inline]
-    pub(crate) fn reversed(&self) -> u32 {
-        self.reversed
-    }
-}
 
 /// Where each bounce of a path starts in the dimensions of a pixel sample: the camera takes
 /// dimensions `0..camera`, bounce `k` the `per_bounce` dimensions from `camera + k per_bounce`.
@@ -258,28 +220,39 @@ impl DimensionLayout {
     }
 }
 
-/// What a shader needs to compute the draws of a [`PixelSampler`] ([`WGSL`]'s
-/// `StrataParameters`, in this field order, eight `u32` words: [`words`](Self::words)).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What a shader needs to compute the draws of a [`PixelSampler`]: eight `u32` words for
+/// [`WGSL`]'s uniform `StrataParameters` ([`words`](Self::words)) and the words of its storage
+/// buffer `strata_tables` ([`tables`](Self::tables)). Made by
+/// [`PixelSampler::gpu_parameters`], which refuses what the shader cannot draw.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct GpuParameters {
     /// The image's key: four words expanded from the seed.
     pub key: [u32; 4],
     /// The image of a Z-ordered sequence (`[0, 0]` for the others).
     pub resolution: [u32; 2],
-    /// The sequence: 0 `random`, 1 `sobol`, 2 `pmj02`, 3 `lattice`, 4 `zsobol`, 5 `zpmj02`, 6
-    /// `zjoint`, `zquad` and `zsobol12`, 7 `sobol12` (6 and 7: [`WGSL_ZJOINT`], with the
-    /// sequence's own table).
-    pub sequence: u32,
+    /// What the draws read: 0 hashed values (`random`), 1 Sobol' (`sobol`, `zsobol`), 2
+    /// pmj02 (`pmj02`, `zpmj02`), 3 the lattice, 4 a joint sequence's matrices (`zjoint`,
+    /// `zquad`, `sobol12`, `zsobol12`: [`tables`](Self::tables) holds them).
+    pub kernel: u32,
     /// `log2` of the samples per pixel rounded up to a power of two (the Z-ordered sequences'
     /// block of each pixel).
     pub z_bits: u32,
     /// The padding: 0 [`Padding::Nested`], 1 [`Padding::Shells`] (the shader has no other).
     pub padding: u32,
+    /// Whether pixels read blocks of one global sequence along a Z curve.
+    pub z_ordered: bool,
+    /// The joint sequences' matrices (empty for the others), after the padding's table in
+    /// [`tables`](Self::tables).
+    columns: Vec<u32>,
 }
 
+/// Words of the shader's storage buffer before a joint sequence's matrices: the shell
+/// padding's table, two 16-bit entries per word.
+const GPU_PADDING_WORDS: usize = padding::TABLE_LEN / 2;
+
 impl GpuParameters {
-    /// The parameters as the eight words of the shader's uniform (word 7: `z_bits` in bits
-    /// 0-7, `padding` in bit 8).
+    /// The parameters as the eight words of the shader's uniform (word 6: `kernel`; word 7:
+    /// `z_bits` in bits 0-7, `padding` in bit 8, `z_ordered` in bit 9).
     pub fn words(&self) -> [u32; 8] {
         let k = self.key;
         [
@@ -289,15 +262,32 @@ impl GpuParameters {
             k[3],
             self.resolution[0],
             self.resolution[1],
-            self.sequence,
-            self.z_bits | self.padding << 8,
+            self.kernel,
+            self.z_bits | self.padding << 8 | (self.z_ordered as u32) << 9,
         ]
+    }
+
+    /// The words of the storage buffer `strata_tables` the shader reads, for every sequence:
+    /// the shell padding's table (the powers of the primitive element of each GF(2^j),
+    /// `j <= 15`, 16 bits each, two per word: 32 768 words, 128 KiB), then, for a joint sequence, its group size `G` and the 32 generator columns, in the
+    /// bit-reversed domain, of each dimension `0..=G` its draws read (`1 + 32 (G + 1)` words:
+    /// 161 for `zquad`, 16 417 for groups of 512).
+    pub fn tables(&self) -> Vec<u32> {
+        let mut words = Vec::with_capacity(GPU_PADDING_WORDS + self.columns.len());
+        words.extend(
+            padding::EXP
+                .chunks(2)
+                .map(|p| p[0] as u32 | (p[1] as u32) << 16),
+        );
+        words.extend_from_slice(&self.columns);
+        words
     }
 }
 
 /// How the samples of two draws of a pixel meet (which sample of one draw is paired with which
-/// sample of another), for the digital sequences (`sobol`, `pmj02`, `zsobol`, `zpmj02`) and
-/// `lattice`; `random`, `jittered` and `halton` are unchanged by it.
+/// sample of another), for the sequences that read a padded index (`sobol`, `pmj02`, the
+/// lattice, the Z-ordered and the joint sequences); `random`, `jittered` and `halton` are
+/// unchanged by it.
 #[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Padding {
@@ -305,82 +295,24 @@ pub enum Padding {
     /// power-of-two prefix of every draw is a (0,m,2)-net, so a renderer may stop at any power
     /// of two; two draws' strata are then paired by a tree automorphism rather than by chance.
     Nested,
-    /// As `Nested`, then each draw maps the sample's position inside each aligned block of
-    /// `B` samples (`B` = samples per pixel rounded up to a power of two, at most `2^16`) by a
-    /// random `x -> a x + b` over GF(B), a sharply 2-transitive family: two draws are paired as
-    /// by independent uniform permutations, and each whole block is still the net it was; its
+    /// Each draw maps the sample's position inside each aligned block of `B` samples (`B` =
+    /// samples per pixel rounded up to a power of two, at most `2^15`) by a random
+    /// `x -> a x + b` over GF(B), a sharply 2-transitive family: two draws are paired as by
+    /// independent uniform permutations, and each whole block is still the net it was; its
     /// prefixes are not. For renderers that take all `spp` samples (a power of two).
     Uniform,
-    /// As `Nested`, then each draw maps the sample's position inside its dyadic shell
-    /// `[2^j, 2^(j+1))` (samples 0 and 1 stay) by a random `x -> a x + b` over GF(2^j), keyed by
-    /// the pixel and the draw (for `j <= 16`: samples from `2^17` on keep the nested order).
-    /// It costs three hashes, a division and a GF(2^j) product per draw (the pixel bench times
-    /// it beside `Nested`: the repository's `docs/results.md`, `bench-pixel`). Every
+    /// Each draw maps the sample's position inside its dyadic shell `[2^j, 2^(j+1))` (samples
+    /// 0 and 1 stay) by a random `x -> a x + b` over GF(2^j), keyed by the pixel, the draw and
+    /// the shell (from `2^16` samples on, a nested scramble of the shell instead). Every
     /// power-of-two prefix is a union of whole shells, so it holds the same samples as under
-    /// `Nested` and stays the (0,m,2)-net it was, at every count and
-    /// without knowing the count; inside each shell two draws meet as under independent
-    /// uniform permutations (the family is sharply 2-transitive), not tied by the nested
-    /// scramble's tree. pbrt-v4's padded Sobol' permutes the whole pixel's samples at random
-    /// per draw, which pairs as well but keeps only the whole `spp` a net. The default.
+    /// `Nested` and stays the (0,m,2)-net it was, at every count and without knowing the count;
+    /// inside each shell two draws meet as under independent uniform permutations (the family
+    /// is sharply 2-transitive), not tied by a nested scramble's tree. pbrt-v4's padded Sobol'
+    /// permutes the whole pixel's samples at random per draw, which pairs as well but keeps
+    /// only the whole `spp` a net. One hash and one lookup in a 128 KiB table per draw (the
+    /// pixel bench times it: the repository's `docs/results.md`). The default.
     #[default]
     Shells,
-}
-
-/// The `bits` of a [`SampleState::pad`] that mean [`Padding::Shells`].
-const SHELLS: u32 = u32::MAX;
-
-/// The keys and the index the draws of one pixel sample read: the pixel's own copy, or, for
-/// the Z-ordered sequences inside the pixel's block, the keys of the global sequence's first
-/// tile, the sample's index inside the pixel's block and the pixel's place, which each draw
-/// turns into its own global index ([`SampleState::at`]).
-#[derive(Clone, Copy, Debug)]
-struct SampleState {
-    keys: PixelKeys,
-    index: SampleIndex,
-    z: Option<ZPixel>,
-    /// With [`Padding::Uniform`]: the pixel's padding key and `log2` of the block.
-    pad: Option<(u32, u32)>,
-}
-
-impl SampleState {
-    /// The keys and the index of the draw at `dim`: for the Z-ordered sequences, sample `i`
-    /// of the pixel at place `z` (this draw's place) is sample `z B + i` of the global sequence
-    /// (`B` = samples per pixel rounded up to a power of two), in tiles of `2^32` samples with
-    /// keys of their own.
-    #[inline(always)]
-    fn at(&self, key: &Key, z_bits: u32, dim: u32) -> (PixelKeys, SampleIndex) {
-        match &self.z {
-            None => (self.keys, self.padded(dim)),
-            Some(zp) => self.at_place(key, z_bits, kernel::z_place(zp, dim), dim),
-        }
-    }
-
-    /// The pixel's sample index for the draw at `dim`: itself, or with [`Padding::Uniform`]
-    /// its position inside its block mapped anew for the draw, with [`Padding::Shells`] its
-    /// position inside its dyadic shell ([`kernel::uniform_block`], [`kernel::shell_block`]).
-    #[inline(always)]
-    fn padded(&self, dim: u32) -> SampleIndex {
-        match self.pad {
-            None => self.index,
-            Some((key, SHELLS)) => {
-                SampleIndex::new(kernel::shell_block(self.index.get(), key, dim))
-            }
-            Some((key, bits)) => {
-                SampleIndex::new(kernel::uniform_block(self.index.get(), bits, key, dim))
-            }
-        }
-    }
-
-    /// [`at`](Self::at) for a Z-ordered sample whose pixel has place `z` in this draw.
-    #[inline(always)]
-    fn at_place(&self, key: &Key, z_bits: u32, z: u32, dim: u32) -> (PixelKeys, SampleIndex) {
-        match kernel::z_global(z, z_bits, self.padded(dim).get()) {
-            Some((0, g)) => (self.keys, SampleIndex::new(g)),
-            Some((tile, g)) => (kernel::tile_keys(key, tile), SampleIndex::new(g)),
-            // (not reached: a state with a place is made only inside the pixel's block)
-            None => (self.keys, self.index),
-        }
-    }
 }
 
 /// What a pixel sample needs of its pixel, kept while the pixel stays the same.
@@ -392,9 +324,6 @@ struct PixelState {
     own: PixelKeys,
     /// The Z-ordered sequences' view of the pixel (epoch 0, inside the image).
     z: Option<ZPixel>,
-    /// With [`Padding::Uniform`], for the sequences it changes: the pixel's padding key and
-    /// `log2` of the block.
-    pad: Option<(u32, u32)>,
 }
 
 impl PixelState {
@@ -405,6 +334,45 @@ impl PixelState {
         (pixel[0] ^ self.pixel[0]) | (pixel[1] ^ self.pixel[1]) | (epoch ^ self.epoch) == 0
     }
 }
+
+/// What the draws of one pixel sample share.
+#[derive(Clone, Copy, Debug)]
+struct SampleState {
+    /// The pixel's own keys.
+    own: PixelKeys,
+    /// The sample index (below `2^32`: the index modulo `2^32` in its epoch).
+    index: u32,
+    /// The index's shell ([`Padding::Shells`]).
+    shell: Shell,
+    /// The Z-ordered sequences' view of the pixel, when the sample is inside the pixel's block
+    /// of the global sequence (epoch 0, inside the image, below the block's size).
+    z: Option<ZPixel>,
+}
+
+/// How [`PixelSampler::get_4d`] (and [`get_2d`](PixelSampler::get_2d), two draws at a time)
+/// reaches a sequence's draws: the default padding's kernel sequences by paths of their own,
+/// chosen when the sampler is made, the rest through [`Points`] (the same values).
+#[derive(Clone, Copy, Debug)]
+enum Route {
+    /// A digital sequence that is not Z-ordered.
+    Digital(&'static crate::digital::PairTables),
+    /// A Z-ordered digital sequence (inside a pixel's block; the generic path elsewhere).
+    DigitalZ(&'static crate::digital::PairTables),
+    /// A joint sequence.
+    Joint,
+    /// Every other sequence and padding.
+    Generic,
+}
+
+/// The paddings as numbers, the const parameter of the draws (each compiled on its own).
+const SHELLS: u8 = 0;
+/// See [`SHELLS`].
+const NESTED: u8 = 1;
+/// See [`SHELLS`].
+const UNIFORM: u8 = 2;
+
+/// The tag of a pending pair in [`PixelSampler`]'s `next`.
+const PENDING: u64 = 1 << 32;
 
 /// The per-thread sampler state of a path tracer.
 #[derive(Clone, Debug)]
@@ -417,16 +385,25 @@ pub struct PixelSampler {
     current: SampleState,
     /// The keys of the first tile of the Z-ordered sequences' global sequence.
     z_tile0: PixelKeys,
+    /// Whether a pixel's place can reach past the first tile (`2^32` global indices).
+    z_tiles: bool,
     /// How the draws' samples are paired ([`Padding`]).
     padding: Padding,
+    /// Whether [`get_2d`](Self::get_2d) computes two draws at once
+    /// ([`Points::pairs_draws`]).
+    pairs: bool,
+    /// The default padding's sequences take paths of their own ([`Route`]).
+    route: Route,
     /// The current pixel's place per draw for dimensions below 64 (a pixel's samples share
-    /// them), valid where `z_valid` has the dimension's bit.
-    z_places: [u32; 64],
+    /// them), as the start of its block of global indices (`z 2^bits`), bit-reversed, valid
+    /// where `z_valid` has the dimension's bit.
+    z_bases: [u32; 64],
     z_valid: u64,
-    /// The draw at `next_dim` of the current sample, computed beside the previous one by
-    /// [`get_2d`](Self::get_2d) (`next_dim` is `None` when there is none).
+    /// The draw at dimension `next - 2^32` of the current sample, computed beside the
+    /// previous one by [`get_2d`](Self::get_2d) (`next` is 0 when there is none: one
+    /// comparison per call).
     next_pair: [f32; 2],
-    next_dim: Option<u32>,
+    next: u64,
     dim: u32,
     /// The end of the current bounce's dimensions (checked in debug builds); `None` when no
     /// bounce is open.
@@ -443,36 +420,48 @@ impl PixelSampler {
     pub fn new(sequence: Sequence, samples_per_pixel: u32, seed: Seed) -> Result<Self> {
         sequence.check_spp(samples_per_pixel)?;
         let key = Key::new(seed);
+        let spp = SamplesPerPixel::new(samples_per_pixel);
+        let z_tiles = match sequence.resolution() {
+            Some(r) => {
+                let bits = spp.z_bits();
+                bits > 0 && kernel::z_mask(r) >> (32 - bits) != 0
+            }
+            None => false,
+        };
+        let own = kernel::pixel_keys(&key, [0, 0]);
+        let pairs = sequence.points().pairs_draws();
         let mut s = PixelSampler {
             sequence,
-            spp: SamplesPerPixel::new(samples_per_pixel),
+            spp,
             key,
             layout: DimensionLayout::default(),
             pixel: PixelState {
                 pixel: [0, 0],
                 epoch: 0,
-                own: kernel::pixel_keys(&key, [0, 0]),
+                own,
                 z: None,
-                pad: None,
             },
             current: SampleState {
-                keys: kernel::pixel_keys(&key, [0, 0]),
-                index: SampleIndex::new(0),
+                own,
+                index: 0,
+                shell: Shell::new(0, 0),
                 z: None,
-                pad: None,
             },
-            padding: Padding::Shells,
             z_tile0: kernel::tile_keys(&key, 0),
-            z_places: [0; 64],
+            z_tiles,
+            padding: Padding::Shells,
+            pairs,
+            route: Route::Generic,
+            z_bases: [0; 64],
             z_valid: 0,
             next_pair: [0.0; 2],
-            next_dim: None,
+            next: 0,
             dim: 0,
             limit: None,
         };
         s.pixel = s.pixel_state([0, 0], 0);
         s.start_pixel_sample([0, 0], 0, 0);
-        Ok(s)
+        Ok(s.with_padding(Padding::Shells))
     }
 
     /// The same sampler with another [`DimensionLayout`] for
@@ -485,11 +474,15 @@ impl PixelSampler {
     /// The same sampler with another [`Padding`] (how the samples of two draws meet).
     pub fn with_padding(mut self, padding: Padding) -> Self {
         self.padding = padding;
-        let (pixel, index) = (self.pixel.pixel, self.current.index.get());
-        self.pixel = self.pixel_state(pixel, self.pixel.epoch);
-        self.z_valid = 0;
-        self.next_dim = None;
-        self.current = self.sample_state(&self.pixel, index);
+        self.next = 0;
+        self.route = match (padding, self.sequence.points()) {
+            (Padding::Shells, Points::Digital(p)) if self.sequence.z_ordered() => {
+                Route::DigitalZ(p.tables())
+            }
+            (Padding::Shells, Points::Digital(p)) => Route::Digital(p.tables()),
+            (Padding::Shells, Points::Joint(_)) => Route::Joint,
+            _ => Route::Generic,
+        };
         self
     }
 
@@ -519,8 +512,8 @@ impl PixelSampler {
         // uniform padding reorders each block: only whole blocks keep the promises
         let bits = self.spp.z_bits();
         if self.padding == Padding::Uniform
-            && self.current_pads()
-            && bits <= 16
+            && self.sequence.points().padded()
+            && bits <= padding::MAX_FIELD_BITS
             && !n.is_multiple_of(1u64 << bits)
         {
             return Vec::new();
@@ -528,48 +521,58 @@ impl PixelSampler {
         self.sequence.promised_strata(&self.spp, n)
     }
 
-    /// Whether [`Padding::Uniform`] is in use and changes this sequence.
-    fn current_pads(&self) -> bool {
-        self.padding != Padding::Nested && self.sequence.pads_uniformly()
-    }
-
-    /// What the [`WGSL`] shader needs to compute this sampler's draws; `None` for `jittered`
-    /// and `halton`, which run on the CPU only, and under [`Padding::Uniform`] (the shader has
-    /// the nested and the shell padding). The joint sequences (6 and 7) also need [`WGSL_ZJOINT`] and their table
-    /// ([`Sequence::gpu_joint_table`]).
-    pub fn gpu_parameters(&self) -> Option<GpuParameters> {
-        let padding = match self.padding {
-            Padding::Uniform if self.current_pads() => return None,
-            Padding::Shells if self.current_pads() => 1,
-            _ => 0,
+    /// What the [`WGSL`] shader needs to compute this sampler's draws: its uniform's words and
+    /// its storage buffer's. Refused for `jittered` and `halton`, which run on the CPU only,
+    /// and under [`Padding::Uniform`] (the shader has the nested and the shell padding).
+    pub fn gpu_parameters(&self) -> Result<GpuParameters> {
+        let context = "PixelSampler::gpu_parameters";
+        let Some(kernel) = self.sequence.points().kernel() else {
+            let gpu: Vec<&str> = Sequence::NAMES
+                .iter()
+                .filter(|n| Sequence::by_name(n, [1, 1]).is_ok_and(|s| s.runs_on_gpu()))
+                .copied()
+                .collect();
+            return Err(Error::input(
+                context,
+                format!(
+                    "{} runs on the CPU only (it divides by its block size in 64-bit \
+                     arithmetic); the GPU draws {}",
+                    self.sequence.name(),
+                    gpu.join(", ")
+                ),
+            ));
         };
-        Some(GpuParameters {
+        let padding = match self.padding {
+            Padding::Nested => 0,
+            Padding::Shells => 1,
+            Padding::Uniform => {
+                return Err(Error::input(
+                    context,
+                    "the shader has the nested and the shell padding, not Padding::Uniform",
+                ));
+            }
+        };
+        Ok(GpuParameters {
             key: self.key.words(),
             resolution: self.sequence.resolution().unwrap_or([0, 0]),
-            sequence: self.sequence.kind().row().shader?,
+            kernel,
             z_bits: self.spp.z_bits(),
             padding,
+            z_ordered: self.sequence.z_ordered(),
+            columns: self.sequence.gpu_columns(),
         })
     }
 
     /// Starts sample `index` of `pixel`, at dimension `dim` (usually 0).
-    #[inline]
+    #[inline(always)]
     pub fn start_pixel_sample(&mut self, pixel: [u32; 2], index: u64, dim: u32) {
         let epoch = (index >> 32) as u32;
         if !self.pixel.is(pixel, epoch) {
             self.pixel = self.pixel_state(pixel, epoch);
-            self.current.keys = self.pixel.own;
             self.z_valid = 0;
         }
-        if self.pixel.z.is_none() {
-            // the pixel's own copy: its keys are already in place
-            self.current.index = SampleIndex::new(index as u32);
-            self.current.z = None;
-            self.current.pad = self.pixel.pad;
-        } else {
-            self.current = self.sample_state(&self.pixel, index as u32);
-        }
-        self.next_dim = None;
+        self.current = self.sample_state(&self.pixel, index as u32);
+        self.next = 0;
         self.dim = dim;
         self.limit = None;
     }
@@ -612,16 +615,17 @@ impl PixelSampler {
     }
 
     /// The next dimension as a 1D value.
-    #[inline]
+    #[inline(always)]
     pub fn get_1d(&mut self) -> f32 {
         self.check_budget(1);
-        let v = if self.next_dim == Some(self.dim) {
+        let dim = self.dim;
+        let v = if self.next == PENDING | dim as u64 {
             self.next_pair[0]
         } else {
-            let (keys, index) = self.draw_at(self.dim);
-            self.sequence.sample_1d(&keys, index, self.dim, &self.spp)
+            let z = self.z_base_cached(dim);
+            self.one_1d(&self.current, dim, z)
         };
-        self.dim = self.dim.wrapping_add(1);
+        self.dim = dim.wrapping_add(1);
         v
     }
 
@@ -635,16 +639,16 @@ impl PixelSampler {
     pub fn get_2d(&mut self) -> [f32; 2] {
         self.check_budget(2);
         let dim = self.dim;
-        let v = if self.next_dim == Some(dim) {
+        let v = if self.next == PENDING | dim as u64 {
             self.next_pair
-        } else if dim.is_multiple_of(4) && self.sequence.pairs_draws() {
+        } else if dim.is_multiple_of(4) && self.pairs {
             let [x, y, z, w] = self.draw_4(dim);
             self.next_pair = [z, w];
-            self.next_dim = Some(dim + 2);
+            self.next = PENDING | dim.wrapping_add(2) as u64;
             [x, y]
         } else {
-            let (keys, index) = self.draw_at(dim);
-            self.sequence.sample_2d(&keys, index, dim, &self.spp)
+            let z = self.z_base_cached(dim);
+            self.one(&self.current, dim, z)
         };
         self.dim = dim.wrapping_add(2);
         v
@@ -654,7 +658,7 @@ impl PixelSampler {
     /// calls of [`get_2d`](Self::get_2d), computed together (the value scrambles of the kernel
     /// sequences run four lanes at a time), for renderers that draw a light sample and a
     /// direction at once.
-    #[inline]
+    #[inline(always)]
     pub fn get_4d(&mut self) -> [f32; 4] {
         self.check_budget(4);
         let v = self.draw_4(self.dim);
@@ -665,14 +669,15 @@ impl PixelSampler {
     /// The draws at `dim` and `dim + 2` of the current sample.
     #[inline(always)]
     fn draw_4(&mut self, dim: u32) -> [f32; 4] {
-        if self.current.z.is_none() && self.current.pad.is_none() {
-            let c = &self.current;
-            self.sequence.sample_4d(&c.keys, c.index, dim, &self.spp)
-        } else {
-            let (ka, ia) = self.draw_at(dim);
-            let (kb, ib) = self.draw_at(dim.wrapping_add(2));
-            self.two_2d(ka, ia, kb, ib, dim)
+        match self.route {
+            Route::Digital(t) => return self.shells_digital_4(t, &self.current, dim),
+            Route::DigitalZ(t) if self.current.z.is_some() => return self.shells_z_4(t, dim),
+            Route::Joint => return self.shells_joint_4(dim),
+            Route::DigitalZ(_) | Route::Generic => {}
         }
+        let za = self.z_base_cached(dim);
+        let zb = self.z_base_cached(dim.wrapping_add(2));
+        self.two(&self.current, dim, [za, zb])
     }
 
     /// The position inside the pixel: a 2D draw meant for dimensions 0-1 (call it first).
@@ -720,21 +725,20 @@ impl PixelSampler {
     /// Stateless: the 1D value [`get_1d`](Self::get_1d) gives at `dim` for `(pixel, index)`.
     pub fn sample_1d(&self, pixel: [u32; 2], index: u64, dim: u32) -> f32 {
         let c = self.stateless(pixel, index);
-        let (keys, index) = self.at(&c, dim);
-        self.sequence.sample_1d(&keys, index, dim, &self.spp)
+        self.one_1d(&c, dim, self.z_base(&c, dim))
     }
 
     /// Stateless: the 2D value [`get_2d`](Self::get_2d) gives at `dim` for `(pixel, index)`.
     pub fn sample_2d(&self, pixel: [u32; 2], index: u64, dim: u32) -> [f32; 2] {
         let c = self.stateless(pixel, index);
-        let (keys, index) = self.at(&c, dim);
-        self.sequence.sample_2d(&keys, index, dim, &self.spp)
+        self.one(&c, dim, self.z_base(&c, dim))
     }
 
     /// Stateless: the 4D value [`get_4d`](Self::get_4d) gives at `dim` for `(pixel, index)`.
     pub fn sample_4d(&self, pixel: [u32; 2], index: u64, dim: u32) -> [f32; 4] {
         let c = self.stateless(pixel, index);
-        self.four(&c, dim)
+        let z = [self.z_base(&c, dim), self.z_base(&c, dim.wrapping_add(2))];
+        self.two(&c, dim, z)
     }
 
     /// Stateless: the 2D draw at `dim` for `(pixel, index)` as the kernel's 32-bit
@@ -742,111 +746,41 @@ impl PixelSampler {
     /// values the [`WGSL`] shader computes; `None` for `jittered` and `halton`.
     pub fn sample_2d_u32(&self, pixel: [u32; 2], index: u64, dim: u32) -> Option<[u32; 2]> {
         let c = self.stateless(pixel, index);
-        let (keys, index) = self.at(&c, dim);
-        self.sequence.sample_2d_u32(&keys, index, dim)
+        let z = self.z_base(&c, dim);
+        match self.padding {
+            Padding::Shells => self.one_u32::<SHELLS>(&c, dim, z),
+            Padding::Nested => self.one_u32::<NESTED>(&c, dim, z),
+            Padding::Uniform => self.one_u32::<UNIFORM>(&c, dim, z),
+        }
     }
 
     /// The state of `pixel` in `epoch`.
     fn pixel_state(&self, pixel: [u32; 2], epoch: u32) -> PixelState {
-        let key = self.key.epoch(epoch);
         let z = match self.sequence.resolution() {
             Some(res) if epoch == 0 => kernel::z_pixel(&self.key, res, pixel),
             _ => None,
         };
-        let own = kernel::pixel_keys(&key, pixel);
         PixelState {
             pixel,
             epoch,
-            own,
+            own: kernel::pixel_keys(&self.key.epoch(epoch), pixel),
             z,
-            pad: self.current_pads().then(|| {
-                let bits = match self.padding {
-                    Padding::Shells => SHELLS,
-                    _ => self.spp.z_bits(),
-                };
-                (own.0[0], bits)
-            }),
         }
     }
 
     /// The state of sample `index` (below `2^32`) of `pixel`: for the Z-ordered sequences
     /// inside the pixel's block of `B` samples (`B` = samples per pixel rounded up to a power of
-    /// two), a place along the global sequence per draw ([`SampleState::at`]); past the pixel's
-    /// block, outside the image and past the first `2^32` samples a draw reads the pixel's own
-    /// independent copy.
-    #[inline]
+    /// two), a place along the global sequence per draw; past the pixel's block, outside the
+    /// image and past the first `2^32` samples a draw reads the pixel's own independent copy.
+    #[inline(always)]
     fn sample_state(&self, pixel: &PixelState, index: u32) -> SampleState {
         let bits = self.spp.z_bits();
-        let pad = pixel.pad;
-        match pixel.z {
-            Some(z) if bits < 32 && index >> bits == 0 => SampleState {
-                keys: self.z_tile0,
-                index: SampleIndex::new(index),
-                z: Some(z),
-                pad,
-            },
-            _ => SampleState {
-                keys: pixel.own,
-                index: SampleIndex::new(index),
-                z: None,
-                pad,
-            },
+        SampleState {
+            own: pixel.own,
+            index,
+            shell: Shell::new(index, pixel.own.0[2]),
+            z: pixel.z.filter(|_| index >> bits == 0),
         }
-    }
-
-    /// The four values of [`get_4d`](Self::get_4d) at `dim`: the Z-ordered sequences place the
-    /// pixel per draw, so their two draws are two [`SampleState::at`]; the others share one
-    /// index and compute the pair together.
-    #[inline(always)]
-    fn four(&self, c: &SampleState, dim: u32) -> [f32; 4] {
-        if c.z.is_none() && c.pad.is_none() {
-            return self.sequence.sample_4d(&c.keys, c.index, dim, &self.spp);
-        }
-        let (ka, ia) = self.at(c, dim);
-        let (kb, ib) = self.at(c, dim.wrapping_add(2));
-        self.two_2d(ka, ia, kb, ib, dim)
-    }
-
-    /// Two 2D draws at `dim` and `dim + 2`, each with its own keys and index.
-    #[inline(always)]
-    fn two_2d(
-        &self,
-        ka: PixelKeys,
-        ia: SampleIndex,
-        kb: PixelKeys,
-        ib: SampleIndex,
-        dim: u32,
-    ) -> [f32; 4] {
-        self.sequence
-            .sample_2x2d([(&ka, ia), (&kb, ib)], dim, &self.spp)
-    }
-
-    /// The keys and the index of the current sample's draw at `dim`; for the Z-ordered
-    /// sequences the pixel's place in this draw comes from the per-pixel cache.
-    #[inline(always)]
-    fn draw_at(&mut self, dim: u32) -> (PixelKeys, SampleIndex) {
-        let dim = self.sequence.group_start(dim);
-        let Some(zp) = self.current.z else {
-            return (self.current.keys, self.current.padded(dim));
-        };
-        let z = if dim < 64 {
-            let bit = 1u64 << dim;
-            if self.z_valid & bit == 0 {
-                self.z_places[dim as usize] = kernel::z_place(&zp, dim);
-                self.z_valid |= bit;
-            }
-            self.z_places[dim as usize]
-        } else {
-            kernel::z_place(&zp, dim)
-        };
-        self.current.at_place(&self.key, self.spp.z_bits(), z, dim)
-    }
-
-    /// The keys and the index of the draw at `dim` of sample state `c` (the index of
-    /// `dim`'s group: [`Sequence::group_start`]).
-    #[inline(always)]
-    fn at(&self, c: &SampleState, dim: u32) -> (PixelKeys, SampleIndex) {
-        c.at(&self.key, self.spp.z_bits(), self.sequence.group_start(dim))
     }
 
     /// The state of sample `index` of `pixel`, without changing `self`.
@@ -860,11 +794,330 @@ impl PixelSampler {
         self.sample_state(&p, index as u32)
     }
 
+    /// Where the current sample's pixel reads along the global sequence of a Z-ordered
+    /// sequence for the draw at `dim` (its group's): the start of its block of global indices,
+    /// `z 2^bits` modulo `2^32`, bit-reversed, from the per-pixel cache; `None` outside a Z
+    /// block.
+    #[inline(always)]
+    fn z_base_cached(&mut self, dim: u32) -> Option<u32> {
+        let zp = self.current.z?;
+        let g = self.sequence.group_start(dim);
+        if g >= 64 {
+            return Some(self.z_base_of(&zp, g));
+        }
+        let bit = 1u64 << g;
+        if self.z_valid & bit == 0 {
+            self.z_bases[g as usize] = self.z_base_of(&zp, g);
+            self.z_valid |= bit;
+        }
+        Some(self.z_bases[g as usize])
+    }
+
+    /// [`z_base_cached`](Self::z_base_cached) without the cache.
+    #[inline(always)]
+    fn z_base(&self, c: &SampleState, dim: u32) -> Option<u32> {
+        let zp = c.z?;
+        Some(self.z_base_of(&zp, self.sequence.group_start(dim)))
+    }
+
+    /// `z 2^bits` (modulo `2^32`), bit-reversed, for the place `z` of pixel `zp` in the draw
+    /// whose group starts at `g`.
+    #[inline(always)]
+    fn z_base_of(&self, zp: &ZPixel, g: u32) -> u32 {
+        kernel::z_place(zp, g).reverse_bits() >> self.spp.z_bits()
+    }
+
+    /// The keys of the tile of the Z-ordered sequences' global sequence where the current
+    /// sample's pixel reads in the draw whose group starts at `g` (the first tile's, unless the
+    /// image and the samples per pixel reach past `2^32` global indices).
+    #[inline(always)]
+    fn tile_keys(&self, c: &SampleState, g: u32) -> PixelKeys {
+        match c.z {
+            Some(zp) if self.z_tiles => self.tile_keys_of(&zp, g),
+            _ => self.z_tile0,
+        }
+    }
+
+    /// [`tile_keys`](Self::tile_keys) past the first tile.
+    #[cold]
+    fn tile_keys_of(&self, zp: &ZPixel, g: u32) -> PixelKeys {
+        let z = kernel::z_place(zp, g);
+        let bits = self.spp.z_bits();
+        let tile = if bits == 0 { 0 } else { z >> (32 - bits) };
+        if tile == 0 {
+            self.z_tile0
+        } else {
+            kernel::tile_keys(&self.key, tile)
+        }
+    }
+
+    /// Where the draw at `dim`, whose group starts at `g`, reads, given its pixel's place `z`
+    /// (reversed; `None` outside a Z block), under the padding `P` (one of [`SHELLS`],
+    /// [`NESTED`], [`UNIFORM`]: each padding's draws are compiled on their own): the padded
+    /// index of the pixel's sample (placed along the global sequence for the Z-ordered
+    /// sequences, shuffled under [`Padding::Nested`]), bit-reversed, and the draw's value keys.
+    #[inline(always)]
+    fn at<const P: u8>(
+        &self,
+        c: &SampleState,
+        g: u32,
+        dim: u32,
+        z: Option<u32>,
+    ) -> (u32, [u32; 2]) {
+        let bits = self.spp.z_bits();
+        let a = match P {
+            SHELLS => c.shell.map_rev(g, DrawKeys::hash(&c.own, g)),
+            NESTED => c.index.reverse_bits(),
+            _ => padding::uniform_rev(c.index, bits, c.own.0[2], g, DrawKeys::hash(&c.own, g)),
+        };
+        let (keys, index) = match z {
+            None => (c.own, a),
+            Some(z) => (self.tile_keys(c, g), z | a),
+        };
+        let index = match P {
+            NESTED => kernel::shuffled(&DrawKeys::new(&keys, g), index),
+            _ => index,
+        };
+        (index, DrawKeys::values(&keys, dim))
+    }
+
+    /// [`two`](Self::two) for a digital sequence that is not Z-ordered, under the shell
+    /// padding (the default): the same values, by the shortest path.
+    #[inline(always)]
+    fn shells_digital_4(
+        &self,
+        t: &crate::digital::PairTables,
+        c: &SampleState,
+        dim: u32,
+    ) -> [f32; 4] {
+        let d2 = dim.wrapping_add(2);
+        let (ia, ib) = (
+            c.shell.map_rev(dim, DrawKeys::hash(&c.own, dim)),
+            c.shell.map_rev(d2, DrawKeys::hash(&c.own, d2)),
+        );
+        let (va, vb) = (DrawKeys::values(&c.own, dim), DrawKeys::values(&c.own, d2));
+        let (pa, pb) = (X2::new(t.point_rev(ia)), X2::new(t.point_rev(ib)));
+        let (pa, pb) = (
+            owen_scramble_lanes(pa, X2::new(va)),
+            owen_scramble_lanes(pb, X2::new(vb)),
+        );
+        join(pa, pb).reverse_bits().unit_f32()
+    }
+
+    /// [`two`](Self::two) for a Z-ordered digital sequence under the shell padding, inside the
+    /// pixel's block.
+    #[inline(always)]
+    fn shells_z_4(&mut self, t: &crate::digital::PairTables, dim: u32) -> [f32; 4] {
+        let d2 = dim.wrapping_add(2);
+        let (za, zb) = (self.z_base_cached(dim), self.z_base_cached(d2));
+        let (za, zb) = (za.unwrap_or(0), zb.unwrap_or(0));
+        let c = &self.current;
+        let (ia, ib) = (
+            za | c.shell.map_rev(dim, DrawKeys::hash(&c.own, dim)),
+            zb | c.shell.map_rev(d2, DrawKeys::hash(&c.own, d2)),
+        );
+        let (ka, kb) = (self.tile_keys(c, dim), self.tile_keys(c, d2));
+        let (va, vb) = (DrawKeys::values(&ka, dim), DrawKeys::values(&kb, d2));
+        let (pa, pb) = (X2::new(t.point_rev(ia)), X2::new(t.point_rev(ib)));
+        let (pa, pb) = (
+            owen_scramble_lanes(pa, X2::new(va)),
+            owen_scramble_lanes(pb, X2::new(vb)),
+        );
+        join(pa, pb).reverse_bits().unit_f32()
+    }
+
+    /// [`two`](Self::two) for a joint sequence under the shell padding.
+    #[inline(always)]
+    fn shells_joint_4(&mut self, dim: u32) -> [f32; 4] {
+        let d2 = dim.wrapping_add(2);
+        let (ga, gb) = (
+            self.sequence.group_start(dim),
+            self.sequence.group_start(d2),
+        );
+        let (za, zb) = (self.z_base_cached(ga), self.z_base_cached(gb));
+        let c = &self.current;
+        let Points::Joint(tables) = self.sequence.points() else {
+            return self.two(c, dim, [za, zb]);
+        };
+        let at = |g: u32, z: Option<u32>| match z {
+            None => (c.shell.map_rev(g, DrawKeys::hash(&c.own, g)), c.own),
+            Some(z) => (
+                z | c.shell.map_rev(g, DrawKeys::hash(&c.own, g)),
+                self.tile_keys(c, g),
+            ),
+        };
+        let (ia, ka) = at(ga, za);
+        let (ib, kb) = if ga == gb { (ia, ka) } else { at(gb, zb) };
+        let (va, vb) = (DrawKeys::values(&ka, dim), DrawKeys::values(&kb, d2));
+        let (oa, ob) = ((dim - ga) as usize, (d2 - gb) as usize);
+        let lookup = crate::digital::lookup;
+        let (pa, pb) = (
+            X2::new([lookup(&tables[oa], ia), lookup(&tables[oa + 1], ia)]),
+            X2::new([lookup(&tables[ob], ib), lookup(&tables[ob + 1], ib)]),
+        );
+        let (pa, pb) = (
+            owen_scramble_lanes(pa, X2::new(va)),
+            owen_scramble_lanes(pb, X2::new(vb)),
+        );
+        join(pa, pb).reverse_bits().unit_f32()
+    }
+
+    /// The 2D draw at `dim` of sample `c` (`z` the place of its group, reversed).
+    #[inline(always)]
+    fn one(&self, c: &SampleState, dim: u32, z: Option<u32>) -> [f32; 2] {
+        match self.padding {
+            Padding::Shells => self.one_with::<SHELLS>(c, dim, z),
+            Padding::Nested => self.one_with::<NESTED>(c, dim, z),
+            Padding::Uniform => self.one_with::<UNIFORM>(c, dim, z),
+        }
+    }
+
+    /// [`one`](Self::one) under the padding `P`.
+    #[inline(always)]
+    fn one_with<const P: u8>(&self, c: &SampleState, dim: u32, z: Option<u32>) -> [f32; 2] {
+        match self.sequence.points() {
+            Points::Hashed => kernel::random::<X2>(&DrawKeys::new(&c.own, dim), c.index).unit_f32(),
+            Points::Digital(p) => {
+                let (i, v) = self.at::<P>(c, dim, dim, z);
+                kernel::digital::<X2>(p.tables(), v, i).unit_f32()
+            }
+            Points::Lattice => {
+                let (i, v) = self.at::<P>(c, dim, dim, z);
+                kernel::lattice::<X2>(v, i).unit_f32()
+            }
+            Points::Joint(tables) => {
+                let g = self.sequence.group_start(dim);
+                let (i, v) = self.at::<P>(c, g, dim, z);
+                kernel::joint::<X2>(tables, v, dim - g, i).unit_f32()
+            }
+            Points::Jittered => {
+                sequence::jittered_draw(&DrawKeys::new(&c.own, dim), c.index, &self.spp)
+            }
+            Points::Halton => {
+                sequence::halton_draw(&DrawKeys::new(&c.own, dim), c.index, &self.spp)
+            }
+        }
+    }
+
+    /// The draw at `dim` as the kernel's 32-bit values (`None` for the CPU-only sequences).
+    #[inline(always)]
+    fn one_u32<const P: u8>(&self, c: &SampleState, dim: u32, z: Option<u32>) -> Option<[u32; 2]> {
+        Some(match self.sequence.points() {
+            Points::Hashed => kernel::random::<[u32; 2]>(&DrawKeys::new(&c.own, dim), c.index),
+            Points::Digital(p) => {
+                let (i, v) = self.at::<P>(c, dim, dim, z);
+                kernel::digital::<[u32; 2]>(p.tables(), v, i)
+            }
+            Points::Lattice => {
+                let (i, v) = self.at::<P>(c, dim, dim, z);
+                kernel::lattice::<[u32; 2]>(v, i)
+            }
+            Points::Joint(tables) => {
+                let g = self.sequence.group_start(dim);
+                let (i, v) = self.at::<P>(c, g, dim, z);
+                kernel::joint::<[u32; 2]>(tables, v, dim - g, i)
+            }
+            Points::Jittered | Points::Halton => return None,
+        })
+    }
+
+    /// A 1D draw: the first coordinate of [`one`](Self::one).
+    #[inline(always)]
+    fn one_1d(&self, c: &SampleState, dim: u32, z: Option<u32>) -> f32 {
+        match self.sequence.points() {
+            // the second coordinate (base 3) is most of the cost: skip it
+            Points::Halton => {
+                sequence::halton_draw_1d(&DrawKeys::new(&c.own, dim), c.index, &self.spp)
+            }
+            Points::Hashed
+            | Points::Digital(_)
+            | Points::Lattice
+            | Points::Joint(_)
+            | Points::Jittered => self.one(c, dim, z)[0],
+        }
+    }
+
+    /// The draws at `dim` and `dim + 2` of sample `c` (`z` the places of their groups,
+    /// reversed): the kernel sequences' value scrambles and conversions four lanes at a time.
+    #[inline(always)]
+    fn two(&self, c: &SampleState, dim: u32, z: [Option<u32>; 2]) -> [f32; 4] {
+        match self.padding {
+            Padding::Shells => self.two_with::<SHELLS>(c, dim, z),
+            Padding::Nested => self.two_with::<NESTED>(c, dim, z),
+            Padding::Uniform => self.two_with::<UNIFORM>(c, dim, z),
+        }
+    }
+
+    /// [`two`](Self::two) under the padding `P`.
+    #[inline(always)]
+    fn two_with<const P: u8>(&self, c: &SampleState, dim: u32, z: [Option<u32>; 2]) -> [f32; 4] {
+        let d2 = dim.wrapping_add(2);
+        match self.sequence.points() {
+            Points::Hashed => join(
+                kernel::random::<X2>(&DrawKeys::new(&c.own, dim), c.index),
+                kernel::random::<X2>(&DrawKeys::new(&c.own, d2), c.index),
+            )
+            .unit_f32(),
+            Points::Digital(p) => {
+                let t = p.tables();
+                let ((ia, va), (ib, vb)) = (
+                    self.at::<P>(c, dim, dim, z[0]),
+                    self.at::<P>(c, d2, d2, z[1]),
+                );
+                let (pa, pb) = (X2::new(t.point_rev(ia)), X2::new(t.point_rev(ib)));
+                let (pa, pb) = (
+                    owen_scramble_lanes(pa, X2::new(va)),
+                    owen_scramble_lanes(pb, X2::new(vb)),
+                );
+                join(pa, pb).reverse_bits().unit_f32()
+            }
+            Points::Lattice => {
+                let ((ia, va), (ib, vb)) = (
+                    self.at::<P>(c, dim, dim, z[0]),
+                    self.at::<P>(c, d2, d2, z[1]),
+                );
+                join(kernel::lattice::<X2>(va, ia), kernel::lattice::<X2>(vb, ib)).unit_f32()
+            }
+            Points::Joint(tables) => {
+                let (ga, gb) = (
+                    self.sequence.group_start(dim),
+                    self.sequence.group_start(d2),
+                );
+                let (ia, va) = self.at::<P>(c, ga, dim, z[0]);
+                let (ib, vb) = if gb == ga {
+                    // the same group: its index and keys, the next dimensions' value keys
+                    let keys = match z[0] {
+                        None => c.own,
+                        Some(_) => self.tile_keys(c, ga),
+                    };
+                    (ia, DrawKeys::values(&keys, d2))
+                } else {
+                    self.at::<P>(c, gb, d2, z[1])
+                };
+                let (oa, ob) = ((dim - ga) as usize, (d2 - gb) as usize);
+                let lookup = crate::digital::lookup;
+                let (pa, pb) = (
+                    X2::new([lookup(&tables[oa], ia), lookup(&tables[oa + 1], ia)]),
+                    X2::new([lookup(&tables[ob], ib), lookup(&tables[ob + 1], ib)]),
+                );
+                let (pa, pb) = (
+                    owen_scramble_lanes(pa, X2::new(va)),
+                    owen_scramble_lanes(pb, X2::new(vb)),
+                );
+                join(pa, pb).reverse_bits().unit_f32()
+            }
+            Points::Jittered | Points::Halton => {
+                let [x, y] = self.one_with::<P>(c, dim, z[0]);
+                let [u, w] = self.one_with::<P>(c, d2, z[1]);
+                [x, y, u, w]
+            }
+        }
+    }
+
     /// 40 random bits for the low end of [`PixelRng`]'s words, beyond the sequence's 24.
     #[inline]
     fn low_bits(&self) -> u64 {
-        let (keys, index) = self.at(&self.current, self.dim);
-        let k = kernel::DrawKeys::new(&keys, self.dim);
-        crate::hash::hash_u64(!k.stream(), index.get() as u64)
+        let k = DrawKeys::new(&self.current.own, self.dim);
+        crate::hash::hash_u64(!k.stream(), self.current.index as u64)
     }
 }
