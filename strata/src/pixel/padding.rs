@@ -268,7 +268,7 @@ mod tests {
                 let n = 1u32 << 17;
                 let mut seen = vec![false; n as usize];
                 for i in 0..n {
-                    let p = Shell::new(i, key).map_rev(dim).reverse_bits();
+                    let p = Shell::new(i, key).map_rev(dim, key ^ dim).reverse_bits();
                     // same shell (the same highest bit; 0 stays 0)
                     assert_eq!(p.checked_ilog2(), i.checked_ilog2(), "{i} -> {p}");
                     assert!(!seen[p as usize], "{p} twice");
@@ -278,7 +278,7 @@ mod tests {
         }
         // and near the top of the index range
         for i in [u32::MAX, u32::MAX - 1, 1 << 31, (1 << 31) + 5] {
-            assert_eq!(Shell::new(i, 9).map_rev(4).reverse_bits().ilog2(), i.ilog2());
+            assert_eq!(Shell::new(i, 9).map_rev(4, 77).reverse_bits().ilog2(), i.ilog2());
         }
     }
 
@@ -293,7 +293,7 @@ mod tests {
             let trials = 300 * cells as u32;
             for key in 0..trials {
                 let k = mix64(key as u64) as u32;
-                let [a, b] = pair.map(|x| Shell::new(n + x, k).map_rev(5).reverse_bits() - n);
+                let [a, b] = pair.map(|x| Shell::new(n + x, k).map_rev(5, !k).reverse_bits() - n);
                 assert_ne!(a, b);
                 counts[(a * (n - 1) + if b > a { b - 1 } else { b }) as usize] += 1;
             }
@@ -314,13 +314,13 @@ mod tests {
             for block in [0u32, 3] {
                 let mut seen = std::collections::HashSet::new();
                 for i in 0..n {
-                    let j = uniform_rev(block * n + i, bits, 77, 3).reverse_bits();
+                    let j = uniform_rev(block * n + i, bits, 77, 3, 99).reverse_bits();
                     assert_eq!(j / n, block);
                     assert!(seen.insert(j));
                 }
             }
         }
-        assert_eq!(uniform_rev(12345, 0, 1, 2), 12345u32.reverse_bits());
-        assert_eq!(uniform_rev(12345, 16, 1, 2), 12345u32.reverse_bits());
+        assert_eq!(uniform_rev(12345, 0, 1, 2, 3), 12345u32.reverse_bits());
+        assert_eq!(uniform_rev(12345, 16, 1, 2, 3), 12345u32.reverse_bits());
     }
 }
