@@ -1,8 +1,7 @@
-//! Runs the WGSL draw kernel of `strata` ([`strata::pixel::WGSL`] and
-//! [`strata::pixel::WGSL_ZJOINT`]) on the GPU: a compute shader that evaluates `strata_draw`
-//! (or `strata_joint_draw` for `zjoint`) for a batch of `(pixel, index, dim)` tuples, and the
-//! same tuples on the CPU ([`strata::PixelSampler::sample_2d_u32`]). The tests in `tests/`
-//! compare the two.
+//! Runs the WGSL draw kernel of `strata` ([`strata::pixel::WGSL`]) on the GPU: a compute
+//! shader that evaluates `strata_draw` for a batch of `(pixel, index, dim)` tuples, with the
+//! parameters and the tables of [`strata::PixelSampler::gpu_parameters`], and the same tuples
+//! on the CPU ([`strata::PixelSampler::sample_2d_u32`]). The tests in `tests/` compare the two.
 
 use strata::pixel::GpuParameters;
 
@@ -10,14 +9,13 @@ use strata::pixel::GpuParameters;
 /// both sides; its two 32-bit values land at `out[2k]`, `out[2k + 1]`.
 pub fn compute_shader() -> String {
     format!(
-        "{}\n{}\n{}",
+        "{}\n{}",
         strata::pixel::WGSL,
-        strata::pixel::WGSL_ZJOINT,
         r#"
 @group(0) @binding(0) var<uniform> params: StrataParameters;
 @group(0) @binding(1) var<storage, read_write> out: array<u32>;
 @group(0) @binding(2) var<uniform> batch: vec4<u32>;
-@group(0) @binding(3) var<storage, read> strata_joint: array<u32>;
+@group(0) @binding(3) var<storage, read> strata_tables: array<u32>;
 
 fn test_hash(k: u32, salt: u32) -> u32 {
     return strata_hash32(k, strata_hash32(salt, 0x51ed270bu));
@@ -39,12 +37,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let t = test_tuple(k);
-    var v: vec2<u32>;
-    if (strata_is_joint(params.sequence)) {
-        v = strata_joint_draw(params, t.xy, t.z, t.w);
-    } else {
-        v = strata_draw(params, t.xy, t.z, t.w);
-    }
+    let v = strata_draw(params, t.xy, t.z, t.w);
     out[2u * k] = v.x;
     out[2u * k + 1u] = v.y;
 }
@@ -114,15 +107,9 @@ impl Gpu {
         })
     }
 
-    /// The kernel's values of tuples `0..count` (the first `grid` a grid) for `params`, with
-    /// `zjoint`'s table ([`strata::Sequence::gpu_joint_table`]; `&[0]` for the others).
-    pub fn draw(
-        &self,
-        params: &GpuParameters,
-        joint: &[u32],
-        count: u32,
-        grid: u32,
-    ) -> Result<Vec<u32>, String> {
+    /// The kernel's values of tuples `0..count` (the first `grid` a grid) for `params` (its
+    /// uniform's words and its tables).
+    pub fn draw(&self, params: &GpuParameters, count: u32, grid: u32) -> Result<Vec<u32>, String> {
         use wgpu::util::DeviceExt;
         const GROUPS_X: u32 = 32768;
         let words = params.words();
@@ -141,11 +128,11 @@ impl Gpu {
                 contents: &bytes(&[count, grid, GROUPS_X * 64, 0]),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-        let joint_buf = self
+        let tables_buf = self
             .device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: None,
-                contents: &bytes(joint),
+                contents: &bytes(&params.tables()),
                 usage: wgpu::BufferUsages::STORAGE,
             });
         let size = count as u64 * 8;
@@ -180,7 +167,7 @@ impl Gpu {
                 },
                 wgpu::BindGroupEntry {
                     binding: 3,
-                    resource: joint_buf.as_entire_binding(),
+                    resource: tables_buf.as_entire_binding(),
                 },
             ],
         });

@@ -1,10 +1,11 @@
 //! The WGSL kernel against the CPU, bit for bit.
 //!
 //! `naga` validates the shader; then, on the Vulkan adapter present (Mesa's lavapipe CPU driver
-//! in CI), `2^22` draws of each GPU sequence the crate declares, of `zjoint` at groups of 2, 8
-//! and 512 and of `sobol12` at 512, half of them a renderer's grid of
-//! pixels, indices and dimensions, half hashed over the whole `u32` range of each, are compared
-//! with `PixelSampler::sample_2d_u32`. Without an adapter the test says which driver to install
+//! in CI), `2^22` draws of every sequence of `Sequence::NAMES` that `gpu_parameters` accepts
+//! (and of `zjoint` at groups of 2 and 512, `sobol12` at 512), under both paddings the shader
+//! has, half of them a renderer's grid of pixels, indices and dimensions, half hashed over the
+//! whole `u32` range of each, are compared with `PixelSampler::sample_2d_u32`; every sequence
+//! it refuses is CPU-only by its declaration. Without an adapter the test says which driver to install
 //! and is skipped, unless `STRATA_GPU_REQUIRED` is set (as `.ci/run` sets it), where it fails.
 
 use strata::{PixelSampler, Seed, Sequence};
@@ -15,14 +16,12 @@ const COUNT: u32 = 1 << 22;
 
 #[test]
 fn naga_validates_the_shader_and_the_test_kernel() {
-    let joint = format!(
-        "{}\n{}\n@group(0) @binding(0) var<storage, read> strata_joint: array<u32>;",
+    let module = format!(
+        "{}\n@group(0) @binding(0) var<storage, read> strata_tables: array<u32>;",
         strata::pixel::WGSL,
-        strata::pixel::WGSL_ZJOINT
     );
     for (what, source) in [
-        ("strata.wgsl", strata::pixel::WGSL.to_string()),
-        ("strata.wgsl + strata_zjoint.wgsl", joint),
+        ("strata.wgsl with its table", module),
         ("the test kernel", compute_shader()),
     ] {
         let module = naga::front::wgsl::parse_str(&source)
@@ -47,11 +46,23 @@ fn the_gpu_computes_the_cpu_bits() {
         Err(why) => panic!("{why}"),
     };
     eprintln!("adapter: {}", gpu.name);
-    // every sequence the kernel has, from the declarations (so a new one is tested as soon as
-    // its row says it runs on the GPU), zjoint's smallest and largest groups and sobol12's largest
-    let sequences: Vec<Sequence> = Sequence::NAMES
+    // every sequence of the list (so a new one is tested as soon as it exists): those the
+    // shader refuses are CPU-only by their declaration, and the others are drawn below, with
+    // zjoint's smallest and largest groups and sobol12's largest
+    let all: Vec<Sequence> = Sequence::NAMES
         .iter()
         .map(|n| Sequence::by_name(n, [64, 48]).unwrap())
+        .collect();
+    for s in &all {
+        let spp = if s.name() == "jittered" { 16 } else { 8 };
+        let refused = PixelSampler::new(s.clone(), spp, Seed(1))
+            .unwrap()
+            .gpu_parameters()
+            .is_err();
+        assert_eq!(refused, !s.runs_on_gpu(), "{}", s.name());
+    }
+    let sequences: Vec<Sequence> = all
+        .into_iter()
         .filter(Sequence::runs_on_gpu)
         .chain([
             Sequence::zjoint(64, 64, 2).unwrap(),
@@ -74,14 +85,13 @@ fn the_gpu_computes_the_cpu_bits() {
             g => format!("{}-{g}", sequence.name()),
         };
         let name = format!("{name} ({padding:?})");
-        let joint = sequence.gpu_joint_table().unwrap_or(vec![0]);
         // the Z-ordered ones with 16 samples per pixel: the grid's indices up to 255 cross each
         // pixel's block; the others ignore the count
         let s = PixelSampler::new(sequence, 16, Seed(0x5eed + k as u64))
             .unwrap()
             .with_padding(padding);
         let params = s.gpu_parameters().expect("a kernel sequence");
-        let got = gpu.draw(&params, &joint, COUNT, grid).unwrap();
+        let got = gpu.draw(&params, COUNT, grid).unwrap();
         assert_eq!(got.len(), 2 * COUNT as usize);
         let mut mismatches = Vec::new();
         for i in 0..COUNT {

@@ -1,13 +1,18 @@
 // strata.wgsl: the draw kernel of the `strata` crate's path-tracer adapter, as WGSL.
 //
-// A line-by-line port of `src/pixel/kernel.rs` (32-bit wrapping integer arithmetic only): for
-// the sequences random (0), sobol (1), pmj02 (2), lattice (3), zsobol (4) and zpmj02 (5), the
-// same bits as `PixelSampler::sample_2d_u32` on the CPU, which the crate's GPU test checks over
-// 2^22 draws per sequence on the Vulkan adapter present. zjoint (6) is strata_zjoint.wgsl,
-// included after this file. jittered and halton are CPU-only.
+// A port of the crate's 32-bit draw path (`src/pixel/kernel.rs`, `padding.rs` and the sampler's
+// placing of a draw): for every sequence `PixelSampler::gpu_parameters()` accepts (all but
+// jittered and halton), the same bits as `PixelSampler::sample_2d_u32` on the CPU, which the
+// crate's GPU test checks over 2^22 draws per sequence and padding on the Vulkan adapter
+// present.
 //
-// Use: include this file in your shader module, fill a `StrataParameters` from
-// `PixelSampler::gpu_parameters()` (eight u32 words, `GpuParameters::words()`), then
+// Use: include this file in your shader module, declare the storage buffer it reads at a
+// binding of your choice,
+//
+//     @group(0) @binding(1) var<storage, read> strata_tables: array<u32>;
+//
+// fill a `StrataParameters` uniform with `GpuParameters::words()` and `strata_tables` with
+// `GpuParameters::tables()` (both from `PixelSampler::gpu_parameters()`), then
 //
 //     let u = strata_get_2d(params, pixel, sample_index, dimension);   // vec2<f32> in [0, 1)
 //
@@ -21,11 +26,18 @@
 struct StrataParameters {
     key: vec4<u32>,
     resolution: vec2<u32>,
-    sequence: u32,
+    // what the draws read: 0 hashed values, 1 Sobol', 2 pmj02, 3 the lattice, 4 a joint
+    // sequence's matrices (in `strata_tables`)
+    kernel: u32,
     // bits 0-7: log2 of the samples per pixel rounded up to a power of two (the Z-ordered
-    // sequences' block of each pixel); bit 8: the shell padding (`Padding::Shells`)
-    z_bits: u32,
+    // sequences' block of each pixel); bit 8: the shell padding (`Padding::Shells`; else the
+    // nested one); bit 9: Z-ordered
+    flags: u32,
 }
+
+// Words of `strata_tables` before a joint sequence's group size and matrices: the shell
+// padding's table, two 16-bit entries per word.
+const STRATA_JOINT_AT = 32768u;
 
 // lowbias32 (Wellons) of x ^ key: a bijective 32-bit hash.
 fn strata_hash32(x: u32, key: u32) -> u32 {
@@ -161,22 +173,9 @@ fn strata_random(k: StrataDrawKeys, index: u32) -> vec2<u32> {
     return x ^ (x >> vec2<u32>(16u));
 }
 
-// sobol, pmj02, zsobol, zpmj02: the digital point at the shuffled index, Owen-scrambled.
-fn strata_digital(pmj02: bool, k: StrataDrawKeys, index: u32) -> vec2<u32> {
-    let r = strata_shuffle_rev(reverseBits(index), k.e, k.h);
-    var p: vec2<u32>;
-    if (pmj02) {
-        p = strata_pmj02_rev(reverseBits(r));
-    } else {
-        p = strata_sobol01_rev(reverseBits(r));
-    }
-    return reverseBits(strata_owen_rev2(p, k.v));
-}
-
-// lattice: the rank-1 lattice point at the shuffled index, shifted.
-fn strata_lattice(k: StrataDrawKeys, index: u32) -> vec2<u32> {
-    let r = strata_shuffle_rev(reverseBits(index), k.e, k.h);
-    return vec2<u32>(r, r * 182667u) + k.v;
+// lattice: the rank-1 lattice point at a bit-reversed index, shifted.
+fn strata_lattice(v: vec2<u32>, r: u32) -> vec2<u32> {
+    return vec2<u32>(r, r * 182667u) + v;
 }
 
 // A random affine map of every base-4 digit (an aligned bit pair over GF(2)^2), one per digit
@@ -202,117 +201,117 @@ fn strata_z_mask(resolution: vec2<u32>) -> u32 {
     return (1u << (2u * levels)) - 1u;
 }
 
-// The keys and the index that a draw reads: the pixel's own keys and the sample index, or
-// for the Z-ordered sequences (4, 5, 6) inside the image and the pixel's block the keys of
-// the global sequence's tile and the pixel's place along it for the draw keyed by `dim`.
-struct StrataSample {
-    keys: vec4<u32>,
-    index: u32,
+// Entry i of the shell padding's table: the powers of the primitive element of GF(2^j), each
+// element's j bits reversed at the top of 16 bits, entry 2^j - 1 + e being g^e.
+fn strata_exp(i: u32) -> u32 {
+    return (strata_tables[i >> 1u] >> ((i & 1u) * 16u)) & 0xffffu;
 }
 
-// Irreducible polynomials of GF(2^m) for m = 0..16, without their x^m term.
-const STRATA_GF_POLY = array<u32, 17>(
-    0u, 0x1u, 0x3u, 0x3u, 0x3u, 0x5u, 0x3u, 0x3u, 0x1du, 0x11u, 0x9u, 0x5u, 0x53u, 0x1bu, 0x443u,
-    0x3u, 0x100bu,
-);
-
-// a b in GF(2^m) (m <= 16, a, b < 2^m).
-fn strata_gf_mul(a_in: u32, b: u32, m: u32) -> u32 {
-    let reduce = (1u << m) | STRATA_GF_POLY[min(m, 16u)];
-    var a = a_in;
-    var r = 0u;
-    for (var i = 0u; i < m; i++) {
-        r ^= a & (0u - ((b >> i) & 1u));
-        a <<= 1u;
-        a ^= reduce & (0u - ((a >> m) & 1u));
-    }
-    return r;
+// floor(t m / 2^32) for m < 2^16, from 16-bit halves.
+fn strata_below(t: u32, m: u32) -> u32 {
+    return ((t >> 16u) * m + (((t & 0xffffu) * m) >> 16u)) >> 16u;
 }
 
-// The position of `index` inside its aligned block of 2^bits mapped by x -> alpha x + beta over
-// GF(2^bits), keyed by `key`, the draw's dimension and the block (bits 1 to 16; others keep).
-fn strata_uniform_block(index: u32, bits: u32, key: u32, dim: u32) -> u32 {
-    if (bits == 0u || bits > 16u) {
-        return index;
-    }
-    let mask = (1u << bits) - 1u;
-    let h = strata_hash32(index >> bits, strata_hash32(dim, key ^ 0x70616431u));
-    var alpha = 1u + h % max(mask, 1u);
-    if (bits == 1u) {
-        alpha = 1u;
-    }
-    let beta = strata_hash32(h, 0x70616431u) & mask;
-    return (index & ~mask) | (strata_gf_mul(alpha, index & mask, bits) ^ beta);
-}
-
-// The shell padding: the index's position inside its dyadic shell [2^j, 2^(j+1)) mapped so
-// (indices 0 and 1 stay), keyed by the pixel's first key word.
-fn strata_shell_block(index: u32, key: u32, dim: u32) -> u32 {
+// The shell padding of sample `index` for the draw whose group starts at `g`, bit-reversed: its
+// position in its shell [2^j, 2^(j+1)) mapped by x -> g^((x + r) mod (2^j - 1)) + b over
+// GF(2^j) (the last position standing for zero), keyed by the pixel's third key word, the draw
+// and the shell, then one round of the Owen hash keyed by `mix`, kept to the positions. From
+// 2^16 on, a nested scramble of the shell.
+fn strata_shell_rev(index: u32, key: u32, g: u32, mix: u32) -> u32 {
     if (index < 2u) {
-        return index;
+        return reverseBits(index);
     }
-    return strata_uniform_block(index, 31u - countLeadingZeros(index), key, dim);
+    let j = 31u - countLeadingZeros(index);
+    let m = (1u << j) - 1u;
+    let x = index & m;
+    let top = ~(0xffffffffu >> j);
+    let marker = 0x80000000u >> j;
+    let t = strata_hash32(g, key ^ (j * 0x9e3779b9u));
+    if (j > 15u) {
+        return (strata_owen_rev(marker | reverseBits(x), t) & top) | marker;
+    }
+    var e = x + strata_below((t << 16u) | (t >> 16u), m);
+    if (e >= m) {
+        e -= m;
+    }
+    var live = top;
+    if (x == m) {
+        live = 0u;
+    }
+    let v = ((strata_exp((m + e) & 0xffffu) << 16u) & live) ^ (t & top);
+    return marker | (strata_owen_rev(v, mix) & top);
 }
 
-fn strata_sample(
-    params: StrataParameters,
-    pixel: vec2<u32>,
-    index: u32,
-    dim: u32,
-) -> StrataSample {
-    var keys = strata_pixel_keys(params.key, pixel);
-    var i = index;
-    if ((params.z_bits & 0x100u) != 0u) {
-        i = strata_shell_block(index, keys.x, dim);
+// Point `index_rev` (bit-reversed) of dimension `d` of a joint sequence's table, bit-reversed:
+// the XOR of the columns of the index's set bits.
+fn strata_joint_point_rev(d: u32, index_rev: u32) -> u32 {
+    var x = index_rev;
+    var v = 0u;
+    let base = STRATA_JOINT_AT + 1u + 32u * d;
+    while (x != 0u) {
+        v ^= strata_tables[base + firstTrailingBit(x)];
+        x &= x - 1u;
     }
-    let seq = params.sequence;
-    if (seq == 4u || seq == 5u || seq == 6u) {
-        // the pixel's block of the global sequence, along a scrambled Z curve
-        let inside = pixel.x < params.resolution.x && pixel.y < params.resolution.y;
-        let bits = params.z_bits & 0xffu;
-        if (inside && bits < 32u && (index >> bits) == 0u) {
-            // the pixel's place for this draw: its Morton code under a nested base-4 scramble
-            // of the image's digits, keyed by the image and the draw
-            let zk = strata_hash32(dim, strata_hash32(params.key.x ^ params.key.y, 0x7a017a01u));
-            let r = strata_owen_base4_rev(reverseBits(strata_morton(pixel)), zk);
-            let z = reverseBits(strata_digit_affine_rev(r, zk)) & strata_z_mask(params.resolution);
-            var tile = 0u;
-            if (bits > 0u) {
-                tile = z >> (32u - bits);
-            }
-            keys = strata_tile_keys(params.key, tile);
-            i = (z << bits) | i;
-        }
-    }
-    return StrataSample(keys, i);
+    return v;
 }
 
-// The 2D draw at `dim` of sample `index` of `pixel`, as 32-bit fixed point (value / 2^32), for
-// sequences 0-5 (the joint sequences 6 and 7 are `strata_joint_draw` in strata_zjoint.wgsl;
-// here they give 0).
+// The 2D draw at `dim` of sample `index` of `pixel`, as 32-bit fixed point (value / 2^32).
 fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32) -> vec2<u32> {
-    let seq = params.sequence;
-    let at = strata_sample(params, pixel, index, dim);
-    let keys = at.keys;
-    let i = at.index;
-    let k = strata_draw_keys(keys, dim);
-    switch seq {
-        case 0u: {
-            return strata_random(k, i);
+    let kernel = params.kernel;
+    let own = strata_pixel_keys(params.key, pixel);
+    if (kernel == 0u) {
+        return strata_random(strata_draw_keys(own, dim), index);
+    }
+    // the draws of a joint sequence's group read the index of its first dimension
+    var g = dim;
+    if (kernel == 4u) {
+        g = dim & ~(strata_tables[STRATA_JOINT_AT] - 1u);
+    }
+    let shells = (params.flags & 0x100u) != 0u;
+    var r = reverseBits(index);
+    if (shells) {
+        r = strata_shell_rev(index, own.z, g, strata_draw_keys(own, g).h);
+    }
+    // the Z-ordered sequences: the pixel's block of the global sequence, along a scrambled Z
+    // curve, inside the image and the block
+    var keys = own;
+    let bits = params.flags & 0xffu;
+    let inside = pixel.x < params.resolution.x && pixel.y < params.resolution.y;
+    if ((params.flags & 0x200u) != 0u && inside && bits < 32u && (index >> bits) == 0u) {
+        // the pixel's place for this draw: its Morton code under a nested base-4 scramble of
+        // the image's digits, keyed by the image and the draw
+        let zk = strata_hash32(g, strata_hash32(params.key.x ^ params.key.y, 0x7a017a01u));
+        let s = strata_owen_base4_rev(reverseBits(strata_morton(pixel)), zk);
+        let z = reverseBits(strata_digit_affine_rev(s, zk)) & strata_z_mask(params.resolution);
+        var tile = 0u;
+        if (bits > 0u) {
+            tile = z >> (32u - bits);
         }
-        case 1u, 4u: {
-            return strata_digital(false, k, i);
+        keys = strata_tile_keys(params.key, tile);
+        r = (reverseBits(z) >> bits) | r;
+    }
+    if (!shells) {
+        let kg = strata_draw_keys(keys, g);
+        r = strata_shuffle_rev(r, kg.e, kg.h);
+    }
+    let v = strata_draw_keys(keys, dim).v;
+    var p: vec2<u32>;
+    switch kernel {
+        case 1u: {
+            p = strata_sobol01_rev(reverseBits(r));
         }
-        case 2u, 5u: {
-            return strata_digital(true, k, i);
+        case 2u: {
+            p = strata_pmj02_rev(reverseBits(r));
         }
         case 3u: {
-            return strata_lattice(k, i);
+            return strata_lattice(v, r);
         }
         default: {
-            return vec2<u32>(0u);
+            let o = dim - g;
+            p = vec2<u32>(strata_joint_point_rev(o, r), strata_joint_point_rev(o + 1u, r));
         }
     }
+    return reverseBits(strata_owen_rev2(p, v));
 }
 
 // The 2D draw as floats in [0, 1): the top 24 bits of each value.
