@@ -429,6 +429,9 @@ const JOE_KUO: &str = include_str!("new-joe-kuo-6.1000");
 /// by the standard recurrence ([`direction_matrix`]): 128 KiB, no lazy initialisation.
 pub(crate) static SOBOL: [Matrix; SOBOL_DIMENSIONS as usize] = parse_joe_kuo(JOE_KUO.as_bytes());
 
+/// The nibble tables of Sobol''s first [`NIBBLE_DIMENSIONS`] dimensions.
+pub(crate) static SOBOL_NIBBLES: [NibbleTables; NIBBLE_DIMENSIONS] = first_nibbles(&SOBOL);
+
 /// The next whole number in `text` at or after `*at` (skipping spaces, tabs and line ends),
 /// and whether it ended its line.
 const fn next_number(text: &[u8], at: &mut usize) -> (u32, bool) {
@@ -451,6 +454,69 @@ const fn next_number(text: &[u8], at: &mut usize) -> (u32, bool) {
     (n, k >= text.len() || text[k] == b'\n')
 }
 
+/// Nibble tables of one generator matrix: entry `[q][v]` is the point, bit-reversed, of the
+/// bit-reversed index whose nibble `q` is `v` and whose other bits are 0 (512 bytes, where byte
+/// tables take 4 KiB): the samplers' tables for every dimension below [`NIBBLE_DIMENSIONS`],
+/// built at compile time.
+pub(crate) type NibbleTables = [[u32; 16]; 8];
+
+/// The dimensions of Sobol' and of (1,2)-Sobol' that have [`NibbleTables`] (32 KiB each); the
+/// others are evaluated column by column.
+pub(crate) const NIBBLE_DIMENSIONS: usize = 64;
+
+/// The nibble tables of one generator matrix.
+pub(crate) const fn nibble_tables(m: &Matrix) -> NibbleTables {
+    let mut t = [[0u32; 16]; 8];
+    let mut q = 0;
+    while q < 8 {
+        let mut v = 0;
+        while v < 16 {
+            let mut x = 0u32;
+            let mut k = 0;
+            while k < 4 {
+                if (v >> k) & 1 == 1 {
+                    // reversed-index bit 4q + k is index bit 31 - (4q + k)
+                    x ^= m[31 - (4 * q + k)].reverse_bits();
+                }
+                k += 1;
+            }
+            t[q][v] = x;
+            v += 1;
+        }
+        q += 1;
+    }
+    t
+}
+
+/// The nibble tables of the first [`NIBBLE_DIMENSIONS`] matrices of `m`.
+const fn first_nibbles(m: &[Matrix]) -> [NibbleTables; NIBBLE_DIMENSIONS] {
+    let mut t = [[[0u32; 16]; 8]; NIBBLE_DIMENSIONS];
+    let mut d = 0;
+    while d < NIBBLE_DIMENSIONS {
+        t[d] = nibble_tables(&m[d]);
+        d += 1;
+    }
+    t
+}
+
+/// The point of a digital sequence at a bit-reversed index, bit-reversed, from its nibble
+/// tables.
+#[inline(always)]
+pub(crate) fn lookup_nibbles(t: &NibbleTables, index_rev: u32) -> u32 {
+    let high = t[4][((index_rev >> 16) & 15) as usize]
+        ^ t[5][((index_rev >> 20) & 15) as usize]
+        ^ t[6][((index_rev >> 24) & 15) as usize]
+        ^ t[7][(index_rev >> 28) as usize];
+    // an index below 2^16 has no low reversed nibbles
+    if index_rev & 0xffff == 0 {
+        return high;
+    }
+    high ^ t[0][(index_rev & 15) as usize]
+        ^ t[1][((index_rev >> 4) & 15) as usize]
+        ^ t[2][((index_rev >> 8) & 15) as usize]
+        ^ t[3][((index_rev >> 12) & 15) as usize]
+}
+
 /// The number of dimensions of the (1,2)-Sobol' sequence.
 pub(crate) const ONE_TWO_DIMENSIONS: u32 = 692;
 
@@ -463,6 +529,10 @@ const ONE_TWO: &str = include_str!("new-one-two-sobol.692");
 /// time from [`ONE_TWO`] by the standard recurrence: 87 KiB. Dimensions 0 and 1 are Sobol''s.
 pub(crate) static ONE_TWO_SOBOL: [Matrix; ONE_TWO_DIMENSIONS as usize] =
     parse_joe_kuo(ONE_TWO.as_bytes());
+
+/// The nibble tables of the (1,2)-Sobol' sequence's first [`NIBBLE_DIMENSIONS`] dimensions.
+pub(crate) static ONE_TWO_NIBBLES: [NibbleTables; NIBBLE_DIMENSIONS] =
+    first_nibbles(&ONE_TWO_SOBOL);
 
 /// The Sobol' matrices of a table in Joe and Kuo's format (a header line, then `d s a m_1 ..
 /// m_s` per line, `d` from 2 up), dimension 0 the identity. Checks what the recurrence
@@ -666,6 +736,17 @@ mod tests {
             assert_eq!(pmj02_rev(i), want_p, "pmj02 computed, index {i}");
             for d in 0..2 {
                 assert_eq!(lookup(&SOBOL_FIRST[d], r), want_s[d]);
+            }
+            // the nibble tables of every tabulated dimension, against the matrices
+            for d in [0, 1, 2, 7, NIBBLE_DIMENSIONS - 1] {
+                assert_eq!(
+                    lookup_nibbles(&SOBOL_NIBBLES[d], r),
+                    apply(&SOBOL[d], i).reverse_bits()
+                );
+                assert_eq!(
+                    lookup_nibbles(&ONE_TWO_NIBBLES[d], r),
+                    apply(&ONE_TWO_SOBOL[d], i).reverse_bits()
+                );
             }
         }
     }

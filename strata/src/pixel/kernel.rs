@@ -265,7 +265,10 @@ pub(crate) fn digital<P: Pair>(table: &PairTables, v: [u32; 2], index_rev: u32) 
 #[inline(always)]
 pub(crate) fn joint<P: Pair>(tables: &[ByteTables], v: [u32; 2], o: u32, index_rev: u32) -> P {
     let o = o as usize;
-    let p = P::new([lookup(&tables[o], index_rev), lookup(&tables[o + 1], index_rev)]);
+    let p = P::new([
+        lookup(&tables[o], index_rev),
+        lookup(&tables[o + 1], index_rev),
+    ]);
     owen_scramble_lanes(p, P::new(v)).reverse_bits()
 }
 
@@ -343,7 +346,6 @@ mod tests {
         assert_eq!(z_mask([65, 2]), (1 << 14) - 1);
         assert_eq!(z_mask([65536, 1]), u32::MAX);
         assert_eq!(z_pixel(&key, [64, 64], [64, 0]), None);
-
     }
 
     #[test]

@@ -15,25 +15,33 @@
 //! # On a GPU
 //!
 //! This is the one place that says what runs on a GPU. The draws of every sequence whose row in
-//! the [table](#sequences) has a GPU number are 32-bit wrapping integer arithmetic (no 64-bit
-//! integers, no per-thread tables; the crate's `kernel` module), and [`WGSL`] is the same kernel
-//! as a WGSL module (`shaders/strata.wgsl`): include it in a compute or fragment shader, upload
-//! [`PixelSampler::gpu_parameters`] (eight `u32`, [`GpuParameters::words`]) as a uniform, and
-//! call `strata_get_2d(params, pixel, index, dim)` for the `f32` pair or `strata_draw` for the
-//! 32-bit fixed-point values. The joint sequences (`zjoint`, `zquad` and `zsobol12`, sequence 6;
-//! `sobol12`, sequence 7) read more generator columns than a uniform holds: include
-//! [`WGSL_ZJOINT`] after [`WGSL`], declare a storage buffer `strata_joint: array<u32>` filled
-//! with [`Sequence::gpu_joint_table`], and call `strata_joint_get_2d` instead
-//! (`strata_is_joint(sequence)` says which).
+//! the [table](#sequences) says "yes" under GPU are 32-bit wrapping integer arithmetic (no
+//! 64-bit integers, no per-thread tables; the crate's `kernel` and `padding` modules), and
+//! [`WGSL`] is the same draw as a WGSL module (`shaders/strata.wgsl`), one entry point for every
+//! such sequence:
 //!
-//! What is tested, and nothing more: the repository's GPU test (`gpu/`) validates both modules
-//! with `naga` and runs them through `wgpu` on the Vulkan adapter present (Mesa's lavapipe CPU
-//! driver in CI), comparing `2^22` draws of every GPU sequence (of `zjoint` at groups of 2, 8
-//! and 512; `sobol12` and `zsobol12` at 8) bit for bit with [`PixelSampler::sample_2d_u32`]: half a renderer's grid, half
-//! hashed over the whole `u32` range of pixel, index and dimension. No hardware GPU and no
-//! rust-gpu build have been tested. The shader's domain is sample indices below `2^32` (past
-//! them the CPU draws from a fresh key per block of `2^32`); `jittered` and `halton` divide by
-//! their block sizes in 64-bit arithmetic and are CPU-only.
+//! ```text
+//! let gpu = sampler.gpu_parameters()?;     // refuses jittered, halton and Padding::Uniform
+//! uniform StrataParameters  <- gpu.words()  // eight u32
+//! storage strata_tables     <- gpu.tables() // 128 KiB (and a joint sequence's matrices)
+//! shader: strata::pixel::WGSL, then @binding(N) var<storage, read> strata_tables: array<u32>;
+//! let u = strata_get_2d(params, pixel, index, dim);   // or strata_draw: 32-bit fixed point
+//! ```
+//!
+//! The storage buffer is part of the parameters' contract: the shell padding's table (and, for
+//! `zjoint`, `zquad`, `sobol12` and `zsobol12`, their generator columns) is read from it by every
+//! draw ([`GpuParameters::tables`]).
+//!
+//! What is tested, and nothing more: the repository's GPU test (`gpu/`) validates the module with
+//! `naga` and runs it through `wgpu` on the Vulkan adapter present (Mesa's lavapipe CPU driver in
+//! CI), comparing `2^22` draws of every sequence of [`Sequence::NAMES`] that
+//! [`PixelSampler::gpu_parameters`] accepts (and of `zjoint` at groups of 2 and 512, `sobol12` at
+//! 512), under the nested and the shell padding, bit for bit with
+//! [`PixelSampler::sample_2d_u32`]: half a renderer's grid, half hashed over the whole `u32`
+//! range of pixel, index and dimension. No hardware GPU and no rust-gpu build have been tested.
+//! The shader's domain is sample indices below `2^32` (past them the CPU draws from a fresh key
+//! per block of `2^32`); `jittered` and `halton` divide by their block sizes in 64-bit arithmetic
+//! and are CPU-only.
 //!
 //! # Guarantees
 //!

@@ -278,7 +278,10 @@ mod tests {
         }
         // and near the top of the index range
         for i in [u32::MAX, u32::MAX - 1, 1 << 31, (1 << 31) + 5] {
-            assert_eq!(Shell::new(i, 9).map_rev(4, 77).reverse_bits().ilog2(), i.ilog2());
+            assert_eq!(
+                Shell::new(i, 9).map_rev(4, 77).reverse_bits().ilog2(),
+                i.ilog2()
+            );
         }
     }
 

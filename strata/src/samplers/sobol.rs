@@ -28,12 +28,11 @@
 //! Evaluation is direct (no running state): indices up to `2^32 - 1`, any order, in O(1) by
 //! four 256-entry tables per dimension (one per byte of the index).
 
-use alloc::sync::Arc;
-
 use super::{Epochs, MAX_SEQUENCE_LEN};
 use crate::digital::{
-    ByteTables, FAURE4, Matrix, ONE_TWO_DIMENSIONS, ONE_TWO_SOBOL, SOBOL, SOBOL_DIMENSIONS, apply,
-    byte_tables, faure4_matrices, lookup, sobol_first_tables,
+    FAURE4, Matrix, NIBBLE_DIMENSIONS, ONE_TWO_DIMENSIONS, ONE_TWO_NIBBLES, ONE_TWO_SOBOL, SOBOL,
+    SOBOL_DIMENSIONS, SOBOL_NIBBLES, apply, faure4_matrices, lookup, lookup_nibbles,
+    sobol_first_tables,
 };
 use crate::error::Result;
 use crate::float::unit_f32_from_u32;
@@ -55,35 +54,30 @@ enum Matrices {
 }
 
 impl Matrices {
-    /// The byte tables of dimensions 0 and 1 (built at compile time).
-    #[inline]
-    fn first_tables(self, dim: u32) -> &'static ByteTables {
+    /// Dimension `dim` (which exists) at the bit-reversed index `index_rev`, bit-reversed: from
+    /// the compile-time tables (byte tables of Sobol' dimensions 0-1 and of `faure4`, nibble
+    /// tables of the first 64 dimensions of Sobol' and of (1,2)-Sobol'), column by column
+    /// past them. No table is built at run time.
+    #[inline(always)]
+    fn point_rev(self, dim: u32, index_rev: u32) -> u32 {
+        let d = dim as usize;
         match self {
-            Matrices::Sobol | Matrices::OneTwo => {
-                sobol_first_tables(dim).expect("dimension 0 or 1")
+            Matrices::Sobol | Matrices::OneTwo if d < 2 => lookup(
+                sobol_first_tables(dim).expect("dimension 0 or 1"),
+                index_rev,
+            ),
+            Matrices::Faure4 => lookup(&FAURE4[d], index_rev),
+            Matrices::Sobol if d < NIBBLE_DIMENSIONS => {
+                lookup_nibbles(&SOBOL_NIBBLES[d], index_rev)
             }
-            Matrices::Faure4 => &FAURE4[dim as usize],
+            Matrices::OneTwo if d < NIBBLE_DIMENSIONS => {
+                lookup_nibbles(&ONE_TWO_NIBBLES[d], index_rev)
+            }
+            Matrices::Sobol => apply(&SOBOL[d], index_rev.reverse_bits()).reverse_bits(),
+            Matrices::OneTwo => apply(&ONE_TWO_SOBOL[d], index_rev.reverse_bits()).reverse_bits(),
         }
     }
 
-    /// The generator matrix of dimension `dim`, `None` past the last.
-    fn matrix(self, dim: u32) -> Option<Matrix> {
-        match self {
-            Matrices::Sobol => SOBOL.get(dim as usize).copied(),
-            Matrices::Faure4 => faure4_matrices()[..4].get(dim as usize).copied(),
-            Matrices::OneTwo => ONE_TWO_SOBOL.get(dim as usize).copied(),
-        }
-    }
-
-    /// The byte tables of dimensions `0..dims` (all of which exist), built once per sampler.
-    fn tables(self, dims: u32) -> Arc<[ByteTables]> {
-        (0..dims)
-            .map(|d| match d {
-                0 | 1 => *self.first_tables(d),
-                _ => byte_tables(&self.matrix(d).expect("checked at construction")),
-            })
-            .collect()
-    }
 
     /// The seed the randomization is keyed by: `faure4`'s is hashed anew, so that its
     /// scrambles are not `sobol`'s of the same seed (whose dimension 0 is the same matrix).
@@ -207,12 +201,11 @@ pub fn projection_t_value(sampler: &str, dims: &[u32], m: u32, base: u32) -> Res
 /// # Ok::<(), strata::Error>(())
 /// ```
 pub fn owen_scrambled(index: u32, dim: u32, seed: u64) -> Option<f32> {
+    if dim >= MAX_DIMENSIONS {
+        return None;
+    }
     let s = Scramble::new(seed);
-    let i_rev = s.index_rev(index);
-    let v_rev = match sobol_first_tables(dim) {
-        Some(t) => lookup(t, i_rev),
-        None => apply(SOBOL.get(dim as usize)?, i_rev.reverse_bits()).reverse_bits(),
-    };
+    let v_rev = Matrices::Sobol.point_rev(dim, s.index_rev(index));
     Some(unit_f32_from_u32(
         owen_scramble_lanes(v_rev, s.dim_seed(dim)).reverse_bits(),
     ))
@@ -226,6 +219,10 @@ pub(crate) struct Scramble {
     even: u32,
     shuffle: u32,
     key: u32,
+    /// The shuffle of index 0, bit-reversed: XOR-ed onto every shuffled index, so that the
+    /// first `2^m` indices go to the first `2^m` (the same nets, with small indices: fewer
+    /// table lookups).
+    zero: u32,
 }
 
 impl Scramble {
@@ -235,10 +232,12 @@ impl Scramble {
         // and the key of the per-dimension value seeds, which `dim_seed` hashes again
         let s = mix64(seed ^ Stream::SobolScramble.id().wrapping_mul(GOLDEN_GAMMA));
         let (lo, hi) = (s as u32, (s >> 32) as u32);
+        let (even, shuffle) = (lo & !1, hi);
         Scramble {
-            even: lo & !1,
-            shuffle: hi,
+            even,
+            shuffle,
             key: lo.rotate_left(16) ^ hi,
+            zero: shuffle_lanes(0, even, shuffle),
         }
     }
 
@@ -248,33 +247,26 @@ impl Scramble {
         hash32(dim, self.key)
     }
 
-    /// The shuffled index, in the bit-reversed domain.
+    /// The shuffled index, in the bit-reversed domain: a nested uniform shuffle (aligned
+    /// blocks of `2^m` indices onto aligned blocks) made to keep each prefix `[0, 2^m)` in
+    /// place by the XOR of the shuffle of 0 (itself a nested bijection).
     #[inline]
     fn index_rev(&self, index: u32) -> u32 {
-        shuffle_lanes(index.reverse_bits(), self.even, self.shuffle)
+        shuffle_lanes(index.reverse_bits(), self.even, self.shuffle) ^ self.zero
     }
 
-    /// Dimensions `dim` and `dim + 1` of point `index` of `matrices`, as 32-bit fixed point
-    /// (`dim + 1` must exist).
+    /// Dimensions 0 and 1 of point `index` of `matrices`, as 32-bit fixed point.
     #[inline]
     fn sample2_u32(&self, matrices: Matrices, index: u32) -> [u32; 2] {
         let i = self.index_rev(index);
-        [
-            self.sample_rev_u32(matrices.first_tables(0), i, 0),
-            self.sample_rev_u32(matrices.first_tables(1), i, 1),
-        ]
-    }
-
-    /// Dimension `dim` (byte tables `t`) at an already shuffled index `i_rev`.
-    #[inline]
-    fn sample_rev_u32(&self, t: &ByteTables, i_rev: u32, dim: u32) -> u32 {
-        owen_scramble_lanes(lookup(t, i_rev), self.dim_seed(dim)).reverse_bits()
+        [0, 1]
+            .map(|d| owen_scramble_lanes(matrices.point_rev(d, i), self.dim_seed(d)).reverse_bits())
     }
 }
 
-/// Consecutive points of one epoch of [`SobolNd`], from tables and seeds looked up once.
+/// Consecutive points of one epoch of [`SobolNd`], with the value seeds looked up once.
 struct Rows<'a> {
-    tables: &'a [ByteTables],
+    matrices: Matrices,
     seeds: &'a [u32],
     scramble: Scramble,
 }
@@ -284,12 +276,12 @@ impl Rows<'_> {
     /// step.
     #[inline(always)]
     fn fill(&self, start: u32, out: &mut [f32]) {
-        let d = self.tables.len();
+        let d = self.seeds.len();
         for (i, chunk) in (u64::from(start)..).zip(out.chunks_exact_mut(d)) {
             let ir = self.scramble.index_rev(i as u32);
             let mut k = 0;
             while k + 4 <= d {
-                let n = X4::new([0, 1, 2, 3].map(|j| lookup(&self.tables[k + j], ir)));
+                let n = X4::new([0, 1, 2, 3].map(|j| self.matrices.point_rev((k + j) as u32, ir)));
                 let s = X4::new([0, 1, 2, 3].map(|j| self.seeds[k + j]));
                 let v = owen_scramble_lanes(n, s).reverse_bits().unit_f32();
                 chunk[k..k + 4].copy_from_slice(&v);
@@ -302,9 +294,9 @@ impl Rows<'_> {
     /// Dimensions `k..` of one point, one at a time.
     #[inline(always)]
     fn tail(&self, ir: u32, k: usize, chunk: &mut [f32]) {
-        let rest = self.tables[k..].iter().zip(&self.seeds[k..]);
-        for (o, (t, s)) in chunk[k..].iter_mut().zip(rest) {
-            *o = unit_f32_from_u32(owen_scramble_lanes(lookup(t, ir), *s).reverse_bits());
+        for ((d, o), s) in (k..).zip(chunk[k..].iter_mut()).zip(&self.seeds[k..]) {
+            let v = self.matrices.point_rev(d as u32, ir);
+            *o = unit_f32_from_u32(owen_scramble_lanes(v, *s).reverse_bits());
         }
     }
 
@@ -316,12 +308,13 @@ impl Rows<'_> {
     #[cfg(all(feature = "std", target_arch = "x86_64", not(strata_portable)))]
     #[target_feature(enable = "avx2")]
     unsafe fn fill_avx2(&self, start: u32, out: &mut [f32]) {
-        let d = self.tables.len();
+        let d = self.seeds.len();
         for (i, chunk) in (u64::from(start)..).zip(out.chunks_exact_mut(d)) {
             let ir = self.scramble.index_rev(i as u32);
             let mut k = 0;
             while k + 8 <= d {
-                let n: [u32; 8] = core::array::from_fn(|j| lookup(&self.tables[k + j], ir));
+                let n: [u32; 8] =
+                    core::array::from_fn(|j| self.matrices.point_rev((k + j) as u32, ir));
                 let s: [u32; 8] = core::array::from_fn(|j| self.seeds[k + j]);
                 let v = owen_scramble_lanes(n, s).reverse_bits();
                 for (o, x) in chunk[k..k + 8].iter_mut().zip(v) {
@@ -457,8 +450,6 @@ pub struct SobolNd {
     seed: u64,
     scramble: Scramble,
     matrices: Matrices,
-    /// The byte tables of the dimensions, built when the sampler is made (shared by clones).
-    tables: Arc<[ByteTables]>,
 }
 
 impl SobolNd {
@@ -508,7 +499,6 @@ impl SobolNd {
             seed: seed.0,
             scramble: Scramble::new(seed.0),
             matrices,
-            tables: matrices.tables(dims),
         })
     }
 }
@@ -550,7 +540,6 @@ impl SamplerNd for SobolNd {
     /// AVX2 where the CPU has it, four with SSE2 otherwise).
     fn fill(&mut self, out: &mut [f32]) {
         let d = self.dims as usize;
-        let tables = &*self.tables;
         let total = out.len() / d;
         let mut done = 0usize;
         while done < total {
@@ -560,7 +549,7 @@ impl SamplerNd for SobolNd {
             }
             let seeds: Vec<u32> = (0..self.dims).map(|k| self.scramble.dim_seed(k)).collect();
             let rows = Rows {
-                tables,
+                matrices: self.matrices,
                 seeds: &seeds,
                 scramble: self.scramble,
             };
@@ -580,8 +569,10 @@ impl SamplerNd for SobolNd {
         let i = advance(&mut self.epochs, &mut self.scramble);
         // one index shuffle for all dimensions of the point
         let ir = self.scramble.index_rev(i);
-        for ((d, table), o) in (0..).zip(self.tables.iter()).zip(out.iter_mut()) {
-            *o = unit_f32_from_u32(self.scramble.sample_rev_u32(table, ir, d));
+        for (d, o) in (0..self.dims).zip(out.iter_mut()) {
+            let v = self.matrices.point_rev(d, ir);
+            *o =
+                unit_f32_from_u32(owen_scramble_lanes(v, self.scramble.dim_seed(d)).reverse_bits());
         }
     }
 }
