@@ -1,8 +1,8 @@
-//! The renderer's crate in a `#![no_std]` library: Sobol' and Z-ordered Sobol' by (index,
-//! dimension, seed), the jointly Z-ordered `zjoint` (the default sequence, whose tables are built
-//! at construction), stochastic pmj02 by index, Halton, hashing, Kensler's permutation and float
-//! conversion, and a classic sampler (jittered), exported so that the linker keeps them. Built,
-//! not run: it links only if nothing brings `std`.
+//! The renderer's crate in a `#![no_std]` library: every adapter sequence of `Sequence::NAMES`
+//! by (pixel, index, dimension, seed), Sobol' by (index, dimension, seed), stochastic pmj02 by
+//! index, Halton, hashing, Kensler's permutation and float conversion, and a classic sampler
+//! (jittered), exported so that the linker keeps them. Built, not run: it links only if nothing
+//! brings `std`.
 
 #![no_std]
 
@@ -16,8 +16,9 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
     loop {}
 }
 
-/// An allocator that has nothing to give: the functions below never ask, but `zjoint`'s
-/// construction (its tables), which then fails to allocate: the link is what is checked.
+/// An allocator that has nothing to give: the functions below never ask, but the joint
+/// sequences' construction (their tables), which then fails to allocate: the link is what is
+/// checked.
 struct NoAlloc;
 
 // SAFETY: alloc returns null (an allocation failure), which GlobalAlloc allows; dealloc is
@@ -38,21 +39,15 @@ pub extern "C" fn strata_sobol(index: u32, dim: u32, seed: u64) -> f32 {
     sobol::owen_scrambled(index, dim, seed).unwrap_or(-1.0)
 }
 
-/// Z-ordered Sobol' for pixel (x, y) of a 1920 x 1080 image: the draw at `dim`.
+/// Sequence `k` of `Sequence::NAMES` (every one of them, by the list: a new sequence is linked
+/// here the day it is added) for pixel (x, y) of a 1920 x 1080 image at 64 samples per pixel
+/// (a square, for jittered): the draw at `dim`; -1 past the list.
 #[unsafe(no_mangle)]
-pub extern "C" fn strata_zsobol(x: u32, y: u32, index: u64, dim: u32, seed: u64) -> f32 {
-    match Sequence::zsobol(1920, 1080)
-        .and_then(|z| PixelSampler::new(z, 64, Seed(seed)))
-    {
-        Ok(s) => s.sample_2d([x, y], index, dim)[0],
-        Err(_) => -1.0,
-    }
-}
-
-/// Jointly Z-ordered Sobol' (groups of 8 dimensions) for pixel (x, y) of a 1920 x 1080 image.
-#[unsafe(no_mangle)]
-pub extern "C" fn strata_zjoint(x: u32, y: u32, index: u64, dim: u32, seed: u64) -> f32 {
-    match Sequence::zjoint(1920, 1080, 8).and_then(|z| PixelSampler::new(z, 64, Seed(seed))) {
+pub extern "C" fn strata_sequence(k: u32, x: u32, y: u32, index: u64, dim: u32, seed: u64) -> f32 {
+    let Some(name) = Sequence::NAMES.get(k as usize) else {
+        return -1.0;
+    };
+    match Sequence::by_name(name, [1920, 1080]).and_then(|z| PixelSampler::new(z, 64, Seed(seed))) {
         Ok(s) => s.sample_2d([x, y], index, dim)[0],
         Err(_) => -1.0,
     }

@@ -93,21 +93,22 @@
 //!
 //! A pixel sample's draws (film position, lens, light, direction, ...) are *padded*: each
 //! draw is its own 2D sequence, and which sample of one draw goes with which sample of another
-//! decides the error of everything the draws do together. Each draw first shuffles its index
-//! by a nested scramble, so that every power-of-two prefix of every draw is a (0,m,2)-net. Left
-//! there ([`Padding::Nested`]), two draws are paired by a tree automorphism: sibling samples
-//! stay together across draws, and pairs of draws cover a grid less evenly than chance would.
-//! [`Padding::Shells`] (the default) then reorders each dyadic shell `[2^j, 2^(j+1))` of the
-//! index per draw by a random `x -> a x + b` over GF(2^j), a sharply 2-transitive family: two
-//! draws meet as under independent uniform permutations inside each shell, and since every
-//! power-of-two prefix is a union of whole shells, every prefix still holds the net it held, so
-//! a renderer may stop at any power of two. pbrt-v4's padded Sobol' permutes the whole pixel's
-//! samples per draw, which pairs the same way but keeps only the whole `spp` a net;
-//! [`Padding::Uniform`] does that over each aligned block of `spp` samples (rounded up to a
+//! decides the error of everything the draws do together. Under [`Padding::Shells`] (the
+//! default) each draw reorders each dyadic shell `[2^j, 2^(j+1))` of the sample index by its own
+//! random affine map over GF(2^j), a sharply 2-transitive family (two draws meet as under
+//! independent uniform permutations inside each shell), followed by one keyed round of the
+//! Owen hash on the shell's positions (without it the two draws' places are related by a
+//! binary matrix, whose coarse strata are often tied: the conformance suite sees it). Every
+//! power-of-two prefix is a union of whole shells, so it keeps its samples and stays the net it
+//! was: a renderer may stop at any power of two. [`Padding::Nested`] shuffles the index by a
+//! nested scramble alone (every prefix a net too), which pairs two draws by a tree automorphism:
+//! sibling samples stay together across draws. pbrt-v4's padded Sobol' permutes the whole
+//! pixel's samples per draw, which pairs as well as the shells but keeps only the whole `spp` a
+//! net; [`Padding::Uniform`] does that over each aligned block of `spp` samples (rounded up to a
 //! power of two), for the record. The [`WGSL`] shader computes `Nested` and `Shells`
-//! ([`PixelSampler::gpu_parameters`] is `None` under `Uniform`). `random`, `jittered` and
-//! `halton` already permute whole blocks, and the joint sequences draw several dimensions from
-//! one index, so none of them is changed by the padding. `render --padding` compares the three.
+//! ([`PixelSampler::gpu_parameters`] refuses `Uniform`). `random`, `jittered` and `halton`
+//! already permute whole blocks and are not changed by the padding; the joint sequences pad each
+//! group's index as `sobol` pads each draw's. `render --padding` compares the three.
 //!
 //! # Dimensions in a renderer that bounces
 //!
