@@ -268,13 +268,10 @@ fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32)
         g = dim & ~(strata_tables[STRATA_JOINT_AT] - 1u);
     }
     let shells = (params.flags & 0x100u) != 0u;
-    var r = reverseBits(index);
-    if (shells) {
-        r = strata_shell_rev(index, own.z, g, strata_draw_keys(own, g).h);
-    }
     // the Z-ordered sequences: the pixel's block of the global sequence, along a scrambled Z
-    // curve, inside the image and the block
+    // curve, inside the image and the block; the keys of its tile
     var keys = own;
+    var base = 0u;
     let bits = params.flags & 0xffu;
     let inside = pixel.x < params.resolution.x && pixel.y < params.resolution.y;
     if ((params.flags & 0x200u) != 0u && inside && bits < 32u && (index >> bits) == 0u) {
@@ -288,7 +285,11 @@ fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32)
             tile = z >> (32u - bits);
         }
         keys = strata_tile_keys(params.key, tile);
-        r = (reverseBits(z) >> bits) | r;
+        base = reverseBits(z) >> bits;
+    }
+    var r = base | reverseBits(index);
+    if (shells) {
+        r = base | strata_shell_rev(index, own.z, g, strata_draw_keys(keys, g).h);
     }
     if (!shells) {
         let kg = strata_draw_keys(keys, g);

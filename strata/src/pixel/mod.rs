@@ -809,8 +809,13 @@ impl PixelSampler {
     /// block.
     #[inline(always)]
     fn z_base_cached(&mut self, dim: u32) -> Option<u32> {
+        self.z_base_of_group(self.sequence.group_start(dim))
+    }
+
+    /// [`z_base_cached`](Self::z_base_cached) for the draw whose group starts at `g`.
+    #[inline(always)]
+    fn z_base_of_group(&mut self, g: u32) -> Option<u32> {
         let zp = self.current.z?;
-        let g = self.sequence.group_start(dim);
         if g >= 64 {
             return Some(self.z_base_of(&zp, g));
         }
@@ -873,15 +878,24 @@ impl PixelSampler {
         dim: u32,
         z: Option<u32>,
     ) -> (u32, [u32; 2]) {
-        let bits = self.spp.z_bits();
-        let a = match P {
-            SHELLS => c.shell.map_rev(g, DrawKeys::hash(&c.own, g)),
-            NESTED => c.index.reverse_bits(),
-            _ => padding::uniform_rev(c.index, bits, c.own.0[2], g, DrawKeys::hash(&c.own, g)),
+        let keys = match z {
+            None => c.own,
+            Some(_) => self.tile_keys(c, g),
         };
-        let (keys, index) = match z {
-            None => (c.own, a),
-            Some(z) => (self.tile_keys(c, g), z | a),
+        let a = match P {
+            SHELLS => c.shell.map_rev(g, DrawKeys::hash(&keys, g)),
+            NESTED => c.index.reverse_bits(),
+            _ => padding::uniform_rev(
+                c.index,
+                self.spp.z_bits(),
+                c.own.0[2],
+                g,
+                DrawKeys::hash(&keys, g),
+            ),
+        };
+        let index = match z {
+            None => a,
+            Some(z) => z | a,
         };
         let index = match P {
             NESTED => kernel::shuffled(&DrawKeys::new(&keys, g), index),
@@ -918,14 +932,15 @@ impl PixelSampler {
     #[inline(always)]
     fn shells_z_4(&mut self, t: &crate::digital::PairTables, dim: u32) -> [f32; 4] {
         let d2 = dim.wrapping_add(2);
-        let (za, zb) = (self.z_base_cached(dim), self.z_base_cached(d2));
+        // (every draw its own group)
+        let (za, zb) = (self.z_base_of_group(dim), self.z_base_of_group(d2));
         let (za, zb) = (za.unwrap_or(0), zb.unwrap_or(0));
         let c = &self.current;
-        let (ia, ib) = (
-            za | c.shell.map_rev(dim, DrawKeys::hash(&c.own, dim)),
-            zb | c.shell.map_rev(d2, DrawKeys::hash(&c.own, d2)),
-        );
         let (ka, kb) = (self.tile_keys(c, dim), self.tile_keys(c, d2));
+        let (ia, ib) = (
+            za | c.shell.map_rev(dim, DrawKeys::hash(&ka, dim)),
+            zb | c.shell.map_rev(d2, DrawKeys::hash(&kb, d2)),
+        );
         let (va, vb) = (DrawKeys::values(&ka, dim), DrawKeys::values(&kb, d2));
         let (pa, pb) = (X2::new(t.point_rev(ia)), X2::new(t.point_rev(ib)));
         let (pa, pb) = (
@@ -950,10 +965,10 @@ impl PixelSampler {
         };
         let at = |g: u32, z: Option<u32>| match z {
             None => (c.shell.map_rev(g, DrawKeys::hash(&c.own, g)), c.own),
-            Some(z) => (
-                z | c.shell.map_rev(g, DrawKeys::hash(&c.own, g)),
-                self.tile_keys(c, g),
-            ),
+            Some(z) => {
+                let keys = self.tile_keys(c, g);
+                (z | c.shell.map_rev(g, DrawKeys::hash(&keys, g)), keys)
+            }
         };
         let (ia, ka) = at(ga, za);
         let (ib, kb) = if ga == gb { (ia, ka) } else { at(gb, zb) };

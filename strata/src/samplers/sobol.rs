@@ -78,7 +78,6 @@ impl Matrices {
         }
     }
 
-
     /// The seed the randomization is keyed by: `faure4`'s is hashed anew, so that its
     /// scrambles are not `sobol`'s of the same seed (whose dimension 0 is the same matrix).
     fn seed(self, seed: Seed) -> Seed {
