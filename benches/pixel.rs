@@ -120,7 +120,12 @@ fn group<'a>(c: &'a mut Criterion, name: &str, elements: u64) -> BenchmarkGroup<
 fn sequences(shape: Shape, one_pixel: bool) -> Vec<(&'static str, Sequence)> {
     Sequence::NAMES
         .iter()
-        .map(|&name| (name, Sequence::by_name(name, [shape.side, shape.side]).unwrap()))
+        .map(|&name| {
+            (
+                name,
+                Sequence::by_name(name, [shape.side, shape.side]).unwrap(),
+            )
+        })
         .filter(|(_, s)| !one_pixel || s.runs_on_gpu())
         .collect()
 }

@@ -215,9 +215,9 @@ fn strata_below(t: u32, m: u32) -> u32 {
 // The shell padding of sample `index` for the draw whose group starts at `g`, bit-reversed: its
 // position in its shell [2^j, 2^(j+1)) mapped by x -> g^((x + r) mod (2^j - 1)) + b over
 // GF(2^j) (the last position standing for zero), keyed by the pixel's third key word, the draw
-// and the shell, then one round of the Owen hash keyed by `mix`, kept to the positions. From
-// 2^16 on, a nested scramble of the shell.
-fn strata_shell_rev(index: u32, key: u32, g: u32, mix: u32) -> u32 {
+// and the shell, then (when `mixed`) one round of the Owen hash keyed by `mix`, kept to the
+// positions. From 2^16 on, a nested scramble of the shell.
+fn strata_shell_rev(index: u32, key: u32, g: u32, mix: u32, mixed: bool) -> u32 {
     if (index < 2u) {
         return reverseBits(index);
     }
@@ -239,6 +239,9 @@ fn strata_shell_rev(index: u32, key: u32, g: u32, mix: u32) -> u32 {
         live = 0u;
     }
     let v = ((strata_exp((m + e) & 0xffffu) << 16u) & live) ^ (t & top);
+    if (!mixed) {
+        return marker | v;
+    }
     return marker | (strata_owen_rev(v, mix) & top);
 }
 
@@ -274,7 +277,8 @@ fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32)
     var base = 0u;
     let bits = params.flags & 0xffu;
     let inside = pixel.x < params.resolution.x && pixel.y < params.resolution.y;
-    if ((params.flags & 0x200u) != 0u && inside && bits < 32u && (index >> bits) == 0u) {
+    let in_z = (params.flags & 0x200u) != 0u && inside && bits < 32u && (index >> bits) == 0u;
+    if (in_z) {
         // the pixel's place for this draw: its Morton code under a nested base-4 scramble of
         // the image's digits, keyed by the image and the draw
         let zk = strata_hash32(g, strata_hash32(params.key.x ^ params.key.y, 0x7a017a01u));
@@ -287,11 +291,13 @@ fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32)
         keys = strata_tile_keys(params.key, tile);
         base = reverseBits(z) >> bits;
     }
-    var r = base | reverseBits(index);
+    var r = reverseBits(index);
     if (shells) {
-        r = base | strata_shell_rev(index, own.z, g, strata_draw_keys(keys, g).h);
+        // inside a Z block the affine map alone: the global shuffle below brings the rest
+        r = strata_shell_rev(index, own.z, g, strata_draw_keys(keys, g).h, !in_z);
     }
-    if (!shells) {
+    r = base | r;
+    if (!shells || in_z) {
         let kg = strata_draw_keys(keys, g);
         r = strata_shuffle_rev(r, kg.e, kg.h);
     }

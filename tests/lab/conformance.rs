@@ -49,7 +49,11 @@ fn the_listed_sequences_pass(range: std::ops::Range<usize>) {
         .unwrap()
         .promised_strata(suite.spp as u64);
         let counted = r.row("stratification", "per draw").unwrap().cases;
-        assert_eq!(counted > 0, !promises.is_empty(), "{name}: {counted} strata cases");
+        assert_eq!(
+            counted > 0,
+            !promises.is_empty(),
+            "{name}: {counted} strata cases"
+        );
         if *name == "pmj02" {
             // every power of two up to 4096, every elementary shape, every draw of every
             // instance

@@ -484,12 +484,10 @@ impl PixelSampler {
     pub fn with_padding(mut self, padding: Padding) -> Self {
         self.padding = padding;
         self.next = 0;
-        self.route = match (padding, self.sequence.points()) {
-            (Padding::Shells, Points::Digital(p)) if self.sequence.z_ordered() => {
-                Route::DigitalZ(p.tables())
-            }
-            (Padding::Shells, Points::Digital(p)) => Route::Digital(p.tables()),
-            (Padding::Shells, Points::Joint(_)) => Route::Joint,
+        self.route = match self.sequence.points() {
+            Points::Digital(p) if self.sequence.z_ordered() => Route::DigitalZ(p.tables()),
+            Points::Digital(p) => Route::Digital(p.tables()),
+            Points::Joint(_) => Route::Joint,
             _ => Route::Generic,
         };
         self
@@ -678,11 +676,19 @@ impl PixelSampler {
     /// The draws at `dim` and `dim + 2` of the current sample.
     #[inline(always)]
     fn draw_4(&mut self, dim: u32) -> [f32; 4] {
-        match self.route {
-            Route::Digital(t) => return self.shells_digital_4(t, &self.current, dim),
-            Route::DigitalZ(t) if self.current.z.is_some() => return self.shells_z_4(t, dim),
-            Route::Joint => return self.shells_joint_4(dim),
-            Route::DigitalZ(_) | Route::Generic => {}
+        match (self.route, self.padding) {
+            (Route::Digital(t), Padding::Shells) => return self.digital_4::<SHELLS>(t, dim),
+            (Route::Digital(t), Padding::Nested) => return self.digital_4::<NESTED>(t, dim),
+            (Route::DigitalZ(t), Padding::Shells) if self.current.z.is_some() => {
+                return self.digital_z_4::<SHELLS>(t, dim);
+            }
+            (Route::DigitalZ(t), Padding::Nested) if self.current.z.is_some() => {
+                return self.digital_z_4::<NESTED>(t, dim);
+            }
+            (Route::Joint, Padding::Shells) => return self.joint_4::<SHELLS>(dim),
+            (Route::Joint, Padding::Nested) => return self.joint_4::<NESTED>(dim),
+            (Route::Digital(_) | Route::DigitalZ(_) | Route::Joint, Padding::Uniform)
+            | (Route::DigitalZ(_) | Route::Generic, _) => {}
         }
         let za = self.z_base_cached(dim);
         let zb = self.z_base_cached(dim.wrapping_add(2));
@@ -878,70 +884,46 @@ impl PixelSampler {
         dim: u32,
         z: Option<u32>,
     ) -> (u32, [u32; 2]) {
-        let keys = match z {
-            None => c.own,
-            Some(_) => self.tile_keys(c, g),
+        let Some(z) = z else {
+            // the pixel's own copy: padded (the shells and the uniform blocks mix their
+            // positions themselves) or shuffled
+            let keys = c.own;
+            let index = match P {
+                SHELLS => c.shell.map_rev(g, DrawKeys::hash(&keys, g)),
+                NESTED => kernel::shuffled(&DrawKeys::new(&keys, g), c.index.reverse_bits()),
+                _ => padding::uniform_rev(
+                    c.index,
+                    self.spp.z_bits(),
+                    keys.0[2],
+                    g,
+                    DrawKeys::hash(&keys, g),
+                ),
+            };
+            return (index, DrawKeys::values(&keys, dim));
         };
+        // a Z-ordered sequence inside the pixel's block: the pixel's index padded (without the
+        // mix), placed along the global sequence, and the global index shuffled under the
+        // tile's keys (see `Shell::affine_rev`)
+        let keys = self.tile_keys(c, g);
         let a = match P {
-            SHELLS => c.shell.map_rev(g, DrawKeys::hash(&keys, g)),
+            SHELLS => c.shell.affine_rev(g),
             NESTED => c.index.reverse_bits(),
-            _ => padding::uniform_rev(
-                c.index,
-                self.spp.z_bits(),
-                c.own.0[2],
-                g,
-                DrawKeys::hash(&keys, g),
-            ),
+            _ => padding::uniform_rev(c.index, self.spp.z_bits(), c.own.0[2], g, 0),
         };
-        let index = match z {
-            None => a,
-            Some(z) => z | a,
-        };
-        let index = match P {
-            NESTED => kernel::shuffled(&DrawKeys::new(&keys, g), index),
-            _ => index,
-        };
+        let index = kernel::shuffled(&DrawKeys::new(&keys, g), z | a);
         (index, DrawKeys::values(&keys, dim))
     }
 
-    /// [`two`](Self::two) for a digital sequence that is not Z-ordered, under the shell
-    /// padding (the default): the same values, by the shortest path.
+    /// [`two`](Self::two) for a digital sequence that is not Z-ordered, under the padding `P`:
+    /// the same values, by the shortest path.
     #[inline(always)]
-    fn shells_digital_4(
-        &self,
-        t: &crate::digital::PairTables,
-        c: &SampleState,
-        dim: u32,
-    ) -> [f32; 4] {
+    fn digital_4<const P: u8>(&self, t: &crate::digital::PairTables, dim: u32) -> [f32; 4] {
         let d2 = dim.wrapping_add(2);
-        let (ia, ib) = (
-            c.shell.map_rev(dim, DrawKeys::hash(&c.own, dim)),
-            c.shell.map_rev(d2, DrawKeys::hash(&c.own, d2)),
-        );
-        let (va, vb) = (DrawKeys::values(&c.own, dim), DrawKeys::values(&c.own, d2));
-        let (pa, pb) = (X2::new(t.point_rev(ia)), X2::new(t.point_rev(ib)));
-        let (pa, pb) = (
-            owen_scramble_lanes(pa, X2::new(va)),
-            owen_scramble_lanes(pb, X2::new(vb)),
-        );
-        join(pa, pb).reverse_bits().unit_f32()
-    }
-
-    /// [`two`](Self::two) for a Z-ordered digital sequence under the shell padding, inside the
-    /// pixel's block.
-    #[inline(always)]
-    fn shells_z_4(&mut self, t: &crate::digital::PairTables, dim: u32) -> [f32; 4] {
-        let d2 = dim.wrapping_add(2);
-        // (every draw its own group)
-        let (za, zb) = (self.z_base_of_group(dim), self.z_base_of_group(d2));
-        let (za, zb) = (za.unwrap_or(0), zb.unwrap_or(0));
         let c = &self.current;
-        let (ka, kb) = (self.tile_keys(c, dim), self.tile_keys(c, d2));
-        let (ia, ib) = (
-            za | c.shell.map_rev(dim, DrawKeys::hash(&ka, dim)),
-            zb | c.shell.map_rev(d2, DrawKeys::hash(&kb, d2)),
+        let ((ia, va), (ib, vb)) = (
+            self.at::<P>(c, dim, dim, None),
+            self.at::<P>(c, d2, d2, None),
         );
-        let (va, vb) = (DrawKeys::values(&ka, dim), DrawKeys::values(&kb, d2));
         let (pa, pb) = (X2::new(t.point_rev(ia)), X2::new(t.point_rev(ib)));
         let (pa, pb) = (
             owen_scramble_lanes(pa, X2::new(va)),
@@ -950,29 +932,46 @@ impl PixelSampler {
         join(pa, pb).reverse_bits().unit_f32()
     }
 
-    /// [`two`](Self::two) for a joint sequence under the shell padding.
+    /// [`two`](Self::two) for a Z-ordered digital sequence under the padding `P`, inside the
+    /// pixel's block (every draw its own group).
     #[inline(always)]
-    fn shells_joint_4(&mut self, dim: u32) -> [f32; 4] {
+    fn digital_z_4<const P: u8>(&mut self, t: &crate::digital::PairTables, dim: u32) -> [f32; 4] {
+        let d2 = dim.wrapping_add(2);
+        let (za, zb) = (self.z_base_of_group(dim), self.z_base_of_group(d2));
+        let c = &self.current;
+        let ((ia, va), (ib, vb)) = (self.at::<P>(c, dim, dim, za), self.at::<P>(c, d2, d2, zb));
+        let (pa, pb) = (X2::new(t.point_rev(ia)), X2::new(t.point_rev(ib)));
+        let (pa, pb) = (
+            owen_scramble_lanes(pa, X2::new(va)),
+            owen_scramble_lanes(pb, X2::new(vb)),
+        );
+        join(pa, pb).reverse_bits().unit_f32()
+    }
+
+    /// [`two`](Self::two) for a joint sequence under the padding `P`.
+    #[inline(always)]
+    fn joint_4<const P: u8>(&mut self, dim: u32) -> [f32; 4] {
         let d2 = dim.wrapping_add(2);
         let (ga, gb) = (
             self.sequence.group_start(dim),
             self.sequence.group_start(d2),
         );
-        let (za, zb) = (self.z_base_cached(ga), self.z_base_cached(gb));
+        let (za, zb) = (self.z_base_of_group(ga), self.z_base_of_group(gb));
         let c = &self.current;
         let Points::Joint(tables) = self.sequence.points() else {
             return self.two(c, dim, [za, zb]);
         };
-        let at = |g: u32, z: Option<u32>| match z {
-            None => (c.shell.map_rev(g, DrawKeys::hash(&c.own, g)), c.own),
-            Some(z) => {
-                let keys = self.tile_keys(c, g);
-                (z | c.shell.map_rev(g, DrawKeys::hash(&keys, g)), keys)
-            }
+        let (ia, va) = self.at::<P>(c, ga, dim, za);
+        let (ib, vb) = if ga == gb {
+            // the group's index, the keys of `at` (the pixel's own or the tile's)
+            let keys = match zb {
+                None => c.own,
+                Some(_) => self.tile_keys(c, gb),
+            };
+            (ia, DrawKeys::values(&keys, d2))
+        } else {
+            self.at::<P>(c, gb, d2, zb)
         };
-        let (ia, ka) = at(ga, za);
-        let (ib, kb) = if ga == gb { (ia, ka) } else { at(gb, zb) };
-        let (va, vb) = (DrawKeys::values(&ka, dim), DrawKeys::values(&kb, d2));
         let (oa, ob) = ((dim - ga) as usize, (d2 - gb) as usize);
         let lookup = crate::digital::lookup;
         let (pa, pb) = (

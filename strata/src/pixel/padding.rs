@@ -100,18 +100,16 @@ fn below(t: u32, m: u32) -> u32 {
     ((t as u64 * m as u64) >> 32) as u32
 }
 
-/// The map of the [module docs](self) on the position `x` of a shell or block of `m + 1 = 2^j`
-/// places (`j <= 15`, `top` its `j` top bits), keyed by the hash `t` and the draw's `key`, in
-/// the bit-reversed domain: the field element `g^((x + r) mod m) + b` (or `b` at `x = m`,
-/// whose `g^x` stands for zero: `live` is 0 there, else `top`), then [`mix`]ed. `r` comes from
-/// `t` rotated (a multiply-high, mostly of its bits `16 - j .. 16`), `b` from its top `j` bits:
-/// disjoint bits.
+/// The affine map of the [module docs](self) on the position `x` of a shell or block of
+/// `m + 1 = 2^j` places (`j <= 15`, `top` its `j` top bits), keyed by the hash `t`, in the
+/// bit-reversed domain: the field element `g^((x + r) mod m) + b` (or `b` at `x = m`, whose
+/// `g^x` stands for zero: `live` is 0 there, else `top`). `r` comes from `t` rotated (a
+/// multiply-high, mostly of its bits `16 - j .. 16`), `b` from its top `j` bits: disjoint bits.
 #[inline(always)]
-fn affine(t: u32, x: u32, m: u32, live: u32, top: u32, key: u32) -> u32 {
+fn affine(t: u32, x: u32, m: u32, live: u32, top: u32) -> u32 {
     let e = x + below(t.rotate_left(16), m);
     let e = if e >= m { e - m } else { e };
-    let v = ((EXP[((m + e) & 0xffff) as usize] as u32) << 16 & live) ^ (t & top);
-    mix(v, top, key)
+    ((EXP[((m + e) & 0xffff) as usize] as u32) << 16 & live) ^ (t & top)
 }
 
 /// The draw's nonlinear reordering of its shell or block after the affine map, in the
@@ -190,7 +188,26 @@ impl Shell {
         if self.marker == u32::MAX {
             return self.nested_rev(t);
         }
-        self.marker | affine(t, self.x, self.m, self.live, self.top, key)
+        self.marker
+            | mix(
+                affine(t, self.x, self.m, self.live, self.top),
+                self.top,
+                key,
+            )
+    }
+
+    /// [`map_rev`](Self::map_rev) without the mix (the affine map alone), for the Z-ordered
+    /// sequences, whose global index is then shuffled as a whole by the nested shuffle (see the
+    /// sampler): it brings the nonlinearity, and it moves samples 0 and 1 of a pixel's block too
+    /// (which every shell keeps), without which they would sit in the same strata in every
+    /// pixel under the image's shared value scramble (a red error).
+    #[inline(always)]
+    pub(crate) fn affine_rev(&self, dim: u32) -> u32 {
+        let t = hash32(dim, self.salt);
+        if self.marker == u32::MAX {
+            return self.nested_rev(t);
+        }
+        self.marker | affine(t, self.x, self.m, self.live, self.top)
     }
 
     /// Shells from `2^16` on: the position nested-scrambled (the reversed domain's Owen hash
@@ -220,7 +237,7 @@ pub(crate) fn uniform_rev(index: u32, bits: u32, key: u32, dim: u32, mix_key: u3
     let top = !(u32::MAX >> bits);
     let t = hash32(dim, hash32(index >> bits, key ^ BLOCK ^ bits));
     let live = if x == m { 0 } else { top };
-    (index & !m).reverse_bits() | affine(t, x, m, live, top, mix_key)
+    (index & !m).reverse_bits() | mix(affine(t, x, m, live, top), top, mix_key)
 }
 
 #[cfg(test)]

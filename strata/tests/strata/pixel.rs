@@ -2,7 +2,7 @@
 //! per-pixel stratification, padding decorrelation, index limits; and Sobol' direction
 //! numbers checked against an independent implementation.
 
-use crate::common::is_net;
+use crate::common::{cell, is_net};
 use strata::pixel::{PixelSampler, Sequence};
 
 fn all() -> Vec<Sequence> {
@@ -956,4 +956,91 @@ fn shell_padding_keeps_every_prefix_a_net_and_pairs_draws_at_random() {
         "shells: {shells} ({shells_odd} odd)"
     );
     assert!((uniform - 11.65).abs() < 0.3, "uniform: {uniform}");
+}
+
+/// The chi-square bound at a false-alarm rate of `1e-9` for `df` degrees of freedom
+/// (Wilson-Hilferty: within 1% of the exact quantile from `df = 3` on).
+fn chi_square_bound(df: f64) -> f64 {
+    let (z, a) = (5.998, 2.0 / (9.0 * df));
+    df * (1.0 - a + z * a.sqrt()).powi(3)
+}
+
+/// The Z-ordered sequences on a 64 x 64 image, at `spp` samples per pixel.
+fn z_ordered(spp: u32) -> Vec<PixelSampler> {
+    Sequence::NAMES
+        .iter()
+        .map(|n| Sequence::by_name(n, [64, 64]).unwrap())
+        .filter(|s| s.resolution().is_some())
+        .map(|s| PixelSampler::new(s, spp, strata::Seed(11)).unwrap())
+        .collect()
+}
+
+#[test]
+fn z_ordered_draws_put_each_sample_of_a_pixel_in_any_stratum() {
+    // Sample i of a pixel, in one coordinate of one draw, across the 4096 pixels of the image:
+    // its stratum among spp must be spread over all spp of them (a chi-square test of
+    // uniformity per sequence, count, draw, sample and coordinate, false alarm 1e-9 each). A
+    // padding that leaves samples 0 and 1 of every pixel's block in place puts them in the same
+    // strata in every pixel, under the image's shared value scramble: every pixel then errs the
+    // same way, a red error. Stateful and stateless draws are the same values (tested above).
+    let pixels: Vec<[u32; 2]> = (0..64 * 64).map(|k| [k % 64, k / 64]).collect();
+    for spp in [4u32, 16] {
+        let bound = chi_square_bound(spp as f64 - 1.0);
+        let expected = pixels.len() as f64 / spp as f64;
+        let samplers = z_ordered(spp);
+        assert!(samplers.len() >= 5);
+        for s in &samplers {
+            for dim in [0u32, 2, 3, 8, 9, 13] {
+                for i in 0..spp as u64 {
+                    for axis in 0..2 {
+                        let mut hist = vec![0u32; spp as usize];
+                        for &p in &pixels {
+                            hist[cell(s.sample_2d(p, i, dim)[axis], spp)] += 1;
+                        }
+                        let chi: f64 = hist
+                            .iter()
+                            .map(|&c| (c as f64 - expected).powi(2) / expected)
+                            .sum();
+                        assert!(
+                            chi < bound,
+                            "{} at {spp} spp: sample {i} of dimension {} in strata {hist:?}",
+                            s.sequence().name(),
+                            dim + axis as u32
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn z_ordered_draws_pair_their_samples_differently_from_pixel_to_pixel() {
+    // At 4 samples per pixel, the strata of a pixel's samples in one draw's first coordinate
+    // against another draw's: a permutation of 4. Across the 4096 pixels no permutation may be
+    // taken by more than a third of them (a nested shuffle draws them from a group of 8: about
+    // an eighth each); the same pairing in every pixel, under the image's shared value
+    // scramble, makes every pixel's error of an integrand of two draws the same (red).
+    let pixels: Vec<[u32; 2]> = (0..64 * 64).map(|k| [k % 64, k / 64]).collect();
+    for s in &z_ordered(4) {
+        for (d1, d2) in [(0u32, 2u32), (0, 8), (2, 9), (8, 10), (9, 13)] {
+            let mut taken = std::collections::HashMap::new();
+            for &p in &pixels {
+                let mut pairing = [0u8; 4];
+                for i in 0..4 {
+                    let a = cell(s.sample_2d(p, i, d1)[0], 4);
+                    pairing[a] = cell(s.sample_2d(p, i, d2)[0], 4) as u8;
+                }
+                *taken.entry(pairing).or_insert(0u32) += 1;
+            }
+            let most = *taken.values().max().unwrap();
+            assert!(
+                most * 3 <= pixels.len() as u32,
+                "{}: dimensions {d1} and {d2} pair the same way in {most} of {} pixels ({} pairings)",
+                s.sequence().name(),
+                pixels.len(),
+                taken.len()
+            );
+        }
+    }
 }
