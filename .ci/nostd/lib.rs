@@ -62,7 +62,7 @@ pub extern "C" fn strata_pmj02(index: u32, seed: u64) -> f32 {
 /// Scrambled Halton by index, dimension and seed.
 #[unsafe(no_mangle)]
 pub extern "C" fn strata_halton(index: u64, dim: u32, seed: u64) -> f32 {
-    halton::scrambled_radical_inverse(index, dim as usize % halton::MAX_DIMENSIONS, seed)
+    halton::scrambled_radical_inverse(index, dim % halton::MAX_DIMENSIONS, seed).unwrap_or(0.0)
 }
 
 /// Hashing, Kensler's permutation and float conversion.

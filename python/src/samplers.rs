@@ -20,7 +20,9 @@ use crate::{borrow_output, output_slice, to_py_err, value_error};
 #[derive(Debug)]
 pub struct PySampler {
     /// The sampler and the number of points it has given so far.
-    inner: Mutex<(Built, u64)>,
+    /// The sampler and the points it has given (`u128`: `skip` can take it past `2^64`, as
+    /// the crate's `Epochs` count).
+    inner: Mutex<(Built, u128)>,
     entry: &'static Entry,
     params: Params,
     name: &'static str,
@@ -74,7 +76,7 @@ impl PySampler {
             if !self.fill_in_parallel(inner, *drawn, values) {
                 inner.fill(values);
             }
-            *drawn += (values.len() / self.dims as usize) as u64;
+            *drawn += (values.len() / self.dims as usize) as u128;
         });
         Ok(())
     }
@@ -86,14 +88,14 @@ impl PySampler {
         let (inner, drawn) = &mut *guard;
         let skipped = inner.skip(n);
         if skipped {
-            *drawn += n;
+            *drawn += n as u128;
         }
         skipped
     }
 
     /// The points given so far (by `fill` and `skip`).
     #[getter]
-    fn drawn(&self) -> u64 {
+    fn drawn(&self) -> u128 {
         self.inner.lock().unwrap_or_else(|e| e.into_inner()).1
     }
 
@@ -162,6 +164,23 @@ impl PySampler {
     }
 }
 
+/// Moves `inner` on by `n` points, in steps of at most `2^64 - 1` (one per `2^64` points, as
+/// many as the `skip` calls that took a sampler there): false, with nothing moved, when it
+/// cannot skip.
+fn skip_far(inner: &mut Built, n: u128) -> bool {
+    let first = n.min(u64::MAX as u128) as u64;
+    if !inner.skip(first) {
+        return false;
+    }
+    let mut left = n - first as u128;
+    while left > 0 {
+        let step = left.min(u64::MAX as u128) as u64;
+        inner.skip(step);
+        left -= step as u128;
+    }
+    true
+}
+
 /// Values drawn and dropped at once when a restored sampler cannot skip (a 4 MB buffer).
 const REPLAY_CHUNK: usize = 1 << 20;
 
@@ -177,22 +196,23 @@ fn restore_sampler(
     count: u64,
     seed: u64,
     dims: u32,
-    drawn: u64,
+    drawn: u128,
     parameters: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PySampler> {
     let s = PySampler::new(py, name, count, seed, dims, parameters)?;
     py.detach(|| {
         let mut guard = s.inner.lock().unwrap_or_else(|e| e.into_inner());
         let (inner, given) = &mut *guard;
-        if !inner.skip(drawn) {
+        if !skip_far(inner, drawn) {
+            // only skipping takes a sampler past 2^64 points: one that cannot skip holds fewer
             let d = dims as usize;
-            let chunk = (REPLAY_CHUNK / d).max(1) as u64;
+            let chunk = (REPLAY_CHUNK / d).max(1) as u128;
             let mut scratch = vec![0.0f32; chunk.min(drawn) as usize * d];
             let mut left = drawn;
             while left > 0 {
                 let k = chunk.min(left) as usize;
                 inner.fill(&mut scratch[..k * d]);
-                left -= k as u64;
+                left -= k as u128;
             }
         }
         *given = drawn;
@@ -236,7 +256,7 @@ impl PySampler {
     /// sampler can skip ahead in constant time (`SamplerNd::skip`): each thread builds its own
     /// sampler from the same parameters and skips to its share; `inner` then skips past all
     /// of them. Bit-identical to one serial fill. False (nothing done) when it cannot.
-    fn fill_in_parallel(&self, inner: &mut Built, drawn: u64, values: &mut [f32]) -> bool {
+    fn fill_in_parallel(&self, inner: &mut Built, drawn: u128, values: &mut [f32]) -> bool {
         let Built::Nd(main) = inner else {
             return false;
         };
@@ -252,7 +272,7 @@ impl PySampler {
             let Ok(mut s) = self.entry.make(&self.params, Strictness::Strict) else {
                 return false;
             };
-            if !s.skip(drawn + (t * per) as u64) {
+            if !skip_far(&mut s, drawn + (t * per) as u128) {
                 return false;
             }
             forks.push(s);

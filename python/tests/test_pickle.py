@@ -87,6 +87,25 @@ def test_the_compiled_sampler_pickles_with_its_position():
     np.testing.assert_array_equal(a, b)
 
 
+def test_a_sampler_past_two_to_the_64_points_pickles_with_its_position():
+    # issue 43, A5: `drawn` counted in u64 wrapped, and the copy resumed at the wrong place
+    s = _strata.Sampler("sobol", 1, 3, 2)
+    assert s.skip(2**64 - 1) and s.skip(5)
+    assert s.drawn == 2**64 + 4
+    c = pickle.loads(pickle.dumps(s))
+    assert c.drawn == 2**64 + 4
+    a, b = np.empty((6, 2), np.float32), np.empty((6, 2), np.float32)
+    s.fill(a)
+    c.fill(b)
+    np.testing.assert_array_equal(a, b)
+    # a sampler skipped by 2^64 + 4 in one go stands at the same place
+    t = _strata.restore_sampler("sobol", 1, 3, 2, 2**64 + 4 + 6)
+    u = np.empty((6, 2), np.float32)
+    t.fill(u)
+    s.fill(a)
+    np.testing.assert_array_equal(u, a)
+
+
 @pytest.mark.parametrize("sequence", ["sobol", "zjoint-4", "zsobol"])
 def test_pixel_sampler_pickles_and_copies(sequence):
     ps = ss.PixelSampler(sequence, 16, seed=2**70, resolution=(64, 32))

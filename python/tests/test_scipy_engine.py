@@ -122,6 +122,12 @@ EXCLUDED: Dict[Tuple[str, str], Tuple[str, Type[BaseException]]] = {
         "for most seeds (31 of 40 tried)",
         AssertionError,
     ),
+    ("sobol12", "test_optimizers[lloyd-<lambda>]"): (
+        "(1,2)-Sobol' (registry promise): its first two dimensions are a (0,2)-net at every "
+        "2^m whose points keep their distance, so Lloyd's relaxation lowers the smallest L1 "
+        "distance for scipy's seed (and 7 of 40 tried, scipy's among them)",
+        AssertionError,
+    ),
     ("pmjbn", "test_optimizers[lloyd-<lambda>]"): (
         "pmj with best-candidate blue noise (registry promise): already spread, Lloyd's "
         "relaxation lowers the smallest L1 distance for scipy's seed (and 11 of 40 tried)",

@@ -253,7 +253,7 @@ impl Bose {
             " (a Bose array has at most q + 1 columns)",
         )?;
         let field = Field::new(q).expect("checked");
-        Ok(Fixed::new(
+        Fixed::new(
             Bose {
                 field,
                 q: DivMod::new(q).expect("q >= 2"),
@@ -263,7 +263,7 @@ impl Bose {
                 key: 0,
             },
             seed,
-        ))
+        )
     }
 
     /// Samples per set.
@@ -347,7 +347,7 @@ impl Bush {
         STRENGTH.check(BUSH.name, strength as f64)?;
         let q = symbols(BUSH.name, count, strength)?;
         check_dims(BUSH.name, dims, q, " (a Bush array has at most q columns)")?;
-        Ok(Fixed::new(
+        Fixed::new(
             Bush {
                 field: Field::new(q).expect("checked"),
                 q: DivMod::new(q).expect("q >= 2"),
@@ -359,7 +359,7 @@ impl Bush {
                 key: 0,
             },
             seed,
-        ))
+        )
     }
 
     /// Samples per set.

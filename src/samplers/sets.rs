@@ -39,7 +39,7 @@ impl<G: SetGenerator> Sets<G> {
         // the key of block 0, as `Fixed` derives it
         let first_key = stream_seed(seed.0, 0);
         let first = to_points(&generator.generate(first_key)?);
-        Ok(Fixed::new(
+        Fixed::new(
             Sets {
                 generator,
                 first_key,
@@ -47,7 +47,7 @@ impl<G: SetGenerator> Sets<G> {
                 first,
             },
             seed,
-        ))
+        )
     }
 
     /// The set of the current block.

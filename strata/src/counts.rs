@@ -100,7 +100,9 @@ impl CountRule {
 
     /// The allowed count nearest to `n` among those at most `max` (clamped to
     /// `1..=`[`MAX_FIXED_COUNT`]; the smaller one on a tie): a count
-    /// [`check_within`](CountRule::check_within) accepts under the same `max`.
+    /// [`check_within`](CountRule::check_within) accepts under the same `max`, whenever one
+    /// is allowed. When none is (`OaPower(t)` with a `max` below its smallest count, `4` or
+    /// `2^t`), the smallest allowed count, which is above `max`.
     pub fn nearest_within(&self, n: u64, max: u64) -> u64 {
         let max = max.clamp(1, MAX_FIXED_COUNT);
         let n = n.clamp(1, max);
@@ -327,12 +329,14 @@ fn check_oa_count(name: &'static str, count: u64, t: u32, max: u64) -> Result<u3
     };
     if count > max {
         // no search for the nearest counts up there: say the rule and the largest
-        let largest = nearest_oa_counts(max, t, max);
-        return Err(Error::count(
-            name,
-            count,
-            format!("{} (the largest allowed are about {largest})", rule()),
-        ));
+        let largest = match oa_bracket(max, t, max) {
+            (None, None) => format!("no count of strength {t} is at most {max}"),
+            _ => format!(
+                "the largest allowed are about {}",
+                nearest_oa_counts(max, t, max)
+            ),
+        };
+        return Err(Error::count(name, count, format!("{} ({largest})", rule())));
     }
     match oa_root(count, t) {
         Some(q) if count >= 4 => Ok(q as u32),

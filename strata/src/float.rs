@@ -48,8 +48,9 @@ pub fn unit_f64_from_u64(x: u64) -> f64 {
     (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
-/// An `f64` in `[0, 1)` as an `f32` in `[0, 1)`: rounds toward zero, maps NaN and negatives to 0
-/// and everything at or above the largest `f32` below 1 to [`ONE_MINUS_EPSILON`].
+/// An `f64` in `[0, 1)` as an `f32` in `[0, 1)`: rounds toward zero, maps NaN, negatives and
+/// values below `2^-126` (where `f32` turns subnormal) to 0 and everything at or above the
+/// largest `f32` below 1 to [`ONE_MINUS_EPSILON`].
 ///
 /// ```
 /// use strata::float::{unit_f32_from_f64, ONE_MINUS_EPSILON};

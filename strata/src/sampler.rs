@@ -45,8 +45,28 @@ pub struct StrataGrid {
 impl StrataGrid {
     /// The grids of the elementary intervals of a (0,m,2)-net of `n = 2^m` points (`n` at most
     /// `2^31`; none otherwise): the squarest shape first (both, when `m` is odd), then every
-    /// other shape `2^a x 2^(m-a)` (`all_shapes`) or only the 1D ones `n x 1` and `1 x n`.
+    /// other shape `2^a x 2^(m-a)` (`all_shapes`) or only the 1D ones `n x 1` and `1 x n`;
+    /// none with more than `2^24` cells along a side, which `f32` values cannot fill.
     pub fn net(n: u64, all_shapes: bool) -> Vec<StrataGrid> {
+        if n == 0 || !n.is_power_of_two() || n > 1 << 31 {
+            return Vec::new();
+        }
+        let mut grids = Self::net_shapes(n, all_shapes);
+        grids.retain(StrataGrid::resolvable);
+        grids
+    }
+
+    /// The finest side a promise names: `2^24` cells (an `f32` in `[1/2, 1)` is a multiple of
+    /// `2^-24`, so a finer column or row near 1 can hold no value).
+    pub(crate) const MAX_SIDE: u32 = 1 << 24;
+
+    /// True when `f32` values can fill every cell (both sides at most [`Self::MAX_SIDE`]).
+    pub(crate) fn resolvable(&self) -> bool {
+        self.columns <= Self::MAX_SIDE && self.rows <= Self::MAX_SIDE
+    }
+
+    /// Every grid of [`net`](Self::net), resolvable or not.
+    fn net_shapes(n: u64, all_shapes: bool) -> Vec<StrataGrid> {
         if n == 0 || !n.is_power_of_two() || n > 1 << 31 {
             return Vec::new();
         }
@@ -75,6 +95,9 @@ impl StrataGrid {
     /// The two 1D stratifications of `n` points: `n x 1` and `1 x n` (a Latin-hypercube
     /// promise, one point per `1/n` along each axis).
     pub(crate) fn axes(n: u32) -> Vec<StrataGrid> {
+        if n > Self::MAX_SIDE {
+            return Vec::new();
+        }
         vec![
             StrataGrid {
                 columns: n,
@@ -136,7 +159,8 @@ pub trait Sampler: Send {
     }
 
     /// The strata grids, coarsest first, in which the first `n` samples lie one per cell (empty
-    /// when the sampler promises none at that count). Used to draw grids and by tests.
+    /// when the sampler promises none at that count; never a grid of more than `2^24` cells
+    /// along a side, which `f32` values cannot fill). Used to draw grids and by tests.
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
         let _ = n;
         Vec::new()

@@ -154,7 +154,7 @@ fn the_former_halton_padding_fails_across_draws() {
     // Before the fix: every draw the radical inverses of the same index in bases 2 and 3,
     // digit-scrambled per draw: the digits tie every draw to every other.
     let source = |pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
-        halton::scrambled_radical_inverse(index, (dim & 1) as usize, stream(seed, pixel, dim & !1))
+        halton::scrambled_radical_inverse(index, dim & 1, stream(seed, pixel, dim & !1)).unwrap()
     };
     let r = small().run(&source).unwrap();
     assert_fails(&r, "chi-square", "across draws", "former Halton");

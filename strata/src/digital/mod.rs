@@ -622,7 +622,20 @@ pub(crate) fn digital_t_value(matrices: &[Matrix], m: u32) -> u32 {
 /// s)`-net: a base-4 digit is two binary digits, so a base-4 elementary interval of depth `d`
 /// is a binary one of depth `2d`, and the rank criterion is the binary one over the first
 /// `bits * m` index bits with the depths taken in steps of `bits` rows.
+#[cfg(test)]
 pub(crate) fn digital_t_value_in(matrices: &[Matrix], m: u32, bits: u32) -> u32 {
+    digital_t_value_within(matrices, m, bits, u64::MAX).unwrap()
+}
+
+/// [`digital_t_value_in`] with at most `budget` rank checks (one per composition of a strength
+/// into the matrices' depths; there are `C(rho + s - 1, s - 1)` at strength `rho`): `None` when
+/// the answer would take more.
+pub(crate) fn digital_t_value_within(
+    matrices: &[Matrix],
+    m: u32,
+    bits: u32,
+    budget: u64,
+) -> Option<u32> {
     let index_bits = (m * bits) as usize;
     // row r (digit 2^-(r+1)) of matrix j over index bits 0..m bits, as a word
     let row = |j: usize, r: usize| -> u32 {
@@ -674,6 +687,7 @@ pub(crate) fn digital_t_value_in(matrices: &[Matrix], m: u32, bits: u32) -> u32 
     }
     let mut strength = 0;
     let mut rows = Vec::new();
+    let mut checks = 0u64;
     for rho in 1..=m {
         let ok = compositions(
             s,
@@ -681,6 +695,10 @@ pub(crate) fn digital_t_value_in(matrices: &[Matrix], m: u32, bits: u32) -> u32 
             32 / bits,
             &mut Vec::new(),
             &mut |parts: &[u32]| {
+                checks += 1;
+                if checks > budget {
+                    return false;
+                }
                 rows.clear();
                 for (j, &d) in parts.iter().enumerate() {
                     rows.extend((0..(d * bits) as usize).map(|r| row(j, r)));
@@ -688,12 +706,15 @@ pub(crate) fn digital_t_value_in(matrices: &[Matrix], m: u32, bits: u32) -> u32 
                 independent(&rows)
             },
         );
+        if checks > budget {
+            return None;
+        }
         if !ok {
             break;
         }
         strength = rho;
     }
-    m - strength
+    Some(m - strength)
 }
 
 #[cfg(test)]

@@ -474,10 +474,17 @@ impl PixelSampler {
     }
 
     /// The same sampler with another [`DimensionLayout`] for
-    /// [`start_bounce`](Self::start_bounce).
-    pub fn with_layout(mut self, layout: DimensionLayout) -> Self {
+    /// [`start_bounce`](Self::start_bounce); an error for `per_bounce == 0` (every bounce
+    /// would start at the same dimension and reuse the previous bounce's draws).
+    pub fn with_layout(mut self, layout: DimensionLayout) -> Result<Self> {
+        if layout.per_bounce == 0 {
+            return Err(Error::input(
+                "PixelSampler::with_layout",
+                "per_bounce 0: each bounce needs at least one dimension of its own",
+            ));
+        }
         self.layout = layout;
-        self
+        Ok(self)
     }
 
     /// The same sampler with another [`Padding`] (how the samples of two draws meet).
@@ -525,7 +532,9 @@ impl PixelSampler {
         {
             return Vec::new();
         }
-        self.sequence.promised_strata(&self.spp, n)
+        let mut grids = self.sequence.promised_strata(&self.spp, n);
+        grids.retain(crate::StrataGrid::resolvable);
+        grids
     }
 
     /// What the [`WGSL`] shader needs to compute this sampler's draws: its uniform's words and

@@ -517,7 +517,7 @@ impl Sequence {
 
     /// The sample count nearest above `n` at which the sequence is best stratified (a square
     /// for jittered, a power of two for pmj02 and Sobol', `2^a 3^b` for Halton), at most the
-    /// largest such count below `2^32`.
+    /// largest such count below `2^32` (for Halton, at most `2^31`, its largest block).
     pub fn round_count(&self, n: u32) -> u32 {
         (self.row.round)(n.max(1))
     }

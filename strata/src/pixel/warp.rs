@@ -6,6 +6,7 @@
 //! of the square (so that stratified draws stay stratified on the shape). Formulas as in Pharr,
 //! Jakob and Humphreys, *Physically Based Rendering*, 4th ed., appendix A.5.
 
+use crate::float::ONE_MINUS_EPSILON;
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 
 /// A uniform point on the unit disc (Shirley and Chiu's concentric map), for `UnitDisc`.
@@ -63,13 +64,56 @@ pub fn normal_pair(u: [f32; 2]) -> [f32; 2] {
     [r * phi.cos(), r * phi.sin()]
 }
 
-/// The integer `floor(u n)` below `n` (for `random_range(0..n)`), with the value rescaled to
-/// `[0, 1)` inside the chosen interval for reuse: `(k, u n - k)`.
+/// The index `floor(u n)` among `n` items (for `random_range(0..n)`: a light, a triangle),
+/// computed exactly, and the position inside the chosen interval rescaled to `[0, 1)` for
+/// reuse: `(k, u n - k)`. `u` outside `[0, 1)` (or NaN) is taken as its nearest end; `n = 0`
+/// gives index 0.
+///
+/// **At most `2^24` items.** A draw's `f32` carries 24 bits (every value of the sampler is a
+/// multiple of `2^-24`), so it names at most `2^24` intervals: up to `n = 2^24` each index has
+/// the probability `floor` or `ceil` of `2^24 / n` over `2^24`; past it some indices can never be
+/// picked. For more items use [`pick_u32`] with the draw's 32-bit value
+/// ([`PixelSampler::sample_2d_u32`](super::PixelSampler::sample_2d_u32)).
 #[inline]
 pub fn pick(u: f32, n: u32) -> (u32, f32) {
-    let x = u * n as f32;
-    let k = (x as u32).min(n.saturating_sub(1));
-    (k, (x - k as f32).clamp(0.0, 1.0 - f32::EPSILON / 2.0))
+    // u = m 2^-s exactly (m < 2^24, s >= 24 below 1), so u n = (m n) 2^-s, m n < 2^56
+    let u = if u >= 1.0 { ONE_MINUS_EPSILON } else { u };
+    if u.is_nan() || u <= 0.0 || n == 0 {
+        return (0, 0.0);
+    }
+    let bits = u.to_bits();
+    let e = (bits >> 23) as i32;
+    let (m, s) = if e == 0 {
+        (bits & 0x7f_ffff, 149)
+    } else {
+        ((bits & 0x7f_ffff) | 0x80_0000, 150 - e)
+    };
+    let p = m as u64 * n as u64;
+    if s >= 64 {
+        // u n < 2^56 2^-64 < 1
+        return (0, crate::float::unit_f32_from_f64(p as f64 * pow2_neg(s)));
+    }
+    let k = (p >> s) as u32;
+    let rest = p & ((1u64 << s) - 1);
+    // the remainder as a fraction, rounded down to an f32 below 1
+    let f = crate::float::unit_f32_from_f64(rest as f64 * pow2_neg(s));
+    (k, f)
+}
+
+/// `2^-s` for `0 <= s <= 1022`, exactly.
+#[inline]
+fn pow2_neg(s: i32) -> f64 {
+    f64::from_bits(((1023 - s) as u64) << 52)
+}
+
+/// [`pick`] from a draw's 32-bit value `v` (the fraction `v / 2^32`): the index
+/// `floor(v n / 2^32)` among up to `2^32 - 1` items, each of them the probability `floor` or
+/// `ceil` of `2^32 / n` over `2^32` (Lemire's multiply-shift), and the position inside the chosen
+/// interval rescaled to `[0, 1)` (24 bits). `n = 0` gives index 0.
+#[inline]
+pub fn pick_u32(v: u32, n: u32) -> (u32, f32) {
+    let p = v as u64 * n as u64;
+    ((p >> 32) as u32, crate::float::unit_f32_from_u32(p as u32))
 }
 
 #[cfg(test)]
@@ -141,5 +185,106 @@ mod tests {
         assert_eq!(pick(1.0 - f32::EPSILON / 2.0, 3).0, 2);
         assert_eq!(pick(0.5, 4), (2, 0.0));
         assert_eq!(pick(0.3, 0).0, 0);
+        assert_eq!(pick(f32::NAN, 7), (0, 0.0));
+        assert_eq!(pick(-1.0, 7), (0, 0.0));
+        assert_eq!(pick(1.0, 7).0, 6);
+        assert_eq!(pick(2.0, u32::MAX), pick(ONE_MINUS_EPSILON, u32::MAX));
+    }
+
+    #[test]
+    fn pick_is_the_exact_floor() {
+        // against u n computed exactly in u128 (u = (u 2^150) 2^-150, an integer below 2^150),
+        // at f32 values of every exponent and counts up to 2^32 - 1
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for t in 0..200_000 {
+            let r = next();
+            let u = match t % 4 {
+                0 => f32::from_bits((r as u32) % 0x3f80_0000), // any f32 in [0, 1)
+                1 => (r >> 40) as f32 / 16_777_216.0,          // a sampler's value
+                _ => 1.0 - f32::EPSILON / 2.0 * (1 + r % 8) as f32,
+            };
+            let n = match t % 3 {
+                0 => (r >> 32) as u32,
+                1 => (r >> 32) as u32 >> (r % 32),
+                _ => u32::MAX - (r % 5) as u32,
+            };
+            let (k, f) = pick(u, n);
+            assert!((0.0..1.0).contains(&f), "{u:e} {n}: {f}");
+            if u < 2f32.powi(-72) {
+                // u n < 2^-40: index 0, the rest u n itself
+                let rest = u as f64 * n as f64;
+                assert_eq!(k, 0);
+                assert!(
+                    (f as f64 - rest).abs() <= rest * 1.2e-7 + f32::MIN_POSITIVE as f64,
+                    "{u:e} {n}: {f} {rest}"
+                );
+                continue;
+            }
+            // u 2^96 is an integer below 2^96 (u's last bit is at 2^-95 or above), u n 2^96
+            // one below 2^128
+            let scaled = (u as f64 * 2f64.powi(96)) as u128;
+            let exact = (scaled * n as u128) >> 96;
+            assert_eq!(
+                k as u128,
+                exact.min(n.saturating_sub(1) as u128),
+                "{u:e} {n}"
+            );
+            // the remainder, to f32 precision
+            let rest = (scaled * n as u128 - (exact << 96)) as f64 * 2f64.powi(-96);
+            assert!(
+                (f as f64 - rest).abs() <= rest * 1.2e-7 + 1e-38,
+                "{u:e} {n}: {f} {rest}"
+            );
+        }
+    }
+
+    #[test]
+    fn pick_gives_every_index_its_share_up_to_two_to_the_24() {
+        // the 2^24 values a sampler's f32 can take, over n items: each index floor or ceil of
+        // 2^24 / n times (rounding u n in f32 left a quarter of them out at 2^24 - 1)
+        for n in [3u32, 1_000_003, 3 << 22, (1 << 24) - 1, 1 << 24] {
+            let mut hits = vec![0u32; n as usize];
+            for j in 0..1u32 << 24 {
+                let k = pick(j as f32 / 16_777_216.0, n).0;
+                hits[k as usize] += 1;
+            }
+            let lo = ((1u64 << 24) / n as u64) as u32;
+            let hi = lo + u32::from(!(1u64 << 24).is_multiple_of(n as u64));
+            let bad = hits.iter().position(|&h| h < lo || h > hi);
+            assert!(
+                bad.is_none(),
+                "n {n}: index {bad:?} picked {:?} times",
+                bad.map(|b| hits[b])
+            );
+        }
+    }
+
+    #[test]
+    fn pick_u32_reaches_every_index_in_intervals_of_equal_length() {
+        // for n up to 2^32 - 1: the first value of each index's interval is ceil(k 2^32 / n), the
+        // value before it picks k - 1; so every index is picked, by floor or ceil(2^32 / n) values
+        for n in [20_000_000u32, 3 << 23, 100_000_000, u32::MAX, 7, 1] {
+            for k in [0u32, 1, n / 3, n / 2 + 1, n - 1]
+                .into_iter()
+                .filter(|&k| k < n)
+            {
+                let first = ((k as u64) << 32).div_ceil(n as u64) as u32;
+                assert_eq!(pick_u32(first, n).0, k, "n {n} k {k}");
+                if k > 0 {
+                    assert_eq!(pick_u32(first - 1, n).0, k - 1, "n {n} k {k}");
+                }
+            }
+            assert_eq!(pick_u32(u32::MAX, n).0, n - 1);
+        }
+        assert_eq!(pick_u32(u32::MAX, 0).0, 0);
+        let (k, f) = pick_u32(1 << 31, 3);
+        assert_eq!(k, 1);
+        assert!((f - 0.5).abs() < 1e-6);
     }
 }

@@ -9,6 +9,7 @@
 //! orthogonal arrays) answer [`Blocks::point`] on demand; those that build a whole set at once
 //! (Poisson disk, relaxation, in the lab) keep the set of the current block.
 
+use crate::Result;
 use crate::hash::stream_seed;
 use crate::prelude::*;
 use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
@@ -76,8 +77,10 @@ pub trait Blocks: Clone + Send {
     /// Sets up the block keyed by `key` (a well-mixed seed).
     fn begin_block(&mut self, key: u64);
 
-    /// The first two coordinates of point `i` of the current block. (Implement this or
-    /// [`point_into`](Blocks::point_into).)
+    /// The first two coordinates of point `i` of the current block, `i` below
+    /// [`set_len`](Blocks::set_len) (all that [`Fixed`] asks; past it a construction may answer
+    /// anything, a point outside the unit square or a panic in a debug build). (Implement this
+    /// or [`point_into`](Blocks::point_into).)
     #[inline]
     fn point(&self, i: u32) -> Point2 {
         let mut p = [0.0f32; 2];
@@ -85,7 +88,8 @@ pub trait Blocks: Clone + Send {
         [p[0], p[1]]
     }
 
-    /// Point `i` of the current block: its first `out.len()` coordinates (at most
+    /// Point `i` of the current block (`i` below [`set_len`](Blocks::set_len), as for
+    /// [`point`](Blocks::point)): its first `out.len()` coordinates (at most
     /// [`set_dims`](Blocks::set_dims)).
     #[inline]
     fn point_into(&self, i: u32, out: &mut [f32]) {
@@ -127,10 +131,17 @@ pub struct Fixed<B: Blocks> {
 }
 
 impl<B: Blocks> Fixed<B> {
-    /// The stream of the sets of `blocks`, seeded by `seed`.
-    pub fn new(blocks: B, seed: Seed) -> Self {
+    /// The stream of the sets of `blocks`, seeded by `seed`; an error if a set has no points
+    /// (`set_len() == 0`: a stream of empty sets has no next sample).
+    pub fn new(blocks: B, seed: Seed) -> Result<Self> {
+        if blocks.set_len() == 0 {
+            return Err(crate::Error::input(
+                B::NAME,
+                "a set of 0 points: a fixed-count sampler needs at least one point per set",
+            ));
+        }
         let cursor = BlockCursor::new(blocks.set_len(), seed);
-        Fixed { blocks, cursor }
+        Ok(Fixed { blocks, cursor })
     }
 }
 
@@ -180,7 +191,9 @@ impl<B: Blocks> Sampler for Fixed<B> {
 
     fn strata(&self, n: u64) -> Vec<StrataGrid> {
         if n == self.blocks.set_len() as u64 {
-            self.blocks.grids()
+            let mut grids = self.blocks.grids();
+            grids.retain(StrataGrid::resolvable);
+            grids
         } else {
             Vec::new()
         }
@@ -217,5 +230,32 @@ impl<B: Blocks> SamplerNd for Fixed<B> {
             return None;
         }
         self.blocks.pair_strata(x, y)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A construction whose sets have no points.
+    #[derive(Clone)]
+    struct Empty;
+
+    impl Blocks for Empty {
+        const NAME: &'static str = "empty";
+        fn set_len(&self) -> u32 {
+            0
+        }
+        fn begin_block(&mut self, _: u64) {}
+        fn point(&self, _: u32) -> Point2 {
+            [0.0; 2]
+        }
+    }
+
+    #[test]
+    fn a_set_of_no_points_is_refused() {
+        // (was: accepted, then `fill` looped forever and a second sample wrapped the index)
+        let e = Fixed::new(Empty, Seed(1)).err().expect("refused");
+        assert!(e.to_string().contains("0 points"), "{e}");
     }
 }

@@ -31,15 +31,15 @@ use crate::sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
 use crate::scramble::owen_scramble;
 
 /// The number of prime bases (dimensions) available.
-pub const MAX_DIMENSIONS: usize = 1000;
+pub const MAX_DIMENSIONS: u32 = 1000;
 
 /// The first [`MAX_DIMENSIONS`] primes, by a sieve at compile time.
-pub const PRIMES: [u32; MAX_DIMENSIONS] = {
+pub const PRIMES: [u32; MAX_DIMENSIONS as usize] = {
     const LIMIT: usize = 7920; // the 1000th prime is 7919
     let mut composite = [false; LIMIT];
-    let mut primes = [0u32; MAX_DIMENSIONS];
+    let mut primes = [0u32; MAX_DIMENSIONS as usize];
     let (mut n, mut found) = (2usize, 0usize);
-    while found < MAX_DIMENSIONS {
+    while found < MAX_DIMENSIONS as usize {
         if !composite[n] {
             primes[found] = n as u32;
             found += 1;
@@ -65,6 +65,11 @@ const RESOLUTION: u64 = 1 << 24;
 /// The largest power of a base that `f32` strata can still place exactly.
 const COARSEST: u64 = 1 << 23;
 
+/// The finest `3^b` rows whose strata the points fill exactly: base 3 steps by 9, and
+/// `9^7 <= COARSEST < 9^8`. Past it, a stratum is the `f32` rounding of its bounds and some
+/// rows hold none (3^15 points filled 12,564,433 of 14,348,907 rows).
+pub(crate) const MAX_PROMISED_POWER_OF_3: u32 = 14;
+
 /// What the digit loop of one prime base needs, computed at compile time. Base 3 steps two
 /// digits at a time (radix 9, see [`PAIRS_3`]); the others one.
 #[derive(Clone, Copy)]
@@ -83,7 +88,7 @@ struct Digits {
     fine_weight: f64,
 }
 
-static DIGITS: [Digits; MAX_DIMENSIONS] = {
+static DIGITS: [Digits; MAX_DIMENSIONS as usize] = {
     let unused = Digits {
         div: DivMod::ONE,
         count: 0,
@@ -92,9 +97,9 @@ static DIGITS: [Digits; MAX_DIMENSIONS] = {
         strata: Strata::new(1),
         fine_weight: 1.0,
     };
-    let mut table = [unused; MAX_DIMENSIONS];
+    let mut table = [unused; MAX_DIMENSIONS as usize];
     let mut i = 0;
-    while i < MAX_DIMENSIONS {
+    while i < MAX_DIMENSIONS as usize {
         let b = if PRIMES[i] == 3 { 9 } else { PRIMES[i] as u64 };
         let (mut count, mut coarse, mut scale, mut coarse_scale) = (0u32, 0u32, 1u64, 1u64);
         while scale < RESOLUTION {
@@ -165,7 +170,24 @@ const PAIRS_3: [[u8; 9]; 1296] = {
 /// the resolution of the crate's other samplers) and include the index's leading zero digits,
 /// so that the points are uniform. Base 3 draws two digits per hash.
 /// Integer arithmetic and one rounding to `f32`: the same bits on every platform.
-pub fn scrambled_radical_inverse(index: u64, dim: usize, seed: u64) -> f32 {
+///
+/// Dimensions `0..MAX_DIMENSIONS` ([`MAX_DIMENSIONS`], one prime base each), `None` from it on
+/// (as [`sobol::owen_scrambled`](super::sobol::owen_scrambled)). Every `u64` index: dimension
+/// 0 reads the index's low 32 bits (its digits past them weigh below `2^-32`, under the `f32`
+/// resolution), the other bases read as many digits as reach the resolution.
+///
+/// ```
+/// use strata::samplers::halton::{MAX_DIMENSIONS, scrambled_radical_inverse};
+/// assert!(scrambled_radical_inverse(7, 2, 1).is_some());
+/// assert_eq!(scrambled_radical_inverse(7, MAX_DIMENSIONS, 1), None);
+/// ```
+pub fn scrambled_radical_inverse(index: u64, dim: u32, seed: u64) -> Option<f32> {
+    (dim < MAX_DIMENSIONS).then(|| radical_inverse_at(index, dim as usize, seed))
+}
+
+/// [`scrambled_radical_inverse`] at a dimension below [`MAX_DIMENSIONS`].
+#[inline]
+pub(crate) fn radical_inverse_at(index: u64, dim: usize, seed: u64) -> f32 {
     let key = dimension_key(seed, dim);
     if dim == 0 {
         return base_2(key, index);
@@ -440,7 +462,7 @@ impl Sampler for Halton {
             m /= 3;
             b += 1;
         }
-        if m != 1 || a > 31 || b > 19 {
+        if m != 1 || a > 24 || b > MAX_PROMISED_POWER_OF_3 {
             return Vec::new();
         }
         vec![StrataGrid {
@@ -463,7 +485,7 @@ impl HaltonNd {
         super::check_dims(
             NAME,
             dims,
-            MAX_DIMENSIONS as u32,
+            MAX_DIMENSIONS,
             " (one prime base per dimension)",
         )?;
         Ok(HaltonNd {
@@ -501,6 +523,21 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_promised_rows_of_base_3_are_those_placed_exactly() {
+        // base 3 steps two digits at a time: its exact strata are 9^coarse = 3^(2 coarse)
+        assert_eq!(DIGITS[1].coarse * 2, MAX_PROMISED_POWER_OF_3);
+        let s = Halton::new(Seed(3));
+        let n = 3u64.pow(MAX_PROMISED_POWER_OF_3);
+        assert_eq!(s.strata(n).len(), 1);
+        assert!(s.strata(n * 3).is_empty(), "3^15 rows are not all filled");
+        let mut filled = vec![false; n as usize];
+        for i in 0..n {
+            filled[(s.sample(i)[1] as f64 * n as f64) as usize] = true;
+        }
+        assert_eq!(filled.iter().filter(|&&f| f).count() as u64, n);
+    }
+
+    #[test]
     fn primes_are_the_first_thousand() {
         assert_eq!(&PRIMES[..6], &[2, 3, 5, 7, 11, 13]);
         assert_eq!(PRIMES[999], 7919);
@@ -519,7 +556,7 @@ mod tests {
             for start in [0, 7 * n] {
                 let mut seen = vec![false; n as usize];
                 for i in start..start + n {
-                    let x = scrambled_radical_inverse(i, dim, 17);
+                    let x = radical_inverse_at(i, dim, 17);
                     let cell = (x as f64 * n as f64) as usize;
                     assert!(!seen[cell], "dim {dim}: cell {cell} twice");
                     seen[cell] = true;
@@ -543,7 +580,7 @@ mod tests {
             for &d in &dims {
                 assert_eq!(
                     out[d],
-                    scrambled_radical_inverse(i, d, 5),
+                    scrambled_radical_inverse(i, d as u32, 5).unwrap(),
                     "dim {d} index {i}"
                 );
             }

@@ -36,14 +36,14 @@ impl Jittered {
     pub fn new(count: u64, seed: Seed) -> crate::Result<Fixed<Self>> {
         let n = CountRule::Square.check(NAME, count)?;
         let s = n.isqrt();
-        Ok(Fixed::new(
+        Fixed::new(
             Jittered {
                 side: DivMod::new(s).expect("side >= 1"),
                 strata: Strata::new(s as u64),
                 key: 0,
             },
             seed,
-        ))
+        )
     }
 
     /// The number of points in a set.

@@ -46,7 +46,7 @@ impl NRooks {
     pub fn new(count: u64, seed: Seed) -> crate::Result<Fixed<Self>> {
         let n = CountRule::Any.check(NROOKS, count)?;
         let identity = Permutation::new(n, 0).expect("n >= 1");
-        Ok(Fixed::new(
+        Fixed::new(
             NRooks {
                 count: n,
                 strata: Strata::new(n as u64),
@@ -55,7 +55,7 @@ impl NRooks {
                 key: 0,
             },
             seed,
-        ))
+        )
     }
 
     /// The number of points in a set.
@@ -116,7 +116,7 @@ impl LatinHypercube {
     pub fn new(count: u64, dims: u32, seed: Seed) -> crate::Result<Fixed<Self>> {
         let n = CountRule::Any.check(LATIN, count)?;
         check_dims(LATIN, dims, MAX_DIMENSIONS, "")?;
-        Ok(Fixed::new(
+        Fixed::new(
             LatinHypercube {
                 count: n,
                 dims,
@@ -125,7 +125,7 @@ impl LatinHypercube {
                 key: 0,
             },
             seed,
-        ))
+        )
     }
 
     /// Points per set.

@@ -210,14 +210,14 @@ impl Fibonacci {
             .take_while(|&f| f < n as u64)
             .last()
             .unwrap_or(1) as u32;
-        Ok(Fixed::new(
+        Fixed::new(
             Fibonacci {
                 n,
                 z,
                 shift: [0, 0],
             },
             seed,
-        ))
+        )
     }
 }
 

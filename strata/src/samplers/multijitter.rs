@@ -87,7 +87,7 @@ impl MultiJittered {
     /// Multi-jittered sets of `count` points seeded by `seed`; `count` must be a perfect square.
     pub fn new(count: u64, seed: Seed) -> crate::Result<Fixed<Self>> {
         let n = CountRule::Square.check(MULTIJITTERED, count)?.isqrt();
-        Ok(Fixed::new(
+        Fixed::new(
             MultiJittered {
                 side: DivMod::new(n).expect("side >= 1"),
                 fine: Strata::new(n as u64 * n as u64),
@@ -96,7 +96,7 @@ impl MultiJittered {
                 key_y: 0,
             },
             seed,
-        ))
+        )
     }
 
     /// The number of points in a set.
@@ -175,7 +175,7 @@ impl Cmj {
         let m = (count as u64).isqrt() as u32;
         let n = count.div_ceil(m);
         let identity = |len| Permutation::new(len, 0).expect("len >= 1");
-        Ok(Fixed::new(
+        Fixed::new(
             Cmj {
                 count,
                 columns: DivMod::new(m).expect("m >= 1"),
@@ -187,7 +187,7 @@ impl Cmj {
                 key: 0,
             },
             seed,
-        ))
+        )
     }
 
     /// The number of points in a set.

@@ -23,11 +23,12 @@ pub struct Epochs {
 }
 
 impl Epochs {
-    /// The start of the stream.
+    /// The start of the stream of sequences of `len` points each (at least 1: a `len` of 0
+    /// is taken as 1, since a sequence of no points has no next sample).
     pub fn new(len: u64, seed: Seed) -> Self {
         Epochs {
             seed: seed.0,
-            len,
+            len: len.max(1),
             epoch: 0,
             next: 0,
         }
@@ -114,5 +115,15 @@ mod tests {
         assert_eq!(e.take(4), (0, 4, None));
         assert_eq!(e.take(100), (4, 6, None));
         assert_eq!(e.take(100), (0, 10, Some(stream_seed(5, 1))));
+    }
+
+    #[test]
+    fn a_sequence_of_no_points_is_taken_as_one() {
+        // (was: index 0 of an empty sequence and a new epoch at the first call, and a division
+        // by zero in skip)
+        let mut e = Epochs::new(0, Seed(5));
+        assert_eq!(e.advance(), (0, None));
+        assert_eq!(e.advance(), (0, Some(stream_seed(5, 1))));
+        assert_eq!(e.skip(3), Some(4));
     }
 }

@@ -34,13 +34,13 @@ impl Regular {
     pub fn new(count: u64) -> crate::Result<Fixed<Self>> {
         let n = CountRule::Square.check(NAME, count)?;
         let s = n.isqrt();
-        Ok(Fixed::new(
+        Fixed::new(
             Regular {
                 side: DivMod::new(s).expect("side >= 1"),
                 strata: Strata::new(s as u64),
             },
             Seed(0),
-        ))
+        )
     }
 
     /// The number of points in a set.

@@ -107,6 +107,9 @@ pub fn sobol_u32(index: u32, dim: u32) -> Option<u32> {
     Some(apply(SOBOL.get(dim as usize)?, index))
 }
 
+/// At most this many rank checks in [`projection_t_value`] (a few seconds).
+const T_VALUE_BUDGET: u64 = 1 << 24;
+
 /// The t-value of the projection onto dimensions `dims` (distinct) of the sequence named
 /// `sampler` (`sobol`: its dimensions below [`MAX_DIMENSIONS`]; `faure4`: 0-3, and 4 for the
 /// fifth matrix that `zquad`'s 2D draws at a group's last dimension read), as a `(t, m,
@@ -119,6 +122,11 @@ pub fn sobol_u32(index: u32, dim: u32) -> Option<u32> {
 /// nested index shuffle of it; `t = 0` for Sobol' dimensions 0 and 1 at every `m`, and the
 /// draws of a `zjoint` group ([`crate::pixel::Sequence::zjoint`]) are these projections.
 ///
+/// The cost: one rank check per way to split each strength `rho` among the `s` dimensions
+/// (`C(rho + s - 1, s - 1)`), for `rho` up to `m - t + 1`. Past `2^24` checks (a few seconds;
+/// 8 or more dimensions at `m` near 32) the answer is refused with an error rather than
+/// computed for hours.
+///
 /// ```
 /// use strata::samplers::sobol::projection_t_value;
 /// assert_eq!(projection_t_value("sobol", &[0, 1], 16, 2)?, 0);
@@ -127,6 +135,9 @@ pub fn sobol_u32(index: u32, dim: u32) -> Option<u32> {
 /// assert_eq!(projection_t_value("faure4", &[2, 3], 16, 2)?, 0);
 /// assert!(projection_t_value("sobol", &[0, 1, 2, 3], 8, 4)? > 0);
 /// assert!(projection_t_value("faure4", &[0, 5], 8, 2).is_err());
+/// assert!(projection_t_value("sobol", &[0, 1], 1 << 31, 2).is_err()); // m above 32
+/// let many: Vec<u32> = (0..24).collect();
+/// assert!(projection_t_value("sobol", &many, 32, 2).is_err()); // too many checks
 /// # Ok::<(), strata::Error>(())
 /// ```
 pub fn projection_t_value(sampler: &str, dims: &[u32], m: u32, base: u32) -> Result<u32> {
@@ -155,7 +166,7 @@ pub fn projection_t_value(sampler: &str, dims: &[u32], m: u32, base: u32) -> Res
             ));
         }
     };
-    if dims.is_empty() || m * bits > 32 {
+    if dims.is_empty() || m > 32 / bits {
         return Err(crate::Error::input(
             context,
             format!(
@@ -184,7 +195,17 @@ pub fn projection_t_value(sampler: &str, dims: &[u32], m: u32, base: u32) -> Res
             }
         }
     }
-    Ok(crate::digital::digital_t_value_in(&matrices, m, bits))
+    crate::digital::digital_t_value_within(&matrices, m, bits, T_VALUE_BUDGET).ok_or_else(|| {
+        crate::Error::input(
+            context,
+            format!(
+                "{} dimensions at m = {m}: the t-value needs more than 2^24 rank checks (one \
+                 per way to split a strength among the dimensions); ask for fewer dimensions \
+                 or a smaller m",
+                dims.len()
+            ),
+        )
+    })
 }
 
 /// Dimension `dim` of point `index` of the Owen-scrambled Sobol' sequence seeded by `seed`:

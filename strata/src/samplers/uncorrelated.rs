@@ -49,7 +49,7 @@ impl UncorrelatedJitter {
         } else {
             (CountRule::Any.check(NAME, count)?, 1)
         };
-        Ok(Fixed::new(
+        Fixed::new(
             UncorrelatedJitter {
                 count: n,
                 side: DivMod::new(side).expect("side >= 1"),
@@ -60,7 +60,7 @@ impl UncorrelatedJitter {
                 key: 0,
             },
             seed,
-        ))
+        )
     }
 
     /// Points per set.

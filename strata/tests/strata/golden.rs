@@ -3,7 +3,9 @@
 //!
 //! A 64-bit digest of the first values of every sampler (2D, and 5D where it has D dimensions,
 //! and the bulk `fill` path at 13 dimensions) and of every adapter sequence (three pixels,
-//! dimensions 0-31, indices at the start, across `2^16` and across `2^32`) is compared with
+//! dimensions 0-31, indices at the start, across `2^16` and across `2^32`; once more under the
+//! nested padding) and of the stateless functions a renderer keeps (the blue-noise mask,
+//! `warp::pick` and `pick_u32`, the scrambles, Halton's radical inverse) is compared with
 //! `strata/tests/golden.txt`. The samplers are built as the lab's registry builds them (seed 1, the
 //! count its rule allows nearest to 2048, or to 819 for 5D), so that the lab's golden file
 //! repeats these lines and a lab test checks that the two files agree. A refactor must leave
@@ -15,11 +17,15 @@
 use std::path::Path;
 
 use strata::counts::CountRule;
+use strata::pixel::frames::BlueNoiseMask;
+use strata::pixel::warp;
+use strata::samplers::halton;
 use strata::samplers::{
     Cmj, Fibonacci, Halton, HaltonNd, Jittered, LatinHypercube, Lattice, LatticeNd, MultiJittered,
     NRooks, Pmj02Stochastic, Random, RandomNd, Regular, Sobol, SobolNd, UncorrelatedJitter,
 };
-use strata::{PixelSampler, Sampler, SamplerNd, Seed, Sequence};
+use strata::{Padding, PixelSampler, Sampler, SamplerNd, Seed, Sequence};
+use strata::{hash, scramble};
 
 /// A 64-bit digest of a stream of 32-bit words (each folded in with SplitMix64's finalizer).
 #[derive(Default)]
@@ -209,10 +215,89 @@ fn sequence_digests() -> Vec<(String, u64)> {
         .collect()
 }
 
+/// The digests of every sequence under the nested padding (the default's are above).
+fn nested_digests() -> Vec<(String, u64)> {
+    Sequence::NAMES
+        .iter()
+        .map(|&name| {
+            let seq = Sequence::by_name(name, [64, 64]).unwrap();
+            let s = PixelSampler::new(seq, 16, Seed(1))
+                .unwrap()
+                .with_padding(Padding::Nested);
+            let mut d = Digest::default();
+            for pixel in [[0u32, 0], [37, 11]] {
+                for i in (0..64).chain((1u64 << 32) - 3..(1u64 << 32) + 3) {
+                    for dim in (0..16).step_by(2) {
+                        d.floats(&s.sample_2d(pixel, i, dim));
+                    }
+                }
+            }
+            (format!("pixel {name} nested"), d.0)
+        })
+        .collect()
+}
+
+/// The digests of the stateless functions whose values a renderer keeps: the blue-noise
+/// mask, the index picks, the scrambles and permutations, Halton's radical inverse.
+fn function_digests() -> Vec<(String, u64)> {
+    let mut out = Vec::new();
+    for side in [4u32, 16, 64] {
+        let mask = BlueNoiseMask::new(side, 1).unwrap();
+        let mut d = Digest::default();
+        for y in 0..side {
+            for x in 0..side {
+                d.push(mask.rank([x, y]));
+            }
+        }
+        out.push((format!("fn BlueNoiseMask {side}"), d.0));
+    }
+    let words: Vec<u32> = (0..4096u32)
+        .map(|i| strata::hash::mix64(i as u64) as u32)
+        .chain([0, 1, u32::MAX - 1, u32::MAX])
+        .collect();
+    let counts = [1u32, 2, 3, 7, 1000, (1 << 24) - 1, 1 << 24, u32::MAX];
+    let mut d = Digest::default();
+    for &n in &counts {
+        for &w in &words {
+            let (i, r) = warp::pick((w >> 8) as f32 / (1u32 << 24) as f32, n);
+            d.push(i);
+            d.floats(&[r]);
+        }
+    }
+    out.push(("fn warp::pick".to_string(), d.0));
+    let mut d = Digest::default();
+    for &n in &counts {
+        for &w in &words {
+            let (i, r) = warp::pick_u32(w, n);
+            d.push(i);
+            d.floats(&[r]);
+        }
+    }
+    out.push(("fn warp::pick_u32".to_string(), d.0));
+    let mut d = Digest::default();
+    for &w in &words {
+        d.push(scramble::owen_scramble(w, 0x1234_5678));
+        d.push(scramble::owen_scramble_rev(w, 0x9abc_def0));
+        d.push(hash::permute(w % 1000, 1000, 7));
+        d.push(hash::permute(w, u32::MAX, 7));
+    }
+    out.push(("fn scramble and permute".to_string(), d.0));
+    let mut d = Digest::default();
+    for dim in [0u32, 1, 2, 10, 100, 999] {
+        for i in (0..256u64).chain([u32::MAX as u64, u64::MAX]) {
+            d.floats(&[halton::scrambled_radical_inverse(i, dim, 1).unwrap()]);
+        }
+    }
+    out.push(("fn halton::scrambled_radical_inverse".to_string(), d.0));
+    out
+}
+
 #[test]
 fn every_sampler_and_sequence_gives_its_pinned_values() {
     let mut digests = sampler_digests();
     digests.extend(sequence_digests());
+    digests.extend(nested_digests());
+    digests.extend(function_digests());
     let text: String = digests
         .iter()
         .map(|(name, d)| format!("{d:016x} {name}\n"))

@@ -80,7 +80,7 @@ fn the_stateless_core_allocates_nothing() {
         for i in 0..4096u32 {
             for dim in 0..8 {
                 black_box(sobol::owen_scrambled(i, dim, 7));
-                black_box(halton::scrambled_radical_inverse(i as u64, dim as usize, 7));
+                black_box(halton::scrambled_radical_inverse(i as u64, dim, 7));
                 black_box(zsobol.sample_2d([i % 64, i / 64 % 64], i as u64 % 16, dim));
             }
             black_box(Pmj02Stochastic::point(i, Seed(7)));

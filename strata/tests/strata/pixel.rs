@@ -199,7 +199,13 @@ fn bounces_start_at_fixed_dimensions() {
         camera: 5,
         per_bounce: 6,
     };
-    let mut t = s.clone().with_layout(layout);
+    let mut t = s.clone().with_layout(layout).unwrap();
+    // a layout with no dimension per bounce is refused (was: every bounce at one dimension)
+    let none = strata::pixel::DimensionLayout {
+        camera: 5,
+        per_bounce: 0,
+    };
+    assert!(s.clone().with_layout(none).is_err());
     t.start_bounce(3);
     assert_eq!(t.dimension(), 23);
     // saturates instead of wrapping
@@ -1043,4 +1049,33 @@ fn z_ordered_draws_pair_their_samples_differently_from_pixel_to_pixel() {
             );
         }
     }
+}
+
+#[test]
+fn no_promise_names_a_grid_finer_than_f32_can_fill() {
+    // an f32 in [1/2, 1) is a multiple of 2^-24: a grid of 2^25 columns has columns near 1
+    // that no value reaches (was promised by every net and by the pixel sequences)
+    let fine = |grids: &[strata::StrataGrid]| {
+        grids
+            .iter()
+            .any(|g| g.columns > 1 << 24 || g.rows > 1 << 24)
+    };
+    for seq in all() {
+        let spp = seq.round_count(1 << 25);
+        let s = PixelSampler::new(seq.clone(), spp, strata::Seed(1)).unwrap();
+        for n in [1u64 << 24, 1 << 25, 1 << 31] {
+            assert!(!fine(&s.promised_strata(n)), "{} at {n}", seq.name());
+        }
+    }
+    use strata::Sampler;
+    use strata::samplers::{Halton, NRooks, Pmj02Stochastic, Sobol};
+    assert!(!fine(&Sobol::new(strata::Seed(1)).strata(1 << 25)));
+    assert!(!fine(
+        &Pmj02Stochastic::new(strata::Seed(1)).strata(1 << 25)
+    ));
+    assert!(!fine(&Halton::new(strata::Seed(1)).strata(1 << 25)));
+    let rooks = NRooks::new((1 << 24) + 1, strata::Seed(1)).unwrap();
+    assert!(!fine(&rooks.strata((1 << 24) + 1)));
+    // the coarser grids stay promised
+    assert!(!Sobol::new(strata::Seed(1)).strata(1 << 25).is_empty());
 }

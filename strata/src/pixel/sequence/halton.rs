@@ -23,8 +23,12 @@ pub(crate) const ROW: Row = Row {
     round: |n| halton_block(n).0,
     promise: "each block's `2^a x 3^b` strata, one value each",
     strata: |spp, n| {
-        if n > 0 && n.is_multiple_of(spp.block.divisor() as u64) {
-            let (a, b) = spp.block_exponents;
+        let (a, b) = spp.block_exponents;
+        if n > 0
+            && n.is_multiple_of(spp.block.divisor() as u64)
+            && a <= 24
+            && b <= halton::MAX_PROMISED_POWER_OF_3
+        {
             vec![StrataGrid {
                 columns: 1 << a,
                 rows: 3u32.pow(b),
@@ -55,13 +59,13 @@ fn index(k: &DrawKeys, index: u32, spp: &SamplesPerPixel) -> u64 {
 pub(crate) fn draw(k: &DrawKeys, i: u32, spp: &SamplesPerPixel) -> [f32; 2] {
     let (g, s) = (index(k, i, spp), k.stream());
     [
-        halton::scrambled_radical_inverse(g, 0, s),
-        halton::scrambled_radical_inverse(g, 1, s),
+        halton::radical_inverse_at(g, 0, s),
+        halton::radical_inverse_at(g, 1, s),
     ]
 }
 
 /// A 1D draw: the first coordinate (the second, in base 3, is most of the cost).
 #[inline]
 pub(crate) fn draw_1d(k: &DrawKeys, i: u32, spp: &SamplesPerPixel) -> f32 {
-    halton::scrambled_radical_inverse(index(k, i, spp), 0, k.stream())
+    halton::radical_inverse_at(index(k, i, spp), 0, k.stream())
 }
