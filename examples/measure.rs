@@ -108,7 +108,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         }
     }
     if let Some(dir) = &args.out {
-        common::check_output_dir(dir)?;
+        common::check_output_dir("--out", dir)?;
     }
     if args.files.is_empty() {
         return Err(cli_error(format!(

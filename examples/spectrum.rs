@@ -169,7 +169,7 @@ fn parse() -> Result<Option<Args>, CliError> {
             )));
         }
     } else {
-        common::check_output_dir(&a.out)?;
+        common::check_output_dir("--out", &a.out)?;
     }
     // realization r uses seed S + r: refused where that would wrap (issue 38, N18)
     let most = a.realizations.unwrap_or(64) as u64;

@@ -34,6 +34,7 @@ pub fn cli_error(msg: impl Display) -> CliError {
 /// Runs `body`, printing its error as one line on stderr (exit status 2); standard output is
 /// flushed and checked at the end, and a closed pipe ends the program quietly (status 141).
 pub fn run(program: &str, body: impl FnOnce() -> Result<(), CliError>) -> ExitCode {
+    remove_temporaries_on_interrupt();
     let result = body().and_then(|()| {
         use std::io::Write;
         std::io::stdout().flush().map_err(stdout_error)
@@ -45,6 +46,40 @@ pub fn run(program: &str, body: impl FnOnce() -> Result<(), CliError>) -> ExitCo
             let one_line = msg.replace('\n', " ");
             eprintln!("{program}: error: {one_line}");
             ExitCode::from(2)
+        }
+    }
+}
+
+/// On `SIGINT`, `SIGTERM` and `SIGHUP`: the temporary files of writes in progress removed
+/// ([`strata_lab::io::remove_pending_temporaries`]), then the signal's default action (the
+/// program ends as it would have).
+fn remove_temporaries_on_interrupt() {
+    #[cfg(target_os = "linux")]
+    {
+        extern "C" fn on_signal(sig: libc::c_int) {
+            strata_lab::io::remove_pending_temporaries();
+            // SAFETY: signal and raise are async-signal-safe; the default action ends the
+            // program as the signal would have
+            unsafe {
+                libc::signal(sig, libc::SIG_DFL);
+                libc::raise(sig);
+            }
+        }
+        for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
+            // SAFETY: installs a handler that calls only async-signal-safe functions; a
+            // signal the parent ignored (nohup) stays ignored
+            unsafe {
+                let mut old: libc::sigaction = core::mem::zeroed();
+                if libc::sigaction(sig, core::ptr::null(), &mut old) == 0
+                    && old.sa_sigaction == libc::SIG_IGN
+                {
+                    continue;
+                }
+                let mut action: libc::sigaction = core::mem::zeroed();
+                action.sa_sigaction = on_signal as extern "C" fn(libc::c_int) as usize;
+                libc::sigemptyset(&mut action.sa_mask);
+                libc::sigaction(sig, &action, core::ptr::null_mut());
+            }
         }
     }
 }
@@ -284,33 +319,74 @@ pub fn write_markdown_section(
     Ok(())
 }
 
-/// An exclusive advisory lock (`flock`) on the directory of a file, held until dropped: the
-/// file itself cannot carry it, since each writer renames a new file over it. On systems
-/// other than Linux, no lock (concurrent `--markdown` runs into one file may lose sections).
+/// An exclusive advisory lock (`flock`) on the directory of the file a write lands in (the
+/// target of a symbolic link: writers through a link and writers of its target take the same
+/// lock), held until dropped: the file itself cannot carry it, since each writer renames a new
+/// file over it. On systems other than Linux, no lock (concurrent `--markdown` runs into one
+/// file may lose sections).
 struct DirectoryLock {
     #[cfg(target_os = "linux")]
     _dir: std::fs::File,
 }
 
 impl DirectoryLock {
+    /// The directory whose lock guards `path`, opened (an error naming it when it cannot be:
+    /// the lock needs it readable).
+    fn open(path: &std::path::Path) -> Result<(std::path::PathBuf, std::fs::File), CliError> {
+        let target = strata_lab::io::write_target(path)?;
+        let dir = match target.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => std::path::PathBuf::from("."),
+        };
+        let f = std::fs::create_dir_all(&dir)
+            .and_then(|()| std::fs::File::open(&dir))
+            .map_err(|e| {
+                cli_error(format!(
+                    "--markdown {}: its directory {} cannot be opened to take turns with other \
+                     writers ({e}); it must be readable",
+                    path.display(),
+                    dir.display()
+                ))
+            })?;
+        Ok((dir, f))
+    }
+
     fn take(path: &std::path::Path) -> Result<Self, CliError> {
         #[cfg(target_os = "linux")]
         {
             use std::os::fd::AsRawFd;
-            let dir = match path.parent() {
-                Some(d) if !d.as_os_str().is_empty() => d,
-                _ => std::path::Path::new("."),
+            let (dir, f) = Self::open(path)?;
+            let lock = |how| {
+                // SAFETY: flock on a file descriptor this function owns, open for its lifetime
+                if unsafe { libc::flock(f.as_raw_fd(), how) } == 0 {
+                    Ok(())
+                } else {
+                    Err(std::io::Error::last_os_error())
+                }
             };
-            let f = std::fs::create_dir_all(dir)
-                .and_then(|()| std::fs::File::open(dir))
-                .map_err(|e| cli_error(format!("{}: {e}", dir.display())))?;
-            // SAFETY: flock on a file descriptor this function owns, open for its lifetime
-            if unsafe { libc::flock(f.as_raw_fd(), libc::LOCK_EX) } != 0 {
-                let e = std::io::Error::last_os_error();
-                return Err(cli_error(format!(
-                    "{}: cannot lock the directory for --markdown: {e}",
-                    dir.display()
-                )));
+            match lock(libc::LOCK_EX | libc::LOCK_NB) {
+                Ok(()) => {}
+                Err(e) if e.raw_os_error() == Some(libc::EWOULDBLOCK) => {
+                    // another writer has it: say so, and who, then wait
+                    eprintln!(
+                        "--markdown {}: waiting for another writer of {} ({}) to finish",
+                        path.display(),
+                        dir.display(),
+                        lock_holder(&f).unwrap_or_else(|| "its process is unknown".into())
+                    );
+                    lock(libc::LOCK_EX).map_err(|e| {
+                        cli_error(format!(
+                            "{}: cannot lock the directory for --markdown: {e}",
+                            dir.display()
+                        ))
+                    })?;
+                }
+                Err(e) => {
+                    return Err(cli_error(format!(
+                        "{}: cannot lock the directory for --markdown: {e}",
+                        dir.display()
+                    )));
+                }
             }
             Ok(DirectoryLock { _dir: f })
         }
@@ -320,6 +396,32 @@ impl DirectoryLock {
             Ok(DirectoryLock {})
         }
     }
+}
+
+/// The process holding a `flock` on the open directory `f`, from `/proc/locks` (its lines
+/// `N: FLOCK ADVISORY WRITE PID MAJ:MIN:INODE 0 EOF`): "process PID: its command line".
+#[cfg(target_os = "linux")]
+fn lock_holder(f: &std::fs::File) -> Option<String> {
+    use std::os::unix::fs::MetadataExt;
+    let inode = f.metadata().ok()?.ino();
+    let locks = std::fs::read_to_string("/proc/locks").ok()?;
+    let pid = locks.lines().find_map(|line| {
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        let at = fields.iter().position(|&w| w == "FLOCK")?;
+        let (pid, file) = (fields.get(at + 3)?, fields.get(at + 4)?);
+        let ino: u64 = file.rsplit(':').next()?.parse().ok()?;
+        (ino == inode).then(|| pid.to_string())
+    })?;
+    let cmdline = std::fs::read(format!("/proc/{pid}/cmdline")).unwrap_or_default();
+    let words: Vec<String> = cmdline
+        .split(|&b| b == 0)
+        .filter(|w| !w.is_empty())
+        .map(|w| {
+            use std::os::unix::ffi::OsStrExt;
+            shell_quote(std::ffi::OsStr::from_bytes(w))
+        })
+        .collect();
+    Some(format!("process {pid}: {}", words.join(" ")))
 }
 
 /// `arg` as a shell word: as it is when it holds only letters, digits and `_ . / , = : + - @ %`,
@@ -383,17 +485,28 @@ fn splice_section(
 }
 
 /// Checks, before any work, that `--markdown FILE` can be rewritten: an error now rather than
-/// after the work when it is not a regular UTF-8 file or its directory cannot be written.
+/// after the work when it is not a regular UTF-8 file, when the file or its directory cannot be
+/// written, or when the directory cannot be opened for the lock writers take turns with. A
+/// file with other hard links gets a note: the rewrite gives this name a new file.
 pub fn check_markdown(path: &std::path::Path, name: &str) -> Result<(), CliError> {
+    let flag = format!("--markdown {}", path.display());
     splice_section(path, &read_markdown(path)?, name, "")?;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => std::path::Path::new("."),
-    };
-    check_output_dir(dir).map_err(|e| match e {
-        CliError::Message(m) => cli_error(format!("--markdown {}: {m}", path.display())),
-        other => other,
-    })
+    strata_lab::io::check_writable(path).map_err(|e| cli_error(format!("--markdown: {e}")))?;
+    DirectoryLock::open(path)?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let Ok(m) = std::fs::metadata(path)
+            && m.nlink() > 1
+        {
+            eprintln!(
+                "{flag}: the file has {} other hard link(s); the rewrite gives this name a new \
+                 file and the other names keep the old text",
+                m.nlink() - 1
+            );
+        }
+    }
+    Ok(())
 }
 
 /// The largest Markdown file `--markdown` rewrites.
@@ -446,27 +559,24 @@ pub fn progress_line(text: impl Display) {
     }
 }
 
-/// Checks, before any work, that the output directory `dir` can be written: created when
-/// missing, and a probe file written and removed in it. An empty path, a path that is a file,
-/// or a directory that cannot be written is an error that names it.
-pub fn check_output_dir(dir: &std::path::Path) -> Result<(), CliError> {
+/// Checks, before any work, that the output directory `dir` of flag `flag` (`--out`) can be
+/// written: created when missing, and a probe file made in it (without a name on Linux, so
+/// an interrupt leaves nothing). An empty path, a path that is a file, or a directory that
+/// cannot be written is an error that names the flag and the directory.
+pub fn check_output_dir(flag: &str, dir: &std::path::Path) -> Result<(), CliError> {
     if dir.as_os_str().is_empty() {
-        return Err(cli_error(
-            "--out: an empty directory name; give a directory, e.g. --out out",
-        ));
+        return Err(cli_error(format!(
+            "{flag}: an empty directory name; give a directory, e.g. {flag} out"
+        )));
     }
     if dir.exists() && !dir.is_dir() {
         return Err(cli_error(format!(
-            "--out {}: exists and is not a directory",
+            "{flag} {}: exists and is not a directory",
             dir.display()
         )));
     }
-    std::fs::create_dir_all(dir)
-        .map_err(|e| cli_error(format!("--out {}: cannot be created ({e})", dir.display())))?;
-    let probe = dir.join(format!(".strata-probe-{}", std::process::id()));
-    std::fs::write(&probe, b"")
-        .and_then(|()| std::fs::remove_file(&probe))
-        .map_err(|e| cli_error(format!("--out {}: cannot be written ({e})", dir.display())))
+    strata_lab::io::check_writable_dir(dir)
+        .map_err(|e| cli_error(format!("{flag} {}: cannot be written ({e})", dir.display())))
 }
 
 /// The peak resident memory of this process in bytes (`VmHWM` of `/proc/self/status`), where

@@ -317,7 +317,7 @@ fn check(a: &Args) -> Result<(), CliError> {
              integrate each out)",
         ));
     }
-    common::check_output_dir(&a.out)?;
+    common::check_output_dir("--out", &a.out)?;
     if let Some(m) = &a.markdown {
         common::check_markdown(m, &markdown_section(a))?;
     }

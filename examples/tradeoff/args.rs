@@ -135,7 +135,7 @@ pub fn parse() -> Result<Option<Args>, CliError> {
             other => return Err(common::unexpected(other, USAGE)),
         }
     }
-    common::check_output_dir(&a.out)?;
+    common::check_output_dir("--out", &a.out)?;
     if let Some(m) = &a.markdown {
         common::check_markdown(m, "tradeoff")?;
         common::check_markdown(m, "time-to-error")?;

@@ -49,6 +49,11 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
 /// leaves nothing behind: a new file is linked under its own name when complete, and one that
 /// replaces a file is named (`.strata-PID-N.tmp`, short whatever the target's name) only for
 /// the instant between being linked into the directory and renamed over the target.
+/// Where `/proc` is not mounted (a chroot, a build sandbox) and the process may not link a
+/// descriptor directly, the temporary file is named from the start. A program's signal handler
+/// removes a named temporary file on an interrupt with [`remove_pending_temporaries`]. A file
+/// with several hard links becomes a new file under the name given (as with any rename): the
+/// other names keep the old contents.
 /// A target the user could not write is refused, not replaced: a read-only file (no write
 /// permission bit) or one that cannot be opened for writing. Anything else (a device such as
 /// `/dev/stdout` or `/dev/full`, a pipe) is written in place and flushed, and a failed write is
@@ -68,78 +73,279 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
 pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     let path = path.as_ref();
     let fail = |e: std::io::Error| Error::io(path.display().to_string(), e);
-    if path.as_os_str().is_empty() {
-        return Err(Error::io(path.display().to_string(), "an empty file name"));
-    }
     let meta = std::fs::metadata(path);
-    match &meta {
-        Ok(m) if !m.is_file() && !m.is_dir() => return write_in_place(path, bytes),
-        Ok(m) if m.is_dir() => {
-            return Err(Error::io(
-                path.display().to_string(),
-                "a directory, not a file",
-            ));
-        }
-        Ok(m) => {
-            // what the user could not write by redirection is not replaced behind their back
-            // (renaming needs only the directory's permission)
-            let writable = !m.permissions().readonly()
-                && std::fs::OpenOptions::new().write(true).open(path).is_ok();
-            if !writable {
-                return Err(Error::io(
-                    path.display().to_string(),
-                    "the file is read-only (or not writable by you), so it was not replaced: \
-                     make it writable or write elsewhere",
-                ));
-            }
-        }
-        Err(_) => {}
+    match refusal(path, meta.as_ref().ok())? {
+        Kind::InPlace => return write_in_place(path, bytes),
+        Kind::Replaced | Kind::New => {}
     }
-    // follow a symbolic link to the file it names, also one whose target does not exist yet
-    // (a dangling link: the file is made where it points, the link kept, as a shell's
-    // redirection does)
-    let target = if meta.is_ok() {
-        std::fs::canonicalize(path).map_err(fail)?
-    } else {
-        dangling_target(path).map_err(fail)?
-    };
+    let target = write_target(path)?;
     create_parent(&target)?;
-    let dir = match target.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => std::path::PathBuf::from("."),
-    };
+    let dir = directory_of(&target);
     if target.file_name().is_none() {
         return Err(Error::io(path.display().to_string(), "not a file name"));
     }
     static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
     let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let tmp = dir.join(format!(".strata-{}-{n}.tmp", std::process::id()));
-    let result = (|| {
-        let (mut f, unnamed) = temporary::create(&dir, &tmp)?;
+    let fill = |mut f: std::fs::File| -> std::io::Result<std::fs::File> {
         f.write_all(bytes)?;
         f.flush()?;
         f.sync_all()?;
         if let Ok(m) = &meta {
             f.set_permissions(m.permissions())?;
         }
-        if unnamed {
+        Ok(f)
+    };
+    let result = (|| {
+        if let Some(f) = temporary::unnamed(&dir) {
+            let f = fill(f)?;
             // a new file is linked under its own name at once (nothing named is ever left);
             // one that exists is replaced through the short-lived temporary name
             if meta.is_err() {
                 match temporary::link(&f, &target) {
                     Ok(()) => return Ok(()),
                     Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
-                    Err(e) => return Err(e),
+                    // no way to name an unnamed file here (no `/proc`, no privilege): the
+                    // named temporary file below
+                    Err(_) => return write_named(&tmp, &target, fill),
                 }
             }
-            temporary::link(&f, &tmp)?;
+            let _armed = pending::arm(&tmp);
+            return match temporary::link(&f, &tmp) {
+                Ok(()) => std::fs::rename(&tmp, &target),
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Err(e),
+                Err(_) => write_named(&tmp, &target, fill),
+            };
         }
-        std::fs::rename(&tmp, &target)
+        write_named(&tmp, &target, fill)
     })();
     result.map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
         fail(e)
     })
+}
+
+/// The named path of [`write_file`]: `tmp` created, filled by `fill` and renamed over
+/// `target`, its name registered for [`remove_pending_temporaries`] meanwhile.
+fn write_named(
+    tmp: &Path,
+    target: &Path,
+    fill: impl Fn(std::fs::File) -> std::io::Result<std::fs::File>,
+) -> std::io::Result<()> {
+    let _armed = pending::arm(tmp);
+    let f = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(tmp)?;
+    fill(f)?;
+    std::fs::rename(tmp, target)
+}
+
+/// What [`write_file`] does with a path, from its metadata (`None`: nothing there).
+enum Kind {
+    /// Not a regular file (a device, a pipe): written in place.
+    InPlace,
+    /// A regular file the user may write: replaced.
+    Replaced,
+    /// Nothing yet: made.
+    New,
+}
+
+/// The error [`write_file`] gives `path` before writing anything (an empty name, a directory,
+/// a file the user could not write), or what it will do.
+fn refusal(path: &Path, meta: Option<&std::fs::Metadata>) -> Result<Kind> {
+    let refuse = |why: &str| Err(Error::io(path.display().to_string(), why));
+    if path.as_os_str().is_empty() {
+        return refuse("an empty file name");
+    }
+    match meta {
+        None => Ok(Kind::New),
+        Some(m) if m.is_dir() => refuse("a directory, not a file"),
+        Some(m) if !m.is_file() => Ok(Kind::InPlace),
+        Some(m) => {
+            // what the user could not write by redirection is not replaced behind their back
+            // (renaming needs only the directory's permission)
+            let writable = !m.permissions().readonly()
+                && std::fs::OpenOptions::new().write(true).open(path).is_ok();
+            if writable {
+                Ok(Kind::Replaced)
+            } else {
+                refuse(
+                    "the file is read-only (or not writable by you), so it was not replaced: \
+                     make it writable or write elsewhere",
+                )
+            }
+        }
+    }
+}
+
+/// The file [`write_file`] writes for `path`: `path` itself, with every symbolic link on the
+/// way followed, also a link whose target does not exist yet (the file is then made where it
+/// points, the link kept, as a shell's redirection does). Programs that let writers of one
+/// file take turns lock this file's directory, so that a writer through a link and a writer of
+/// the file itself take the same lock.
+///
+/// ```
+/// let dir = std::env::temp_dir().join(format!("strata-doc-target-{}", std::process::id()));
+/// std::fs::create_dir_all(dir.join("b")).unwrap();
+/// # #[cfg(target_os = "linux")]
+/// # {
+/// std::os::unix::fs::symlink("../b/r.md", dir.join("r.md")).unwrap();
+/// let target = strata_lab::io::write_target(dir.join("r.md"))?;
+/// assert_eq!(target, dir.join("b").canonicalize().unwrap().join("r.md"));
+/// # }
+/// # std::fs::remove_dir_all(&dir).unwrap();
+/// # Ok::<(), strata::Error>(())
+/// ```
+pub fn write_target(path: impl AsRef<Path>) -> Result<std::path::PathBuf> {
+    let path = path.as_ref();
+    let fail = |e: std::io::Error| Error::io(path.display().to_string(), e);
+    let at = if std::fs::metadata(path).is_ok() {
+        std::fs::canonicalize(path).map_err(fail)?
+    } else {
+        dangling_target(path).map_err(fail)?
+    };
+    // the directory's own links resolved too (the file itself does not exist yet)
+    match (at.parent(), at.file_name()) {
+        (Some(dir), Some(name)) if !dir.as_os_str().is_empty() => match dir.canonicalize() {
+            Ok(dir) => Ok(dir.join(name)),
+            Err(_) => Ok(at),
+        },
+        _ => Ok(at),
+    }
+}
+
+/// Checks, before any work, that [`write_file`] will be able to write `path`: the refusals it
+/// would give (an empty name, a directory, a file the user cannot write), and in the
+/// directory it writes into (created when missing) a new file can be made. The probe on Linux
+/// is a file without a name (`O_TMPFILE`), so an interrupted check leaves nothing behind;
+/// elsewhere a named file, removed at once.
+pub fn check_writable(path: impl AsRef<Path>) -> Result<()> {
+    let path = path.as_ref();
+    let meta = std::fs::metadata(path);
+    if let Kind::InPlace = refusal(path, meta.as_ref().ok())? {
+        return std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)
+            .map(drop)
+            .map_err(|e| Error::io(path.display().to_string(), e));
+    }
+    let target = write_target(path)?;
+    check_writable_dir(&directory_of(&target))
+}
+
+/// Checks, before any work, that files can be written into the directory `dir` (created when
+/// missing): a probe file is made there, without a name on Linux (nothing is left behind even
+/// if the program is interrupted), elsewhere named and removed at once.
+pub fn check_writable_dir(dir: impl AsRef<Path>) -> Result<()> {
+    let dir = dir.as_ref();
+    let fail = |e: std::io::Error| Error::io(dir.display().to_string(), e);
+    std::fs::create_dir_all(dir).map_err(fail)?;
+    if temporary::unnamed(dir).is_some() {
+        return Ok(());
+    }
+    let probe = dir.join(format!(".strata-probe-{}", std::process::id()));
+    let _armed = pending::arm(&probe);
+    std::fs::write(&probe, b"")
+        .and_then(|()| std::fs::remove_file(&probe))
+        .map_err(fail)
+}
+
+/// The directory a file is written into (`.` for a bare name).
+fn directory_of(path: &Path) -> std::path::PathBuf {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    }
+}
+
+/// Removes the temporary files that writes in progress have named, for a program's handler of
+/// `SIGINT` or `SIGTERM` (then nothing named `.strata-*` is left by an interrupt). It only
+/// reads static buffers and calls `unlink`, which a signal handler may do. A write has a named
+/// temporary file only in the instant it replaces an existing file (between linking its
+/// unnamed file and renaming it over the old one) or where files cannot be unnamed.
+pub fn remove_pending_temporaries() {
+    pending::remove_all();
+}
+
+/// The named temporary files of writes in progress, in static buffers that a signal handler
+/// reads ([`remove_pending_temporaries`]): a few slots, each a path and its state.
+mod pending {
+    use core::cell::UnsafeCell;
+    use core::sync::atomic::{AtomicU8, Ordering};
+    use std::path::Path;
+
+    /// The longest path kept (with its NUL); longer ones are not registered.
+    const LEN: usize = 4096;
+
+    /// One registered path: state 0 free, 1 being written, 2 armed.
+    struct Slot {
+        state: AtomicU8,
+        path: UnsafeCell<[u8; LEN]>,
+    }
+
+    // SAFETY: `path` is written only by the thread that moved `state` from 0 to 1, and read
+    // only while `state` is 2 (published with release, read with acquire).
+    unsafe impl Sync for Slot {}
+
+    static SLOTS: [Slot; 8] = [const {
+        Slot {
+            state: AtomicU8::new(0),
+            path: UnsafeCell::new([0; LEN]),
+        }
+    }; 8];
+
+    /// The registration of one path, released when dropped.
+    pub(super) struct Armed(Option<&'static Slot>);
+
+    impl Drop for Armed {
+        fn drop(&mut self) {
+            if let Some(slot) = self.0 {
+                slot.state.store(0, Ordering::Release);
+            }
+        }
+    }
+
+    /// Registers `path` until the returned value is dropped (not at all when every slot is
+    /// taken or the path is too long: then an interrupt may leave it).
+    pub(super) fn arm(path: &Path) -> Armed {
+        #[cfg(target_os = "linux")]
+        {
+            use std::os::unix::ffi::OsStrExt;
+            let bytes = path.as_os_str().as_bytes();
+            if bytes.len() >= LEN || bytes.contains(&0) {
+                return Armed(None);
+            }
+            for slot in &SLOTS {
+                if slot
+                    .state
+                    .compare_exchange(0, 1, Ordering::Acquire, Ordering::Relaxed)
+                    .is_ok()
+                {
+                    // SAFETY: this thread owns the slot (state 1) until it stores 2
+                    let buf = unsafe { &mut *slot.path.get() };
+                    buf[..bytes.len()].copy_from_slice(bytes);
+                    buf[bytes.len()] = 0;
+                    slot.state.store(2, Ordering::Release);
+                    return Armed(Some(slot));
+                }
+            }
+        }
+        let _ = path;
+        Armed(None)
+    }
+
+    /// Unlinks every armed path.
+    pub(super) fn remove_all() {
+        #[cfg(target_os = "linux")]
+        for slot in &SLOTS {
+            if slot.state.load(Ordering::Acquire) == 2 {
+                // SAFETY: an armed slot holds a NUL-terminated path; unlink is
+                // async-signal-safe
+                unsafe { libc::unlink(slot.path.get().cast::<libc::c_char>()) };
+            }
+        }
+    }
 }
 
 /// Where `path` leads when it does not exist: itself, or for a symbolic link (a chain of them)
@@ -169,31 +375,30 @@ mod temporary {
     use std::fs::File;
     use std::path::Path;
 
-    /// A new temporary file in `dir`, and whether it is unnamed (then [`link`] names it `name`,
-    /// a path in `dir`; otherwise it was created under `name`).
-    pub(super) fn create(dir: &Path, name: &Path) -> std::io::Result<(File, bool)> {
+    /// A new file without a name in `dir` (Linux's `O_TMPFILE`), or `None` where the system or
+    /// the file system has none.
+    pub(super) fn unnamed(dir: &Path) -> Option<File> {
         #[cfg(target_os = "linux")]
         {
             use std::os::unix::fs::OpenOptionsExt;
-            if let Ok(f) = std::fs::OpenOptions::new()
+            std::fs::OpenOptions::new()
                 .write(true)
                 .custom_flags(libc::O_TMPFILE)
                 .mode(0o666)
                 .open(dir)
-            {
-                return Ok((f, true));
-            }
+                .ok()
         }
-        let _ = dir;
-        let f = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(name)?;
-        Ok((f, false))
+        #[cfg(not(target_os = "linux"))]
+        {
+            let _ = dir;
+            None
+        }
     }
 
-    /// Links the unnamed `file` into its directory as `name` (through `/proc/self/fd`, which
-    /// needs no privilege); fails if `name` exists.
+    /// Links the unnamed `file` into its directory as `name`: through `/proc/self/fd`, which
+    /// needs no privilege, or where `/proc` is not mounted by the descriptor itself
+    /// (`AT_EMPTY_PATH`, which needs `CAP_DAC_READ_SEARCH`); fails if `name` exists, or if
+    /// neither way is open.
     pub(super) fn link(file: &File, name: &Path) -> std::io::Result<()> {
         #[cfg(target_os = "linux")]
         {
@@ -211,8 +416,29 @@ mod temporary {
                     libc::AT_SYMLINK_FOLLOW,
                 )
             };
+            if rc == 0 {
+                return Ok(());
+            }
+            let first = std::io::Error::last_os_error();
+            if first.kind() == std::io::ErrorKind::AlreadyExists {
+                return Err(first);
+            }
+            // SAFETY: an open descriptor, an empty NUL-terminated path and a valid target path
+            let rc = unsafe {
+                libc::linkat(
+                    file.as_raw_fd(),
+                    c"".as_ptr(),
+                    libc::AT_FDCWD,
+                    to.as_ptr(),
+                    libc::AT_EMPTY_PATH,
+                )
+            };
             if rc != 0 {
-                return Err(std::io::Error::last_os_error());
+                let second = std::io::Error::last_os_error();
+                if second.kind() == std::io::ErrorKind::AlreadyExists {
+                    return Err(second);
+                }
+                return Err(first);
             }
             Ok(())
         }
@@ -462,4 +688,44 @@ pub fn write_spectrum_files(
         dir.join(format!("{name}-points.png")),
         &draw_points(points, grids, 512),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> std::path::PathBuf {
+        let d = std::env::temp_dir().join(format!("strata-io-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    #[test]
+    fn an_armed_temporary_name_is_removed_by_the_handler_s_call() {
+        // A10: an interrupt between naming the temporary file and renaming it left it behind
+        let dir = scratch("pending");
+        let tmp = dir.join(".strata-test.tmp");
+        std::fs::write(&tmp, b"x").unwrap();
+        let armed = pending::arm(&tmp);
+        remove_pending_temporaries();
+        assert!(!tmp.exists());
+        drop(armed);
+        // a released name is left alone (it may be the renamed file's old name, reused)
+        std::fs::write(&tmp, b"x").unwrap();
+        remove_pending_temporaries();
+        assert!(tmp.exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn the_write_probe_leaves_nothing_behind() {
+        // A10: the probe was a named file, left by an interrupt in its instant
+        let dir = scratch("probe");
+        check_writable_dir(&dir).unwrap();
+        check_writable(dir.join("r.md")).unwrap();
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+        assert!(check_writable(&dir).is_err(), "a directory is no file");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -1156,3 +1156,209 @@ fn markdown_runs_side_by_side_keep_every_section() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+// Issue 43, the third hostile pass: A3, A4, A8, A14, A15, A17.
+
+/// Four `nets --markdown` writers of one file, two of them through a symbolic link in another
+/// directory: every round keeps the four sections.
+#[test]
+fn markdown_writers_through_a_link_take_turns_with_writers_of_its_target() {
+    // A3: the lock was taken on the directory of the path as given: writers through
+    // `a/r.md -> ../b/r.md` and writers of `b/r.md` did not take turns (5 of 8 rounds lost some)
+    let dir = scratch("markdown-link-race");
+    std::fs::create_dir_all(dir.join("a")).unwrap();
+    std::fs::create_dir_all(dir.join("b")).unwrap();
+    std::os::unix::fs::symlink("../b/r.md", dir.join("a/r.md")).unwrap();
+    let (link, real) = (dir.join("a/r.md"), dir.join("b/r.md"));
+    for round in 0..8 {
+        let _ = std::fs::remove_file(&real);
+        let children: Vec<_> = [("2", &link), ("4", &real), ("8", &link), ("16", &real)]
+            .iter()
+            .map(|(g, md)| {
+                command("nets", &["--group", g, "--max-m", "4", "--markdown", s(md)])
+                    .stdout(Stdio::null())
+                    .stderr(Stdio::piped())
+                    .spawn()
+                    .unwrap()
+            })
+            .collect();
+        for c in children {
+            let o = c.wait_with_output().unwrap();
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        }
+        let text = std::fs::read_to_string(&real).unwrap();
+        assert_eq!(
+            text.matches("<!-- begin").count(),
+            4,
+            "round {round}:\n{text}"
+        );
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_markdown_file_that_cannot_be_written_is_refused_before_the_work() {
+    // A8: refused only after all the work (the table printed, minutes of `render` lost)
+    let dir = scratch("markdown-readonly");
+    let md = dir.join("r.md");
+    std::fs::write(&md, "# results\n").unwrap();
+    let mut p = std::fs::metadata(&md).unwrap().permissions();
+    p.set_readonly(true);
+    std::fs::set_permissions(&md, p).unwrap();
+    let r = run(
+        "nets",
+        &["--group", "2", "--max-m", "4", "--markdown", s(&md)],
+    );
+    assert_refused(&r, &["--markdown", "read-only"], "read-only --markdown");
+    assert!(r.out.is_empty(), "the work ran first: {}", r.out);
+    assert_eq!(std::fs::read_to_string(&md).unwrap(), "# results\n");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_markdown_directory_that_cannot_be_written_is_named_by_its_flag() {
+    // A15: `--markdown DIR/r.md` into a directory that cannot be written said
+    // "--out DIR: cannot be written" when no --out was given
+    let r = run(
+        "nets",
+        &["--group", "2", "--max-m", "4", "--markdown", "/proc/r.md"],
+    );
+    assert_refused(&r, &["--markdown", "/proc"], "--markdown /proc/r.md");
+    assert!(!r.err.contains("--out"), "{}", r.err);
+    assert!(r.out.is_empty(), "the work ran first: {}", r.out);
+}
+
+#[test]
+fn a_writer_waiting_for_the_markdown_lock_says_so_and_for_whom() {
+    // A14: a writer waiting for the directory lock said nothing, however long it waited
+    let dir = scratch("markdown-wait");
+    let md = dir.join("r.md");
+    let mut holder = Command::new("flock")
+        .args([s(&dir), "sleep", "2"])
+        .spawn()
+        .expect("flock(1) runs");
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let r = run(
+        "nets",
+        &["--group", "2", "--max-m", "4", "--markdown", s(&md)],
+    );
+    holder.wait().unwrap();
+    assert_eq!(r.code, 0, "{}", r.err);
+    assert!(r.err.contains("waiting for another writer"), "{}", r.err);
+    assert!(r.err.contains("sleep 2"), "the holder is named: {}", r.err);
+    assert_eq!(
+        std::fs::read_to_string(&md)
+            .unwrap()
+            .matches("<!-- begin")
+            .count(),
+        1
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_hard_linked_markdown_file_gets_a_note_that_its_other_names_keep_the_old_text() {
+    // A17: the rewrite makes a new file (a new inode): the other hard link keeps the old text,
+    // as documented in `write_file` and docs/cli.md, and the program says so
+    let dir = scratch("markdown-hardlink");
+    let (md, other) = (dir.join("r.md"), dir.join("other.md"));
+    std::fs::write(&md, "# results\n").unwrap();
+    std::fs::hard_link(&md, &other).unwrap();
+    let r = run(
+        "nets",
+        &["--group", "2", "--max-m", "4", "--markdown", s(&md)],
+    );
+    assert_eq!(r.code, 0, "{}", r.err);
+    assert!(r.err.contains("hard link"), "{}", r.err);
+    assert!(std::fs::read_to_string(&md).unwrap().contains("<!-- begin"));
+    assert_eq!(std::fs::read_to_string(&other).unwrap(), "# results\n");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Runs `program args` with no `/proc` mounted (a new mount namespace, `/proc` unmounted
+/// lazily), as root or, with `as_nobody`, as user 65534: needs root and `unshare(1)`.
+fn without_proc(as_nobody: bool, program: &str, args: &[&str]) -> Run {
+    let bin = example_bin(program).expect("the example is built");
+    let mut inner = String::from("umount -l /proc && exec ");
+    if as_nobody {
+        inner.push_str("setpriv --reuid=65534 --regid=65534 --clear-groups ");
+    }
+    inner.push_str(s(&bin));
+    for a in args {
+        inner.push_str(&format!(" '{a}'"));
+    }
+    let mut c = Command::new("unshare");
+    c.args(["-m", "sh", "-c", &inner]);
+    finish(c)
+}
+
+#[test]
+#[ignore = "needs root (unshare, umount): .ci/run runs it"]
+fn files_are_written_where_no_proc_is_mounted() {
+    // A4: with no /proc, O_TMPFILE succeeded, the link through /proc/self/fd failed, and every
+    // write failed with "No such file or directory"
+    for as_nobody in [false, true] {
+        let dir = scratch(&format!("no-proc-{as_nobody}"));
+        let mut p = std::fs::metadata(&dir).unwrap().permissions();
+        std::os::unix::fs::PermissionsExt::set_mode(&mut p, 0o777);
+        std::fs::set_permissions(&dir, p).unwrap();
+        let md = dir.join("r.md");
+        for round in 0..2 {
+            // a new file, then the same file replaced
+            let r = without_proc(
+                as_nobody,
+                "nets",
+                &["--group", "2", "--max-m", "4", "--markdown", s(&md)],
+            );
+            assert_eq!(
+                r.code, 0,
+                "as nobody: {as_nobody}, round {round}: {}",
+                r.err
+            );
+            let text = std::fs::read_to_string(&md).unwrap();
+            assert_eq!(text.matches("<!-- begin").count(), 1, "{text}");
+        }
+        let left: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(left.len(), 1, "nothing but r.md is left: {left:?}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+#[test]
+#[ignore = "needs root (setpriv to another user): .ci/run runs it"]
+fn a_markdown_directory_that_cannot_be_read_is_refused_before_the_work() {
+    // A8: a directory that can be written but not read (the lock opens it) was refused only
+    // after the work
+    let dir = scratch("markdown-unreadable");
+    let sub = dir.join("wx");
+    std::fs::create_dir_all(&sub).unwrap();
+    for (d, mode) in [(&dir, 0o755), (&sub, 0o333)] {
+        let mut p = std::fs::metadata(d).unwrap().permissions();
+        std::os::unix::fs::PermissionsExt::set_mode(&mut p, mode);
+        std::fs::set_permissions(d, p).unwrap();
+    }
+    let bin = example_bin("nets").unwrap();
+    let md = sub.join("r.md");
+    let r = finish({
+        let mut c = Command::new("setpriv");
+        c.args(["--reuid=65534", "--regid=65534", "--clear-groups", s(&bin)])
+            .args(["--group", "2", "--max-m", "4", "--markdown", s(&md)]);
+        c
+    });
+    assert_refused(
+        &r,
+        &["--markdown", "cannot be opened"],
+        "--markdown in a -wx directory",
+    );
+    assert!(r.out.is_empty(), "the work ran first: {}", r.out);
+    let _ = std::fs::remove_dir_all(&dir);
+}
