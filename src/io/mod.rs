@@ -231,7 +231,7 @@ pub fn check_writable(path: impl AsRef<Path>) -> Result<()> {
             .map_err(|e| Error::io(path.display().to_string(), e));
     }
     let target = write_target(path)?;
-    check_writable_dir(&directory_of(&target))
+    check_writable_dir(directory_of(&target))
 }
 
 /// Checks, before any work, that files can be written into the directory `dir` (created when
