@@ -160,6 +160,10 @@ pub fn parse_pair(flag: &str, value: &str, max: u64) -> Result<(u64, u64), CliEr
         ))
     };
     let (a, b) = value.split_once(',').ok_or_else(bad)?;
+    if b.contains(',') {
+        // three or more numbers: the whole value is named, not its tail (N23)
+        return Err(bad());
+    }
     Ok((parse_int(flag, a, 0, max)?, parse_int(flag, b, 0, max)?))
 }
 

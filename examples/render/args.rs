@@ -295,6 +295,15 @@ fn check(a: &Args) -> Result<(), CliError> {
                  measured against a noisier image; allowed: {largest} to 65536"
         )));
     }
+    if a.seed.checked_add(a.seeds as u64 - 1).is_none() {
+        return Err(cli_error(format!(
+            "--seed {} with --seeds {}: the seeds S to S+K-1 pass 2^64-1; allowed: --seed at \
+             most {}",
+            a.seed,
+            a.seeds,
+            u64::MAX - (a.seeds as u64 - 1)
+        )));
+    }
     let need = memory_estimate(a);
     if need > MAX_MEMORY {
         let renders = a.samplers.len() * a.spp.len();
@@ -359,6 +368,14 @@ const BYTES_PER_RENDER_PIXEL: u64 = 72;
 /// rendered): measured 70.
 const BYTES_PER_PIXEL: u64 = 96;
 
+/// Bytes per pixel that `--frames` adds (its frames' estimates and the permutation of the
+/// pixels' draws): about 60 measured (issue 43, A9).
+const BYTES_PER_FRAMES_PIXEL: u64 = 64;
+
+/// Bytes per pixel that `--interactions` adds (the split's one-draw and interaction images):
+/// about 35 measured (issue 43, A9).
+const BYTES_PER_SPLIT_PIXEL: u64 = 40;
+
 /// What a run needs whatever its size (the program, its threads, the scene): measured 4 MiB.
 const BASE_BYTES: u64 = 32 << 20;
 
@@ -372,7 +389,17 @@ pub const MAX_MEMORY: u64 = 4 << 30;
 pub fn memory_estimate(a: &Args) -> u64 {
     let renders = (a.samplers.len() * a.spp.len()) as u64;
     let pixels = a.size.0 as u64 * a.size.1 as u64;
-    BASE_BYTES + pixels * (BYTES_PER_PIXEL + renders * BYTES_PER_RENDER_PIXEL)
+    let frames = if a.frames > 0 {
+        BYTES_PER_FRAMES_PIXEL
+    } else {
+        0
+    };
+    let split = if a.interactions {
+        BYTES_PER_SPLIT_PIXEL
+    } else {
+        0
+    };
+    BASE_BYTES + pixels * (BYTES_PER_PIXEL + renders * BYTES_PER_RENDER_PIXEL + frames + split)
 }
 
 /// The most sample counts in `--spp`.

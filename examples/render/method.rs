@@ -13,7 +13,7 @@ use crate::trace::Draws;
 pub const REFERENCES: [&str; 2] = ["pbrt-padded", "pbrt-zsobol"];
 
 /// A sampler of `--samplers`.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Method {
     /// A crate sequence, through [`PixelSampler`] with `--padding`.
     Crate(Sequence),
@@ -83,15 +83,19 @@ impl Method {
             Method::PbrtPadded => {}
             Method::PbrtZSobol => {}
         }
-        let pow2 = matches!(
-            self,
-            Method::PbrtZSobol | Method::Repaired(_, Repair::Permute)
-        );
-        if pow2 && !spp.is_power_of_two() {
-            return Err(cli_error(format!(
-                "--spp {spp}: this sampler takes powers of two only (pbrt's ZSobol rounds the \
-                 count down)"
-            )));
+        let why = match self {
+            Method::PbrtZSobol => {
+                "pbrt-zsobol takes powers of two only (pbrt's ZSobol rounds \
+                                   the count down)"
+            }
+            Method::Repaired(_, Repair::Permute) => {
+                "the +permute experiments take powers of two only (a permutation of a pixel's \
+                 samples keeps the sequence's net only when they are a whole power of two)"
+            }
+            _ => return Ok(()),
+        };
+        if !spp.is_power_of_two() {
+            return Err(cli_error(format!("--spp {spp}: {why}")));
         }
         Ok(())
     }

@@ -50,16 +50,13 @@ pub fn sequences(args: &Args) -> Result<Vec<(String, Method)>, CliError> {
         .iter()
         .map(|n| Ok((n.clone(), Method::by_name(n, args.size)?)))
         .collect::<Result<_, CliError>>()?;
-    // two names of one sequence (`zjoint` and `zjoint-8`) would render it twice
+    // two names of one sampler (`zjoint` and `zjoint-8`, `zjoint+permute` and
+    // `zjoint-8+permute`) would render it twice
     for (k, (name, method)) in sequences.iter().enumerate() {
-        if let Method::Crate(seq) = method
-            && let Some((first, _)) = sequences[..k]
-                .iter()
-                .find(|(_, m)| matches!(m, Method::Crate(s) if s == seq))
-        {
+        if let Some((first, _)) = sequences[..k].iter().find(|(_, m)| m == method) {
             return Err(crate::common::cli_error(format!(
-                "--samplers names one sequence twice: '{name}' is '{first}'; allowed: each \
-                 sequence once"
+                "--samplers names one sampler twice: '{name}' is '{first}'; allowed: each \
+                 sampler once"
             )));
         }
     }

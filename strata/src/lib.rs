@@ -93,3 +93,8 @@ pub mod scramble;
 pub use error::{Error, Result};
 pub use pixel::{Padding, PixelSampler, Sequence};
 pub use sampler::{Point2, Progression, Sampler, SamplerNd, Seed, StrataGrid};
+
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

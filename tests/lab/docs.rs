@@ -69,6 +69,7 @@ fn the_sequence_tables_are_the_declarations() {
     assert_eq!(read("strata/docs/sequences.md"), table);
     section("docs/cli.md", "sequences", &table);
     section("README.md", "sequences", &table);
+    section("strata/README.md", "sequences", &table);
 }
 
 #[test]
@@ -281,4 +282,20 @@ fn the_entry_types_are_a_leaf_below_the_samplers_and_the_registry_is_above_them(
         registry.contains("samplers") && registry.contains("entry"),
         "{registry:?}"
     );
+}
+
+#[test]
+fn the_renderer_crate_ships_its_own_readme() {
+    // A18: the renderer's crate shipped the workspace README (the lab's main job, links to
+    // files not in the crate, `path = "../strata/strata"`)
+    let manifest = read("strata/Cargo.toml");
+    assert!(manifest.contains("readme = \"README.md\""), "{manifest}");
+    let readme = read("strata/README.md");
+    for lab_only in ["path =", "](docs/", "](CHANGELOG", "--example", "out/"] {
+        assert!(
+            !readme.contains(lab_only),
+            "strata/README.md names {lab_only:?}"
+        );
+    }
+    assert!(readme.contains("strata::pixel::WGSL") && readme.contains("PixelSampler::new"));
 }

@@ -1362,3 +1362,98 @@ fn a_markdown_directory_that_cannot_be_read_is_refused_before_the_work() {
     assert!(r.out.is_empty(), "the work ran first: {}", r.out);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_long_measure_states_its_cost_first_and_reports_progress() {
+    // A6: a 64 MiB UTK file of 65,536 sets ran about an hour, silent after its first line
+    let dir = scratch("measure-progress");
+    let path = dir.join("many.dat");
+    let mut text = String::new();
+    let mut h = 1u64;
+    for set in 0..256 {
+        if set > 0 {
+            text.push_str("#\n");
+        }
+        for _ in 0..128 {
+            let mut u = || {
+                h = strata::hash::mix64(h);
+                (h >> 40) as f64 / (1u64 << 24) as f64
+            };
+            text.push_str(&format!("{} {}\n", u(), u()));
+        }
+    }
+    std::fs::write(&path, text).unwrap();
+    let started = std::time::Instant::now();
+    let r = run("measure", &[s(&path)]);
+    let took = started.elapsed().as_secs_f64();
+    assert_eq!(r.code, 0, "{}", r.err);
+    assert_eq!(
+        r.out.lines().count(),
+        2 + 256 + 1,
+        "a row per set and the mean"
+    );
+    if took >= 2.0 {
+        // a run that long says what it will cost before the work, and how far it got
+        assert!(r.err.contains("256 sets, about"), "{took:.1} s: {}", r.err);
+    }
+    if took >= 5.0 {
+        assert!(r.err.contains("of 256 sets in"), "{took:.1} s: {}", r.err);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn points_names_the_whole_pixel_value_it_refuses() {
+    // N23: `--pixel 1,2,3` said '"2,3" is not a whole number'
+    let r = run("points", &["--sampler", "sobol", "--pixel", "1,2,3"]);
+    assert_refused(&r, &["--pixel \"1,2,3\" is not X,Y"], "--pixel 1,2,3");
+}
+
+#[test]
+fn render_refuses_seeds_past_the_largest_and_one_sampler_named_twice() {
+    let dir = scratch("render-names");
+    let out = dir.join("out");
+    let render = |extra: &[&str]| {
+        let mut args = vec![
+            "--scene",
+            "cornell-direct",
+            "--size",
+            "8x8",
+            "--out",
+            s(&out),
+        ];
+        args.extend_from_slice(extra);
+        run("render", &args)
+    };
+    // A12: seeds S to S+K-1 wrapped to 0 and 1
+    let r = render(&["--seed", "18446744073709551615", "--seeds", "3"]);
+    assert_refused(
+        &r,
+        &["--seed", "--seeds 3", "18446744073709551613"],
+        "--seed 2^64-1",
+    );
+    assert!(
+        render(&[
+            "--seed",
+            "18446744073709551613",
+            "--seeds",
+            "3",
+            "--spp",
+            "1"
+        ])
+        .code
+            == 0
+    );
+    // A13: `zjoint+permute` and `zjoint-8+permute` are one sampler, rendered twice
+    let r = render(&["--samplers", "zjoint+permute,zjoint-8+permute"]);
+    assert_refused(
+        &r,
+        &["one sampler twice", "zjoint-8+permute"],
+        "+permute twice",
+    );
+    // ... and the +permute experiments' count message is theirs, not pbrt-zsobol's
+    let r = render(&["--samplers", "sobol+permute", "--spp", "3"]);
+    assert_refused(&r, &["+permute"], "+permute at 3 spp");
+    assert!(!r.err.contains("ZSobol"), "{}", r.err);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -108,7 +108,8 @@
 //! power of two), for the record. The [`WGSL`] shader computes `Nested` and `Shells`
 //! ([`PixelSampler::gpu_parameters`] refuses `Uniform`). `random`, `jittered` and `halton`
 //! already permute whole blocks and are not changed by the padding; the joint sequences pad each
-//! group's index as `sobol` pads each draw's. `render --padding` compares the three.
+//! group's index as `sobol` pads each draw's, so every group of theirs changes with the padding,
+//! the first one included. `render --padding` compares the three.
 //!
 //! # Dimensions in a renderer that bounces
 //!

@@ -3,7 +3,7 @@
 //! numbers checked against an independent implementation.
 
 use crate::common::{cell, is_net};
-use strata::pixel::{PixelSampler, Sequence};
+use strata::pixel::{Padding, PixelSampler, Sequence};
 
 fn all() -> Vec<Sequence> {
     Sequence::NAMES
@@ -1078,4 +1078,27 @@ fn no_promise_names_a_grid_finer_than_f32_can_fill() {
     assert!(!fine(&rooks.strata((1 << 24) + 1)));
     // the coarser grids stay promised
     assert!(!Sobol::new(strata::Seed(1)).strata(1 << 25).is_empty());
+}
+
+#[test]
+fn the_padding_changes_every_group_of_every_padded_sequence() {
+    // A11: the docs said the joint sequences' first group kept its values under the padding;
+    // every group of them changes (as the CHANGELOG now lists), and `random`, `jittered` and
+    // `halton` do not change at all
+    for seq in all() {
+        let shells = PixelSampler::new(seq.clone(), 16, strata::Seed(3)).unwrap();
+        let nested = shells.clone().with_padding(Padding::Nested);
+        for dim in [0u32, 2, 8, 16] {
+            let changed = (0..16u64)
+                .filter(|&i| shells.sample_2d([5, 9], i, dim) != nested.sample_2d([5, 9], i, dim))
+                .count();
+            match seq.name() {
+                "random" | "jittered" | "halton" => {
+                    assert_eq!(changed, 0, "{} at {dim}", seq.name())
+                }
+                // samples 0 and 1 stay; at least half the rest move
+                name => assert!(changed >= 7, "{name} at {dim}: {changed} of 16 changed"),
+            }
+        }
+    }
 }
