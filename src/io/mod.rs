@@ -187,11 +187,13 @@ fn refusal(path: &Path, meta: Option<&std::fs::Metadata>) -> Result<Kind> {
 ///
 /// ```
 /// let dir = std::env::temp_dir().join(format!("strata-doc-target-{}", std::process::id()));
+/// std::fs::create_dir_all(dir.join("a")).unwrap();
 /// std::fs::create_dir_all(dir.join("b")).unwrap();
 /// # #[cfg(target_os = "linux")]
 /// # {
-/// std::os::unix::fs::symlink("../b/r.md", dir.join("r.md")).unwrap();
-/// let target = strata_lab::io::write_target(dir.join("r.md"))?;
+/// // a/r.md -> ../b/r.md, which does not exist yet: the file will be made in b
+/// std::os::unix::fs::symlink("../b/r.md", dir.join("a/r.md")).unwrap();
+/// let target = strata_lab::io::write_target(dir.join("a/r.md"))?;
 /// assert_eq!(target, dir.join("b").canonicalize().unwrap().join("r.md"));
 /// # }
 /// # std::fs::remove_dir_all(&dir).unwrap();

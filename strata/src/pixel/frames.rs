@@ -150,7 +150,8 @@ impl BlueNoiseMask {
         for rank in 0..n as u32 {
             // the radius of the stage 2^j <= max(rank, 1) < 2^(j+1): 2 side / 2^(j/2)
             let j = rank.max(1).ilog2();
-            let r = ((2 * side) as f32 / ((1u32 << j) as f32).sqrt()) as i32;
+            // (floor of sqrt(4 side^2 / 2^j), exact in integers: no `sqrt` without `std`)
+            let r = ((((4 * side as u64 * side as u64) << 16) >> j).isqrt() >> 8) as i32;
             let r = r.clamp(2, side as i32 / 2);
             if r != radius {
                 radius = r;
