@@ -1284,7 +1284,7 @@ fn a_hard_linked_markdown_file_gets_a_note_that_its_other_names_keep_the_old_tex
 /// Runs `program args` with no `/proc` mounted (a new mount namespace, `/proc` unmounted
 /// lazily), as root or, with `as_nobody`, as user 65534: needs root and `unshare(1)`.
 fn without_proc(as_nobody: bool, program: &str, args: &[&str]) -> Run {
-    let bin = example_bin(program).expect("the example is built");
+    let bin = nobody_can_run(program);
     let mut inner = String::from("umount -l /proc && exec ");
     if as_nobody {
         inner.push_str("setpriv --reuid=65534 --regid=65534 --clear-groups ");
@@ -1296,6 +1296,23 @@ fn without_proc(as_nobody: bool, program: &str, args: &[&str]) -> Run {
     let mut c = Command::new("unshare");
     c.args(["-m", "sh", "-c", &inner]);
     finish(c)
+}
+
+/// A copy of the example `program` that user 65534 can run: the build directory may sit in a
+/// directory only its owner can enter (a CI's temporary clone).
+fn nobody_can_run(program: &str) -> PathBuf {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = std::env::temp_dir().join(format!("strata-hostile-bin-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let copy = dir.join(program);
+    if !copy.exists() {
+        let tmp = dir.join(format!(".{program}.{:?}", std::thread::current().id()));
+        std::fs::copy(example_bin(program).expect("the example is built"), &tmp).unwrap();
+        std::fs::set_permissions(&tmp, std::fs::Permissions::from_mode(0o755)).unwrap();
+        std::fs::rename(&tmp, &copy).unwrap();
+    }
+    copy
 }
 
 #[test]
@@ -1346,7 +1363,7 @@ fn a_markdown_directory_that_cannot_be_read_is_refused_before_the_work() {
         std::os::unix::fs::PermissionsExt::set_mode(&mut p, mode);
         std::fs::set_permissions(d, p).unwrap();
     }
-    let bin = example_bin("nets").unwrap();
+    let bin = nobody_can_run("nets");
     let md = sub.join("r.md");
     let r = finish({
         let mut c = Command::new("setpriv");
