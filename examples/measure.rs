@@ -157,11 +157,15 @@ fn measure(set: &PointSet) -> Result<Row, strata::Error> {
     Ok(Row { n, d, values: v })
 }
 
+/// A file of this many sets states its cost before the work whatever the estimate.
+const MANY_SETS: usize = 100;
+
 /// How often a long file reports how far it got.
 const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_secs(2);
 
 /// The rows of every set of a file, in parallel. The first set is measured alone and timed:
-/// a file whose sets would take a second or more in all says so first, with the estimate
+/// a file whose sets would take a second or more in all (or of 100 sets or more) says so first,
+/// with the estimate
 /// (issue 43, A6: a 64 MiB file of 65,536 sets ran for an hour in silence), then how far it
 /// got every two seconds.
 fn measure_all(label: &str, sets: &[PointSet]) -> Result<Vec<Row>, strata::Error> {
@@ -173,7 +177,7 @@ fn measure_all(label: &str, sets: &[PointSet]) -> Result<Vec<Row>, strata::Error
     let each = started.elapsed().as_secs_f64();
     let threads = rayon::current_num_threads().max(1) as f64;
     let estimate = each * rest.len() as f64 / threads.min(rest.len().max(1) as f64);
-    if estimate >= 1.0 {
+    if estimate >= 1.0 || sets.len() >= MANY_SETS {
         eprintln!(
             "measure: {label}: {} sets, about {} in all ({:.1} ms for the first, {} threads)",
             sets.len(),

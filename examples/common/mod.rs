@@ -77,7 +77,11 @@ fn remove_temporaries_on_interrupt() {
                 }
                 let mut action: libc::sigaction = core::mem::zeroed();
                 action.sa_sigaction = on_signal as extern "C" fn(libc::c_int) as usize;
+                // no second signal interrupts the handler halfway through its removals
                 libc::sigemptyset(&mut action.sa_mask);
+                for other in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
+                    libc::sigaddset(&mut action.sa_mask, other);
+                }
                 libc::sigaction(sig, &action, core::ptr::null_mut());
             }
         }
@@ -336,6 +340,7 @@ struct DirectoryLock {
 impl DirectoryLock {
     /// The directory whose lock guards `path`, opened (an error naming it when it cannot be:
     /// the lock needs it readable).
+    #[cfg(target_os = "linux")]
     fn open(path: &std::path::Path) -> Result<(std::path::PathBuf, std::fs::File), CliError> {
         let target = strata_lab::io::write_target(path)?;
         let dir = match target.parent() {
@@ -407,14 +412,20 @@ impl DirectoryLock {
 #[cfg(target_os = "linux")]
 fn lock_holder(f: &std::fs::File) -> Option<String> {
     use std::os::unix::fs::MetadataExt;
-    let inode = f.metadata().ok()?.ino();
+    let meta = f.metadata().ok()?;
+    let dev = meta.dev();
+    // the file as /proc/locks names it: MAJOR:MINOR (hexadecimal) and the inode
+    let (major, minor) = (libc::major(dev), libc::minor(dev));
     let locks = std::fs::read_to_string("/proc/locks").ok()?;
     let pid = locks.lines().find_map(|line| {
         let fields: Vec<&str> = line.split_whitespace().collect();
         let at = fields.iter().position(|&w| w == "FLOCK")?;
         let (pid, file) = (fields.get(at + 3)?, fields.get(at + 4)?);
-        let ino: u64 = file.rsplit(':').next()?.parse().ok()?;
-        (ino == inode).then(|| pid.to_string())
+        let mut parts = file.split(':');
+        let maj = u32::from_str_radix(parts.next()?, 16).ok()?;
+        let min = u32::from_str_radix(parts.next()?, 16).ok()?;
+        let ino: u64 = parts.next()?.parse().ok()?;
+        (maj == major && min == minor && ino == meta.ino()).then(|| pid.to_string())
     })?;
     let cmdline = std::fs::read(format!("/proc/{pid}/cmdline")).unwrap_or_default();
     let words: Vec<String> = cmdline
@@ -496,6 +507,7 @@ pub fn check_markdown(path: &std::path::Path, name: &str) -> Result<(), CliError
     let flag = format!("--markdown {}", path.display());
     splice_section(path, &read_markdown(path)?, name, "")?;
     strata_lab::io::check_writable(path).map_err(|e| cli_error(format!("--markdown: {e}")))?;
+    #[cfg(target_os = "linux")]
     DirectoryLock::open(path)?;
     #[cfg(unix)]
     {

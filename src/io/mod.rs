@@ -112,7 +112,9 @@ pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
             }
             let _armed = pending::arm(&tmp);
             return match temporary::link(&f, &tmp) {
-                Ok(()) => std::fs::rename(&tmp, &target),
+                Ok(()) => std::fs::rename(&tmp, &target).inspect_err(|_| {
+                    let _ = std::fs::remove_file(&tmp);
+                }),
                 Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Err(e),
                 Err(_) => write_named(&tmp, &target, fill),
             };
@@ -133,12 +135,17 @@ fn write_named(
     fill: impl Fn(std::fs::File) -> std::io::Result<std::fs::File>,
 ) -> std::io::Result<()> {
     let _armed = pending::arm(tmp);
-    let f = std::fs::OpenOptions::new()
+    let result = std::fs::OpenOptions::new()
         .write(true)
         .create_new(true)
-        .open(tmp)?;
-    fill(f)?;
-    std::fs::rename(tmp, target)
+        .open(tmp)
+        .and_then(fill)
+        .and_then(|_| std::fs::rename(tmp, target));
+    if result.is_err() {
+        // removed while the name is still registered (an interrupt now leaves nothing)
+        let _ = std::fs::remove_file(tmp);
+    }
+    result
 }
 
 /// What [`write_file`] does with a path, from its metadata (`None`: nothing there).
@@ -226,11 +233,15 @@ pub fn check_writable(path: impl AsRef<Path>) -> Result<()> {
     let path = path.as_ref();
     let meta = std::fs::metadata(path);
     if let Kind::InPlace = refusal(path, meta.as_ref().ok())? {
-        return std::fs::OpenOptions::new()
-            .write(true)
-            .open(path)
-            .map(drop)
-            .map_err(|e| Error::io(path.display().to_string(), e));
+        // a device or a pipe: its permission bits only (opening a pipe would wait for a
+        // reader, or end a waiting reader's input)
+        return match &meta {
+            Ok(m) if m.permissions().readonly() => Err(Error::io(
+                path.display().to_string(),
+                "not writable (no write permission)",
+            )),
+            _ => Ok(()),
+        };
     }
     let target = write_target(path)?;
     check_writable_dir(directory_of(&target))
@@ -265,7 +276,9 @@ fn directory_of(path: &Path) -> std::path::PathBuf {
 /// `SIGINT` or `SIGTERM` (then nothing named `.strata-*` is left by an interrupt). It only
 /// reads static buffers and calls `unlink`, which a signal handler may do. A write has a named
 /// temporary file only in the instant it replaces an existing file (between linking its
-/// unnamed file and renaming it over the old one) or where files cannot be unnamed.
+/// unnamed file and renaming it over the old one) or where files cannot be unnamed. On Linux
+/// only: elsewhere no name is registered and this does nothing. Call it from a handler that
+/// ends the process: a name it removed is never registered again.
 pub fn remove_pending_temporaries() {
     pending::remove_all();
 }
@@ -273,78 +286,115 @@ pub fn remove_pending_temporaries() {
 /// The named temporary files of writes in progress, in static buffers that a signal handler
 /// reads ([`remove_pending_temporaries`]): a few slots, each a path and its state.
 mod pending {
-    use core::cell::UnsafeCell;
-    use core::sync::atomic::{AtomicU8, Ordering};
     use std::path::Path;
 
-    /// The longest path kept (with its NUL); longer ones are not registered.
-    const LEN: usize = 4096;
-
-    /// One registered path: state 0 free, 1 being written, 2 armed.
-    struct Slot {
-        state: AtomicU8,
-        path: UnsafeCell<[u8; LEN]>,
-    }
-
-    // SAFETY: `path` is written only by the thread that moved `state` from 0 to 1, and read
-    // only while `state` is 2 (published with release, read with acquire).
-    unsafe impl Sync for Slot {}
-
-    static SLOTS: [Slot; 8] = [const {
-        Slot {
-            state: AtomicU8::new(0),
-            path: UnsafeCell::new([0; LEN]),
-        }
-    }; 8];
-
     /// The registration of one path, released when dropped.
-    pub(super) struct Armed(Option<&'static Slot>);
-
-    impl Drop for Armed {
-        fn drop(&mut self) {
-            if let Some(slot) = self.0 {
-                slot.state.store(0, Ordering::Release);
-            }
-        }
-    }
+    pub(super) struct Armed(#[cfg(target_os = "linux")] Option<&'static linux::Slot>);
 
     /// Registers `path` until the returned value is dropped (not at all when every slot is
-    /// taken or the path is too long: then an interrupt may leave it).
+    /// taken, the path is too long, or the system is not Linux: then an interrupt may leave
+    /// it).
     pub(super) fn arm(path: &Path) -> Armed {
         #[cfg(target_os = "linux")]
         {
+            Armed(linux::arm(path))
+        }
+        #[cfg(not(target_os = "linux"))]
+        {
+            let _ = path;
+            Armed()
+        }
+    }
+
+    /// Unlinks every armed path (Linux; nothing elsewhere).
+    pub(super) fn remove_all() {
+        #[cfg(target_os = "linux")]
+        linux::remove_all();
+    }
+
+    #[cfg(target_os = "linux")]
+    impl Drop for Armed {
+        fn drop(&mut self) {
+            if let Some(slot) = self.0 {
+                linux::release(slot);
+            }
+        }
+    }
+
+    #[cfg(target_os = "linux")]
+    mod linux {
+        use core::cell::UnsafeCell;
+        use core::sync::atomic::{AtomicU8, Ordering};
+        use std::path::Path;
+
+        /// The longest path kept (with its NUL); longer ones are not registered.
+        const LEN: usize = 4096;
+
+        /// Free: a writer may take the slot.
+        const FREE: u8 = 0;
+        /// Being written by the writer that took it.
+        const WRITING: u8 = 1;
+        /// Holds a path that a handler may remove.
+        const ARMED: u8 = 2;
+        /// Taken by a handler, which reads the path; never freed again (the process ends).
+        const CLAIMED: u8 = 3;
+
+        /// One registered path and its state.
+        pub(super) struct Slot {
+            state: AtomicU8,
+            path: UnsafeCell<[u8; LEN]>,
+        }
+
+        // SAFETY: `path` is written only by the writer that moved `state` from FREE to WRITING,
+        // until it stores ARMED (release); it is read only by the handler that moved `state`
+        // from ARMED to CLAIMED (acquire), after which no one writes it again: a slot leaves
+        // CLAIMED never. So no read overlaps a write.
+        unsafe impl Sync for Slot {}
+
+        static SLOTS: [Slot; 8] = [const {
+            Slot {
+                state: AtomicU8::new(FREE),
+                path: UnsafeCell::new([0; LEN]),
+            }
+        }; 8];
+
+        pub(super) fn arm(path: &Path) -> Option<&'static Slot> {
             use std::os::unix::ffi::OsStrExt;
             let bytes = path.as_os_str().as_bytes();
             if bytes.len() >= LEN || bytes.contains(&0) {
-                return Armed(None);
+                return None;
             }
+            let slot = SLOTS.iter().find(|slot| {
+                slot.state
+                    .compare_exchange(FREE, WRITING, Ordering::Acquire, Ordering::Relaxed)
+                    .is_ok()
+            })?;
+            // SAFETY: this thread owns the slot (WRITING) until it stores ARMED
+            let buf = unsafe { &mut *slot.path.get() };
+            buf[..bytes.len()].copy_from_slice(bytes);
+            buf[bytes.len()] = 0;
+            slot.state.store(ARMED, Ordering::Release);
+            Some(slot)
+        }
+
+        /// Frees the slot, unless a handler has claimed it.
+        pub(super) fn release(slot: &Slot) {
+            let _ = slot
+                .state
+                .compare_exchange(ARMED, FREE, Ordering::Release, Ordering::Relaxed);
+        }
+
+        pub(super) fn remove_all() {
             for slot in &SLOTS {
                 if slot
                     .state
-                    .compare_exchange(0, 1, Ordering::Acquire, Ordering::Relaxed)
+                    .compare_exchange(ARMED, CLAIMED, Ordering::Acquire, Ordering::Relaxed)
                     .is_ok()
                 {
-                    // SAFETY: this thread owns the slot (state 1) until it stores 2
-                    let buf = unsafe { &mut *slot.path.get() };
-                    buf[..bytes.len()].copy_from_slice(bytes);
-                    buf[bytes.len()] = 0;
-                    slot.state.store(2, Ordering::Release);
-                    return Armed(Some(slot));
+                    // SAFETY: a claimed slot holds a NUL-terminated path that no one writes
+                    // again; unlink is async-signal-safe
+                    unsafe { libc::unlink(slot.path.get().cast::<libc::c_char>()) };
                 }
-            }
-        }
-        let _ = path;
-        Armed(None)
-    }
-
-    /// Unlinks every armed path.
-    pub(super) fn remove_all() {
-        #[cfg(target_os = "linux")]
-        for slot in &SLOTS {
-            if slot.state.load(Ordering::Acquire) == 2 {
-                // SAFETY: an armed slot holds a NUL-terminated path; unlink is
-                // async-signal-safe
-                unsafe { libc::unlink(slot.path.get().cast::<libc::c_char>()) };
             }
         }
     }
@@ -704,19 +754,21 @@ mod tests {
     }
 
     #[test]
+    #[cfg(target_os = "linux")]
     fn an_armed_temporary_name_is_removed_by_the_handler_s_call() {
         // A10: an interrupt between naming the temporary file and renaming it left it behind
         let dir = scratch("pending");
         let tmp = dir.join(".strata-test.tmp");
         std::fs::write(&tmp, b"x").unwrap();
+        // a released name is left alone (it may be the renamed file's old name, reused)
+        drop(pending::arm(&tmp));
+        remove_pending_temporaries();
+        assert!(tmp.exists());
+        // an armed one is removed (its slot then stays claimed: the process would be ending)
         let armed = pending::arm(&tmp);
         remove_pending_temporaries();
         assert!(!tmp.exists());
         drop(armed);
-        // a released name is left alone (it may be the renamed file's old name, reused)
-        std::fs::write(&tmp, b"x").unwrap();
-        remove_pending_temporaries();
-        assert!(tmp.exists());
         let _ = std::fs::remove_dir_all(&dir);
     }
 

@@ -1228,6 +1228,17 @@ mod tests {
     }
 
     #[test]
+    fn a_t_value_past_its_budget_is_refused_not_computed() {
+        // (was: hours for 24 dimensions at m = 32) the checks are counted: Sobol' dimensions
+        // 0-1 at m = 20 reach strength 20 through 1 + 2 + ... + 21 - 1 = 230 compositions
+        let m: Vec<Matrix> = (0..2).map(|d| *sobol_matrix(d).unwrap()).collect();
+        assert_eq!(digital_t_value_within(&m, 20, 1, 230), Some(0));
+        assert_eq!(digital_t_value_within(&m, 20, 1, 229), None);
+        let many: Vec<Matrix> = (0..24).map(|d| *sobol_matrix(d).unwrap()).collect();
+        assert_eq!(digital_t_value_within(&many, 32, 1, 1 << 16), None);
+    }
+
+    #[test]
     fn the_fifth_faure4_matrix_is_sobol_dimension_four() {
         assert_eq!(&faure4_matrices()[4], sobol_matrix(4).unwrap());
     }
