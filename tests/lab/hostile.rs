@@ -1122,6 +1122,25 @@ fn symbolic_links_are_followed_and_kept() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Runs `nets --group G --max-m 4 --markdown FILE` for every `(G, FILE)` at once and waits
+/// for all of them, each of which must succeed.
+fn nets_side_by_side(runs: &[(&str, &Path)]) {
+    let children: Vec<_> = runs
+        .iter()
+        .map(|(g, md)| {
+            command("nets", &["--group", g, "--max-m", "4", "--markdown", s(md)])
+                .stdout(Stdio::null())
+                .stderr(Stdio::piped())
+                .spawn()
+                .unwrap()
+        })
+        .collect();
+    for c in children {
+        let o = c.wait_with_output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+}
+
 #[test]
 fn markdown_runs_side_by_side_keep_every_section() {
     // the second hostile pass: three `nets --markdown` runs into one file at once kept fewer
@@ -1130,23 +1149,7 @@ fn markdown_runs_side_by_side_keep_every_section() {
     let md = dir.join("r.md");
     for round in 0..6 {
         let _ = std::fs::remove_file(&md);
-        let children: Vec<_> = ["2", "4", "8"]
-            .iter()
-            .map(|g| {
-                command(
-                    "nets",
-                    &["--group", g, "--max-m", "4", "--markdown", s(&md)],
-                )
-                .stdout(Stdio::null())
-                .stderr(Stdio::piped())
-                .spawn()
-                .unwrap()
-            })
-            .collect();
-        for c in children {
-            let o = c.wait_with_output().unwrap();
-            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        }
+        nets_side_by_side(&[("2", &md), ("4", &md), ("8", &md)]);
         let text = std::fs::read_to_string(&md).unwrap();
         assert_eq!(
             text.matches("<!-- begin").count(),
@@ -1172,20 +1175,7 @@ fn markdown_writers_through_a_link_take_turns_with_writers_of_its_target() {
     let (link, real) = (dir.join("a/r.md"), dir.join("b/r.md"));
     for round in 0..8 {
         let _ = std::fs::remove_file(&real);
-        let children: Vec<_> = [("2", &link), ("4", &real), ("8", &link), ("16", &real)]
-            .iter()
-            .map(|(g, md)| {
-                command("nets", &["--group", g, "--max-m", "4", "--markdown", s(md)])
-                    .stdout(Stdio::null())
-                    .stderr(Stdio::piped())
-                    .spawn()
-                    .unwrap()
-            })
-            .collect();
-        for c in children {
-            let o = c.wait_with_output().unwrap();
-            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        }
+        nets_side_by_side(&[("2", &link), ("4", &real), ("8", &link), ("16", &real)]);
         let text = std::fs::read_to_string(&real).unwrap();
         assert_eq!(
             text.matches("<!-- begin").count(),
