@@ -298,4 +298,11 @@ fn the_renderer_crate_ships_its_own_readme() {
         );
     }
     assert!(readme.contains("strata::pixel::WGSL") && readme.contains("PixelSampler::new"));
+    // the path-tracer snippet is the workspace README's, word for word (both are doc-tested)
+    let rust_block = |text: &str| {
+        let start = text.find("```rust\n").expect("a rust block");
+        let end = start + text[start..].find("\n```\n").expect("its end");
+        text[start..end].to_string()
+    };
+    assert_eq!(rust_block(&readme), rust_block(&read("README.md")));
 }
