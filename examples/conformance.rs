@@ -233,7 +233,7 @@ fn main() -> ExitCode {
             .samplers
             .iter()
             .map(|n| Ok((n.clone(), Sequence::by_name(n, [256, 256])?)))
-            .collect::<Result<Vec<_>, strata::Error>>()?;
+            .collect::<Result<Vec<_>, strata_lab::Error>>()?;
         let mut summary = String::from(
             "| sequence | tests | cases | closest to its bound (statistic / bound) | verdict |\n|---|---|---|---|---|\n",
         );

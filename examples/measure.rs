@@ -131,7 +131,7 @@ const COLUMNS: [&str; 10] = [
     "l2_star", "wd2", "cd2", "md2", "star", "t", "min_nn", "mean_nn", "nu_eff", "osc",
 ];
 
-fn measure(set: &PointSet) -> Result<Row, strata::Error> {
+fn measure(set: &PointSet) -> Result<Row, strata_lab::Error> {
     let (n, d) = (set.len(), set.dims);
     let mut v: [Option<f64>; COLUMNS.len()] = Default::default();
     let c = &set.coords;
@@ -168,7 +168,7 @@ const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_secs(2);
 /// with the estimate
 /// (issue 43, A6: a 64 MiB file of 65,536 sets ran for an hour in silence), then how far it
 /// got every two seconds.
-fn measure_all(label: &str, sets: &[PointSet]) -> Result<Vec<Row>, strata::Error> {
+fn measure_all(label: &str, sets: &[PointSet]) -> Result<Vec<Row>, strata_lab::Error> {
     let Some((first, rest)) = sets.split_first() else {
         return Ok(Vec::new());
     };
@@ -209,7 +209,7 @@ fn measure_all(label: &str, sets: &[PointSet]) -> Result<Vec<Row>, strata::Error
                 }
                 row
             })
-            .collect::<Result<Vec<Row>, strata::Error>>()?,
+            .collect::<Result<Vec<Row>, strata_lab::Error>>()?,
     );
     Ok(rows)
 }

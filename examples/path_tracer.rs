@@ -68,7 +68,7 @@ fn fail(msg: &str) -> ExitCode {
     ExitCode::from(2)
 }
 
-fn render(out: &std::path::Path) -> Result<String, strata::Error> {
+fn render(out: &std::path::Path) -> Result<String, strata_lab::Error> {
     let sampler = PixelSampler::new(Sequence::pmj02(), SPP, Seed(1))?;
     let mut image = vec![0.0f32; (SIZE * SIZE) as usize];
     std::thread::scope(|scope| {

@@ -314,10 +314,13 @@ fn main() -> ExitCode {
         let stdout = std::io::stdout();
         let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
         if args.format != Format::Csv {
-            let written = pointsets::write_f32(&mut out, args.format, dims, &values)
-                .and_then(|()| out.flush().map_err(|e| strata::Error::io("<stdout>", e)));
+            let written =
+                pointsets::write_f32(&mut out, args.format, dims, &values).and_then(|()| {
+                    out.flush()
+                        .map_err(|e| strata_lab::Error::io("<stdout>", e))
+                });
             return match written {
-                Err(strata::Error::Io { source, .. })
+                Err(strata_lab::Error::Io { source, .. })
                     if source
                         .downcast_ref::<std::io::Error>()
                         .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe) =>

@@ -212,7 +212,7 @@ fn run_one(
     // for other samplers)
     let mut params = args.params.kept_for(entry);
     params.count = count;
-    let generate = |r: u32| -> Result<Vec<[f32; 2]>, strata::Error> {
+    let generate = |r: u32| -> Result<Vec<[f32; 2]>, strata_lab::Error> {
         let mut s = entry.build(&params.clone().seed(args.seed + r as u64))?;
         let mut v = vec![[0.0f32; 2]; count as usize];
         s.fill(&mut v);
@@ -238,7 +238,7 @@ fn run_one(
     let sets: Vec<Vec<[f32; 2]>> = (0..kept)
         .into_par_iter()
         .map(generate)
-        .collect::<Result<_, strata::Error>>()?;
+        .collect::<Result<_, strata_lab::Error>>()?;
     let measures = spectrum::point_set_measures(&sets)?;
     bar.inc(realizations as u64);
 

@@ -1,19 +1,17 @@
 //! What a registered sampler is: the types of the facts each sampler's own file declares about
 //! itself ([`Entry`], the counts it accepts ([`CountRule`]), its [`Rates`], its [`Family`], the
-//! parameters it takes ([`ParameterSpec`]), the [`Params`] it is built from), and the count
-//! arithmetic those need (squares, powers of two, Fibonacci numbers, the `q^t` of an orthogonal
-//! array, [`MAX_FIXED_COUNT`]).
+//! parameters it takes ([`ParameterSpec`]), the [`Params`] it is built from).
 //!
 //! A leaf of the crate: it imports no sampler and not the registry, only the error type, the
 //! sampler traits and `alloc`, so every sampler can declare its entry here without `std`, and
 //! `crate::registry` (the list of entries and the lookup by name) sits above the samplers. Its
 //! items are public as `strata_lab::registry::*` (and `strata::counts::MAX_FIXED_COUNT`,
-//! `strata::samplers::oa::MAX_PRIME_POWER`).
+//! `strata_lab::samplers::oa::MAX_PRIME_POWER`).
 
 use core::fmt;
 
-use strata::counts::CountRule;
-use strata::{Error, Result};
+use crate::counts::CountRule;
+use crate::{Error, Result};
 use strata::{Sampler, SamplerNd, Seed};
 
 /// The families of samplers, as the lecture groups them (one panel each in `tradeoff`'s plots).
@@ -466,6 +464,32 @@ impl fmt::Debug for Entry {
 }
 
 impl Entry {
+    /// The fields most entries share, for `..Entry::DEFAULT`: fixed-count, seeded, no
+    /// parameters, no published rates, not expensive, not blue noise, 2D only. Each entry writes
+    /// its own name, description, paper, family, counts, promise and build (the registry's
+    /// tests check that none keeps the empty texts or the construction of this value).
+    pub(crate) const DEFAULT: Entry = Entry {
+        name: "",
+        description: "",
+        paper: "",
+        family: Family::Classic,
+        progressive: false,
+        seeded: true,
+        counts: CountRule::Any,
+        parameters: &[],
+        promise: "",
+        rates: Rates::NONE,
+        expensive: false,
+        blue_noise: None,
+        any_dims: false,
+        build: |_| {
+            Err(Error::input(
+                "Entry::DEFAULT",
+                "no construction: an entry writes its own build",
+            ))
+        },
+    };
+
     /// The declaration of the parameter named `name`, for samplers that take it.
     pub fn parameter(&self, name: &str) -> Option<&'static ParameterSpec> {
         self.parameters.iter().find(|p| p.is_named(name))
@@ -524,7 +548,7 @@ impl Entry {
 /// let lenient = p.kept_for(jittered); // the lenient build drops it
 /// assert!(jittered.build(&lenient).is_ok());
 /// # let _ = s;
-/// # Ok::<(), strata::Error>(())
+/// # Ok::<(), strata_lab::Error>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Params {

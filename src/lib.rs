@@ -18,7 +18,7 @@
 //! // the DC term is N, and the spectrum of this blue-noise net is low near DC
 //! assert!((spectrum.get(0, 0).unwrap() - 64.0).abs() < 1e-9);
 //! assert!(spectrum.get(1, 0).unwrap() < 1.0);
-//! # Ok::<(), strata::Error>(())
+//! # Ok::<(), strata_lab::Error>(())
 //! ```
 //!
 //! * [`registry`]: every sampler by name, the renderer crate's and the lab's, each with its
@@ -34,7 +34,7 @@
 //!
 //! Points lie in `[0,1)^2` and never reach 1.0; everything is seeded ([`strata::Seed`]): the
 //! same seed gives the same bits on every platform and with any number of threads, which golden
-//! digests pin; constructors and analyses return [`strata::Error`] saying what was wrong and what
+//! digests pin; constructors and analyses return [`strata_lab::Error`] saying what was wrong and what
 //! is allowed, never a panic on user input.
 //!
 //! ## Samplers
@@ -48,18 +48,23 @@
 
 pub mod analysis;
 pub mod conformance;
+mod counts;
 mod entry;
+mod error;
 mod grid;
 pub mod io;
 mod occupancy;
 pub mod pointsets;
 pub mod power;
 pub mod registry;
+mod rng;
 pub mod samplers;
 pub mod spectrum;
 mod stats;
 #[cfg(test)]
 mod strata_checks;
+
+pub use error::{Error, Result};
 
 /// The README's code examples, compiled and run by `cargo test`.
 #[cfg(doctest)]

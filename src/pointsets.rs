@@ -25,8 +25,8 @@
 use std::io::Write;
 use std::path::Path;
 
+use crate::{Error, Result};
 use strata::Point2;
-use strata::{Error, Result};
 
 /// Who reports the errors.
 const CONTEXT: &str = "pointsets";
@@ -224,7 +224,7 @@ pub fn read_file(path: impl AsRef<Path>) -> Result<Vec<PointSet>> {
         return Err(too_large());
     }
     parse(&bytes).map_err(|e| match e {
-        Error::InvalidInput { message, .. } => {
+        Error::Strata(strata::Error::InvalidInput { message, .. }) => {
             Error::input(CONTEXT, format!("{}: {message}", path.display()))
         }
         other => other,

@@ -16,12 +16,6 @@ use crate::scene::Scene;
 use crate::split::Emitters;
 use crate::trace::render_remapped;
 
-/// The side of the blue-noise mask (tiled over the image).
-const MASK_SIDE: u32 = 64;
-
-/// The seed of the mask.
-const MASK_SEED: u64 = 0x6d61_736b;
-
 /// One sequence at one count: the plain frame's and the permuted frames' figures, each a mean
 /// over the seeds (and frames): RMSE of luminance and low-band share, unmasked and masked.
 struct Figures {
@@ -52,10 +46,12 @@ pub fn table(
     frames: u32,
     tile: u32,
 ) -> Result<String, CliError> {
-    let mask = BlueNoiseMask::new(MASK_SIDE, MASK_SEED)?;
+    // the renderer crate's built-in mask, tiled over the image
+    let mask = BlueNoiseMask::builtin();
+    let side = mask.side();
     let mut out = format!(
         "Frames of a static camera with the draws of pixels permuted between frames within \
-         tiles of {tile}x{tile} so that the error follows a {MASK_SIDE}x{MASK_SIDE} blue-noise \
+         tiles of {tile}x{tile} so that the error follows a {side}x{side} blue-noise \
          mask (Heitz and Belcour 2019; `strata::pixel::frames`), {frames} frames, frame 1 \
          excluded, {} seeds; 'plain': frame 1 (no permutation). RMSE of the luminance error, \
          and the share of its power below 1/8 cycle per pixel (white: about 0.05); 'masked': \

@@ -283,7 +283,7 @@ pub fn with_sampler<R>(
     seed: u64,
     padding: Padding,
     f: impl Visit<R>,
-) -> Result<R, strata::Error> {
+) -> Result<R, strata_lab::Error> {
     Ok(match method {
         Method::Crate(seq) => {
             f.visit(PixelSampler::new(seq.clone(), spp, strata::Seed(seed))?.with_padding(padding))

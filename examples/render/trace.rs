@@ -396,7 +396,7 @@ pub fn render(
     seed: u64,
     progress: Option<&str>,
     padding: Padding,
-) -> Result<Vec<Vec3>, strata::Error> {
+) -> Result<Vec<Vec3>, strata_lab::Error> {
     render_inner(scene, method, spp, size, seed, progress, padding, None)
 }
 
@@ -409,7 +409,7 @@ pub fn render_remapped(
     seed: u64,
     padding: Padding,
     seeds: Option<&SeedPermutation>,
-) -> Result<Vec<Vec3>, strata::Error> {
+) -> Result<Vec<Vec3>, strata_lab::Error> {
     render_inner(scene, method, spp, size, seed, None, padding, seeds)
 }
 
@@ -423,7 +423,7 @@ fn render_inner(
     progress: Option<&str>,
     padding: Padding,
     seeds: Option<&SeedPermutation>,
-) -> Result<Vec<Vec3>, strata::Error> {
+) -> Result<Vec<Vec3>, strata_lab::Error> {
     /// [`render_with`] for whichever sampler `method` is.
     struct Go<'a> {
         scene: &'a Scene,

@@ -78,7 +78,7 @@ pub struct Args {
 fn list<T>(
     value: &str,
     all: impl Fn() -> Vec<T>,
-    one: impl Fn(&str) -> Result<T, strata::Error>,
+    one: impl Fn(&str) -> Result<T, strata_lab::Error>,
     name_of: impl Fn(&T) -> &'static str,
 ) -> Result<Vec<T>, CliError> {
     if value == "all" {

@@ -27,7 +27,7 @@ fn pareto(rows: &[Row], f: Integrand) -> (Vec<&'static str>, Vec<(f64, f64)>) {
 /// One panel per family: `convergence-F.png` (variance against N, with the published rates)
 /// and `tradeoff-F.png` (RMSE against the time of a set; samplers on the Pareto front bold,
 /// the front dashed, the rest faint).
-pub fn plots(rows: &[Row], slopes: &[Slope], args: &Args) -> Result<(), strata::Error> {
+pub fn plots(rows: &[Row], slopes: &[Slope], args: &Args) -> Result<(), strata_lab::Error> {
     for &f in &args.integrands {
         if !args.samplers.iter().any(|e| !of(rows, f, e).is_empty()) {
             continue;

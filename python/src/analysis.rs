@@ -270,7 +270,7 @@ fn discrepancy(py: Python<'_>, points: AnyPoints<'_>, method: &str) -> PyResult<
             "WD" => disc::wrap_around_squared(s, d),
             "MD" => disc::mixture_squared(s, d),
             "L2-star" => disc::l2_star(s, d),
-            _ if d != 2 => Err(strata::Error::input(
+            _ if d != 2 => Err(strata_lab::Error::input(
                 "discrepancy::star_2d",
                 format!(
                     "the exact star discrepancy is for 2D sets; these points have {d} dimensions"
@@ -330,7 +330,7 @@ fn convergence<'py>(
     let integrands = integrands
         .iter()
         .map(|f| Integrand::by_name(f))
-        .collect::<strata::Result<Vec<_>>>()
+        .collect::<strata_lab::Result<Vec<_>>>()
         .map_err(to_py_err)?;
     if ns.is_empty() {
         return Err(value_error(

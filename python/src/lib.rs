@@ -2,7 +2,7 @@
 //!
 //! Every function here is a thin layer over the `strata` crate: it checks the shapes and types
 //! of the numpy arrays it is given, views them as slices without copying, releases the GIL
-//! around the crate's work and turns the crate's [`strata::Error`] into a Python `ValueError`
+//! around the crate's work and turns the crate's [`strata_lab::Error`] into a Python `ValueError`
 //! carrying the same message. The pure-Python package (`python/strata_sampling/`) adds the friendly
 //! signatures, argument checks and the `scipy.stats.qmc.QMCEngine` subclass.
 
@@ -16,11 +16,12 @@ mod analysis;
 mod pixel;
 mod samplers;
 
-/// The crate's error as a Python exception: `OSError` for I/O, `ValueError` for everything else
-/// (what was wrong and what is allowed, the crate's message as is).
-pub(crate) fn to_py_err(e: strata::Error) -> PyErr {
+/// The crates' errors as a Python exception: `OSError` for I/O, `ValueError` for everything
+/// else (what was wrong and what is allowed, the crate's message as is).
+pub(crate) fn to_py_err(e: impl Into<strata_lab::Error>) -> PyErr {
+    let e = e.into();
     match e {
-        strata::Error::Io { .. } => PyOSError::new_err(e.to_string()),
+        strata_lab::Error::Io { .. } => PyOSError::new_err(e.to_string()),
         _ => PyValueError::new_err(e.to_string()),
     }
 }

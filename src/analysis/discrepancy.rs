@@ -33,7 +33,7 @@
 //!
 //! Points are point-major slices of `f32` or `f64`, coordinates in `[0, 1]`.
 
-use strata::{Error, Result};
+use crate::{Error, Result};
 
 /// The largest set [`star_2d`] accepts.
 pub const MAX_EXACT_STAR: usize = 1 << 14;
@@ -164,7 +164,7 @@ pub fn mixture_squared<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result
 /// assert_eq!(net_t_value(&hammersley)?, Some(0));
 /// // all four in the lower half: only the whole square holds them evenly
 /// assert_eq!(net_t_value(&[0.1, 0.1, 0.6, 0.2, 0.3, 0.3, 0.8, 0.4])?, Some(2));
-/// # Ok::<(), strata::Error>(())
+/// # Ok::<(), strata_lab::Error>(())
 /// ```
 pub fn net_t_value<T: Copy + Into<f64>>(points: &[T]) -> Result<Option<u32>> {
     // a net's cells are half-open: [0, 1) is checked first, whatever the count (issue 38, N22:

@@ -4,7 +4,8 @@
 //! the Pareto front of cost against error. Pure functions of their inputs; `study` runs the
 //! measurements and re-exports these.
 
-use super::study::BOOTSTRAP;
+/// Bootstrap resamples for the slopes' confidence intervals.
+pub const BOOTSTRAP: usize = 400;
 
 /// Least-squares slope of `log y` against `log x` over the pairs with `y > 0`.
 pub fn fit_slope(points: &[(f64, f64)]) -> Option<f64> {

@@ -74,13 +74,13 @@ impl Integrand {
     }
 
     /// The integrand called `name`; the error lists the known names.
-    pub fn by_name(name: &str) -> strata::Result<Self> {
+    pub fn by_name(name: &str) -> crate::Result<Self> {
         Self::ALL
             .iter()
             .copied()
             .find(|i| i.name() == name)
             .ok_or_else(|| {
-                strata::Error::input(
+                crate::Error::input(
                     "Integrand::by_name",
                     format!(
                         "unknown integrand '{name}'; known integrands: {}",

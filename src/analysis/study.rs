@@ -15,12 +15,13 @@ use rayon::prelude::*;
 use super::Integrand;
 use super::fit::variance;
 pub use super::fit::{
-    MAX_PROJECTED_COUNT, bootstrap_interval, count_to_reach, fit_slope, pareto_front, power_law_at,
+    BOOTSTRAP, MAX_PROJECTED_COUNT, bootstrap_interval, count_to_reach, fit_slope, pareto_front,
+    power_law_at,
 };
 use super::fourier::{integrand_power, predicted_variance};
 use crate::registry::{CountRule, Entry, Params};
 use crate::spectrum::expected_spectrum;
-use strata::{Error, Result};
+use crate::{Error, Result};
 
 /// The largest count a study accepts.
 pub const MAX_STUDY_COUNT: u64 = 1 << 20;
@@ -36,9 +37,6 @@ pub const MIN_TIMED_NS: f64 = 1e6;
 
 /// Timing measurements per (sampler, count); their median is the reported time.
 pub const TIMINGS: usize = 5;
-
-/// Bootstrap resamples for the slopes' confidence intervals.
-pub const BOOTSTRAP: usize = 400;
 
 /// How many seeds (independent estimates) per count.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -72,7 +72,7 @@
 //!     s.sample_2d(pixel, index, dim & !1)[(dim & 1) as usize]
 //! })?;
 //! assert!(report.passed(), "{report}");
-//! # Ok::<(), strata::Error>(())
+//! # Ok::<(), strata_lab::Error>(())
 //! ```
 
 mod pairs;
@@ -83,10 +83,10 @@ pub use pairs::{PairReport, PairStudy, Shuffle};
 
 use crate::analysis::Integrand;
 use crate::stats;
+use crate::{Error, Result};
 use strata::Seed;
 use strata::StrataGrid;
 use strata::pixel::{Padding, PixelSampler, Sequence};
-use strata::{Error, Result};
 
 /// What the suite draws values from.
 ///

@@ -22,10 +22,10 @@
 use std::fmt;
 
 use super::{Source, parallel_map};
+use crate::{Error, Result};
 use strata::hash::mix64;
 use strata::pixel::DrawKeys;
 use strata::scramble::owen_scramble_rev;
-use strata::{Error, Result};
 
 /// The configuration of a pair study.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -17,14 +17,14 @@ use std::io::Write;
 use std::path::Path;
 
 use crate::spectrum::{RadialBin, Spectrum};
-use strata::{Error, Result};
+use crate::{Error, Result};
 use strata::{Point2, StrataGrid};
 
 /// Writes `canvas` as an 8-bit RGB PNG (the `png` crate: balanced compression, adaptive
 /// filters), as [`write_file`] writes: never half written, every byte checked.
 pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
     let path = path.as_ref();
-    let fail = |e: png::EncodingError| strata::Error::io(path.display().to_string(), e);
+    let fail = |e: png::EncodingError| crate::Error::io(path.display().to_string(), e);
     let mut bytes = Vec::new();
     let mut encoder = png::Encoder::new(&mut bytes, canvas.width(), canvas.height());
     encoder.set_color(png::ColorType::Rgb);
@@ -68,7 +68,7 @@ pub fn write_png(path: impl AsRef<Path>, canvas: &Canvas) -> Result<()> {
 /// // a full device: an error, not a silent truncated file
 /// # #[cfg(target_os = "linux")]
 /// assert!(strata_lab::io::write_file("/dev/full", b"hello").is_err());
-/// # Ok::<(), strata::Error>(())
+/// # Ok::<(), strata_lab::Error>(())
 /// ```
 pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     let path = path.as_ref();
@@ -204,7 +204,7 @@ fn refusal(path: &Path, meta: Option<&std::fs::Metadata>) -> Result<Kind> {
 /// assert_eq!(target, dir.join("b").canonicalize().unwrap().join("r.md"));
 /// # }
 /// # std::fs::remove_dir_all(&dir).unwrap();
-/// # Ok::<(), strata::Error>(())
+/// # Ok::<(), strata_lab::Error>(())
 /// ```
 pub fn write_target(path: impl AsRef<Path>) -> Result<std::path::PathBuf> {
     let path = path.as_ref();
@@ -666,7 +666,7 @@ pub fn write_spectrum_exr(path: impl AsRef<Path>, spectrum: &Spectrum) -> Result
     Image::from_layer(layer)
         .write()
         .to_buffered(&mut bytes)
-        .map_err(|e| strata::Error::io(path.display().to_string(), e))?;
+        .map_err(|e| crate::Error::io(path.display().to_string(), e))?;
     write_file(path, &bytes.into_inner())
 }
 
@@ -682,7 +682,7 @@ pub fn read_exr_y(path: impl AsRef<Path>) -> Result<(usize, usize, Vec<f32>)> {
         .first_valid_layer()
         .all_attributes()
         .from_file(path)
-        .map_err(|e| strata::Error::io(path.display().to_string(), e))?;
+        .map_err(|e| crate::Error::io(path.display().to_string(), e))?;
     let layer = &image.layer_data;
     let size = layer.size;
     let channel = layer
@@ -690,7 +690,7 @@ pub fn read_exr_y(path: impl AsRef<Path>) -> Result<(usize, usize, Vec<f32>)> {
         .list
         .iter()
         .find(|c| c.name.eq("Y"))
-        .ok_or_else(|| strata::Error::io(path.display().to_string(), "no channel named Y"))?;
+        .ok_or_else(|| crate::Error::io(path.display().to_string(), "no channel named Y"))?;
     let values = channel.sample_data.values_as_f32().collect();
     Ok((size.width(), size.height(), values))
 }

@@ -15,7 +15,7 @@
 //! assert!(d.areas().iter().all(|&a| a == 0.25));
 //! assert_eq!(d.cell(3).centroid(), Some([0.75, 0.75]));
 //! assert_eq!(d.power_nearest([0.9, 0.1])?, 1);
-//! # Ok::<(), strata::Error>(())
+//! # Ok::<(), strata_lab::Error>(())
 //! ```
 //!
 //! # What is guaranteed
@@ -105,7 +105,7 @@
 use core::cmp::Ordering;
 
 use crate::grid::wrap_unit;
-use strata::{Error, Result};
+use crate::{Error, Result};
 
 mod exact;
 mod linalg;
@@ -220,7 +220,7 @@ pub(crate) struct Stats {
 /// assert!((d.cell(0).area() - 0.6).abs() < 1e-15);
 /// let nb = d.cell(0).neighbors();
 /// assert!(nb.iter().any(|n| n.site == 1 && n.shift == [-1, 0])); // across the seam
-/// # Ok::<(), strata::Error>(())
+/// # Ok::<(), strata_lab::Error>(())
 /// ```
 #[derive(Clone, Debug, Default)]
 pub struct PowerDiagram {

@@ -29,7 +29,7 @@
 
 use super::linalg::{CgWork, SparseSym, pcg};
 use super::{MIN_MAGNITUDE, PowerDiagram};
-use strata::{Error, Result};
+use crate::{Error, Result};
 
 /// The context named in this module's errors.
 const CONTEXT: &str = "transport";
@@ -554,10 +554,10 @@ mod tests {
         assert!(
             matches!(
                 e,
-                Error::InvalidParameter {
+                Error::Strata(strata::Error::InvalidParameter {
                     parameter: "tolerance",
                     ..
-                }
+                })
             ),
             "{e}"
         );

@@ -17,15 +17,16 @@
 //! assert!(err.to_string().contains("jittered")); // the error lists the known names
 //! ```
 
+pub use crate::counts::{CountRule, MAX_OA_STRENGTH};
 pub use crate::entry::{
     BlueNoise, Bound, Built, Entry, Family, Kind, ParameterSpec, Params, Rates,
 };
-pub use strata::counts::CountRule;
 
 mod strata_entries;
 
 use crate::samplers::{best_candidate, bnot, ccvt, lloyd, net02bn, oa, pmj, poisson};
-use strata::{Error, Result, Sampler, SamplerNd};
+use crate::{Error, Result};
+use strata::{Sampler, SamplerNd};
 
 /// Every registered sampler, in a stable order (simplest first).
 static ENTRIES: &[Entry] = &[
@@ -284,6 +285,31 @@ pub fn table() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_entry_writes_its_own_facts_over_the_default() {
+        let mut names = std::collections::BTreeSet::new();
+        for e in entries() {
+            for (field, text) in [
+                ("name", e.name),
+                ("description", e.description),
+                ("paper", e.paper),
+                ("promise", e.promise),
+            ] {
+                assert!(!text.is_empty(), "{}: no {field}", e.name);
+            }
+            assert!(names.insert(e.name), "{} twice", e.name);
+            // its own construction, not the default's refusal
+            let built = e.build(&Params::new(e.counts.nearest(64)));
+            assert!(
+                built.is_ok(),
+                "{}: {}",
+                e.name,
+                built.err().map(|x| x.to_string()).unwrap_or_default()
+            );
+        }
+        assert!((Entry::DEFAULT.build)(&Params::new(64)).is_err());
+    }
 
     #[test]
     fn the_seeded_flag_says_whether_the_seed_changes_the_points() {

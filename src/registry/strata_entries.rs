@@ -3,7 +3,7 @@
 //! built from [`Params`]. The samplers themselves know nothing of the registry; a test checks
 //! each entry against its sampler (the name it reports, the counts it accepts, its dimensions).
 
-use strata::counts::CountRule;
+use crate::counts::CountRule;
 use strata::samplers::{
     Cmj, Fibonacci, Halton, HaltonNd, Jittered, LatinHypercube, Lattice, LatticeNd, MultiJittered,
     NRooks, Pmj02Stochastic, Random, RandomNd, Regular, Sobol, SobolNd, UncorrelatedJitter,
@@ -20,13 +20,9 @@ pub(crate) const RANDOM: Entry = Entry {
     paper: "-",
     family: Family::Classic,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "nothing (i.i.d. uniform)",
     rates: Rates::RANDOM,
-    expensive: false,
-    blue_noise: None,
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
@@ -34,6 +30,7 @@ pub(crate) const RANDOM: Entry = Entry {
             d => Built::nd(RandomNd::new(d, p.sampler_seed())?),
         })
     },
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `regular`.
@@ -42,16 +39,11 @@ pub(crate) const REGULAR: Entry = Entry {
     description: "cell centres of an s x s grid (N = s^2); deterministic",
     paper: "-",
     family: Family::Classic,
-    progressive: false,
     seeded: false,
     counts: CountRule::Square,
-    parameters: &[],
     promise: "cell centres (aliasing, zero variance, biased)",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
     build: |p| Ok(Built::two(Regular::new(p.count)?)),
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `jittered`.
@@ -60,20 +52,15 @@ pub(crate) const JITTERED: Entry = Entry {
     description: "one uniform point per cell of an s x s grid (N = s^2)",
     paper: "Cook 1986",
     family: Family::Classic,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Square,
-    parameters: &[],
     promise: "one point per cell of `s x s`",
     rates: Rates {
         discontinuous: Some(-1.5),
         smooth: Some(-2.0),
         higher: None,
     },
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
     build: |p| Ok(Built::two(Jittered::new(p.count, p.sampler_seed())?)),
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `nrooks`.
@@ -82,16 +69,10 @@ pub(crate) const NROOKS: Entry = Entry {
     description: "N-rooks / 2D Latin hypercube, one point per row and column",
     paper: "Shirley 1991",
     family: Family::Classic,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "one point per row and column",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
     build: |p| Ok(Built::two(NRooks::new(p.count, p.sampler_seed())?)),
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `latin`.
@@ -100,14 +81,8 @@ pub(crate) const LATIN: Entry = Entry {
     description: "Latin hypercube in D dimensions (--dims D): one point per 1/N stratum of every axis",
     paper: "McKay et al. 1979",
     family: Family::Multidim,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "every 1D projection into `N` strata",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
@@ -115,6 +90,7 @@ pub(crate) const LATIN: Entry = Entry {
             d => Built::nd(LatinHypercube::new(p.count, d, p.sampler_seed())?),
         })
     },
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `multijittered`.
@@ -123,16 +99,10 @@ pub(crate) const MULTIJITTERED: Entry = Entry {
     description: "jittered and N-rooks at once (N = n^2)",
     paper: "Chiu, Shirley, Wang 1994",
     family: Family::Classic,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Square,
-    parameters: &[],
     promise: "jittered on `n x n` and N-rooks",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
     build: |p| Ok(Built::two(MultiJittered::new(p.count, p.sampler_seed())?)),
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `cmj`.
@@ -141,16 +111,10 @@ pub(crate) const CMJ: Entry = Entry {
     description: "correlated multi-jittered, any N",
     paper: "Kensler 2013",
     family: Family::Classic,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "multi-jittered on `m x n`, correlated shuffles",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
     build: |p| Ok(Built::two(Cmj::new(p.count, p.sampler_seed())?)),
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `uncorrelated`.
@@ -159,14 +123,8 @@ pub(crate) const UNCORRELATED: Entry = Entry {
     description: "uncorrelated jitter: jittered pairs (0,1), (2,3), ... in random orders (N = s^2)",
     paper: "Cook 1986",
     family: Family::Multidim,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Square,
-    parameters: &[],
     promise: "every pair `(2k, 2k+1)` jittered on `s x s`",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
     any_dims: true,
     build: |p| {
         let s = UncorrelatedJitter::new(p.count, p.dims, p.sampler_seed())?;
@@ -175,6 +133,7 @@ pub(crate) const UNCORRELATED: Entry = Entry {
             _ => Built::nd(s),
         })
     },
+    ..Entry::DEFAULT
 };
 
 pub(crate) const HALTON: Entry = Entry {
@@ -183,13 +142,8 @@ pub(crate) const HALTON: Entry = Entry {
     paper: "Halton 1960",
     family: Family::Qmc,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "one point per cell of `2^a x 3^b` at `N = 2^a 3^b`; 1000 dims",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
@@ -197,6 +151,7 @@ pub(crate) const HALTON: Entry = Entry {
             d => Built::nd(HaltonNd::new(d, p.sampler_seed())?),
         })
     },
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `lattice`.
@@ -206,13 +161,8 @@ pub(crate) const LATTICE: Entry = Entry {
     paper: "Cools, Kuo, Nuyens 2006",
     family: Family::Qmc,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "a rank-1 lattice at every `2^m` (1D strata in every dimension)",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
@@ -220,6 +170,7 @@ pub(crate) const LATTICE: Entry = Entry {
             d => Built::nd(LatticeNd::new(d, p.sampler_seed())?),
         })
     },
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `fibonacci`.
@@ -228,16 +179,10 @@ pub(crate) const FIBONACCI: Entry = Entry {
     description: "Fibonacci lattice, N = F_k points with z = (1, F_(k-1)), toroidally shifted",
     paper: "Niederreiter 1992",
     family: Family::Qmc,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Fibonacci,
-    parameters: &[],
     promise: "a rank-1 lattice: 1D strata in x and y",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
     build: |p| Ok(Built::two(Fibonacci::new(p.count, p.sampler_seed())?)),
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `sobol`.
@@ -247,13 +192,9 @@ pub(crate) const SOBOL: Entry = Entry {
     paper: "Sobol' 1967; Joe, Kuo 2008; Burley 2020",
     family: Family::Qmc,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "(0,m,2)-nets in dims 0-1 at every `2^m`; up to 1000 dims",
     rates: Rates::NETS,
-    expensive: false,
-    blue_noise: None,
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
@@ -261,6 +202,7 @@ pub(crate) const SOBOL: Entry = Entry {
             d => Built::nd(SobolNd::new(d, p.sampler_seed())?),
         })
     },
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `sobol12`.
@@ -271,14 +213,10 @@ pub(crate) const SOBOL12: Entry = Entry {
     paper: "Bonneel, Coeurjolly, Iehl, Ostromoukhov 2025; Burley 2020",
     family: Family::Qmc,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "(0,m,2)-nets in dims 0-1, (1,m,2)-nets in dims 2k, 2k+1 at every `2^m`; up to 692 \
               dims",
     rates: Rates::NETS,
-    expensive: false,
-    blue_noise: None,
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
@@ -286,6 +224,7 @@ pub(crate) const SOBOL12: Entry = Entry {
             d => Built::nd(SobolNd::one_two(d, p.sampler_seed())?),
         })
     },
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `faure4`.
@@ -296,13 +235,9 @@ pub(crate) const FAURE4: Entry = Entry {
     paper: "Faure 1982; Burley 2020",
     family: Family::Qmc,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "(0,k,4)-nets in base 4 at every `4^k`; dims 0-1 and 2-3 (0,m,2)-nets at `2^m`",
     rates: Rates::NETS,
-    expensive: false,
-    blue_noise: None,
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
@@ -310,6 +245,7 @@ pub(crate) const FAURE4: Entry = Entry {
             d => Built::nd(SobolNd::faure4(d, p.sampler_seed())?),
         })
     },
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `pmj02-stochastic`.
@@ -319,13 +255,9 @@ pub(crate) const PMJ02_STOCHASTIC: Entry = Entry {
     paper: "Helmer, Christensen, Kensler 2021",
     family: Family::Pmj,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "as `pmj02`, O(1) per sample, stratified classes",
     rates: Rates::NETS,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
     build: |p| Ok(Built::two(Pmj02Stochastic::new(p.sampler_seed()))),
+    ..Entry::DEFAULT
 };

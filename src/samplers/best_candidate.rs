@@ -9,13 +9,12 @@
 
 use rand_pcg::Pcg32;
 
-use super::poisson::uniform;
-use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
+use crate::Result;
+use crate::counts::CountRule;
+use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec};
 use crate::grid::TorusGrid;
-use strata::Result;
-use strata::counts::CountRule;
+use crate::rng::{pcg, streams, uniform};
 use strata::float::unit_f32_from_f64;
-use strata::hash::stream_seed;
 use strata::samplers::Epochs;
 use strata::{Point2, Progression, Sampler, Seed};
 
@@ -45,20 +44,18 @@ pub(crate) const ENTRY: Entry = Entry {
     paper: "Mitchell 1991",
     family: Family::BlueNoise,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
     parameters: &[CANDIDATES],
     promise: "farthest of `k n` candidates",
-    rates: Rates::NONE,
     expensive: true,
     blue_noise: Some(BlueNoise::published(
         "none found (Mitchell 1991 could not be checked here)",
     )),
-    any_dims: false,
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
         Ok(Built::two(BestCandidate::new(k, p.sampler_seed())?))
     },
+    ..Entry::DEFAULT
 };
 
 /// The best-candidate sequence (progressive).
@@ -97,7 +94,7 @@ impl BestCandidate {
 
     /// The candidates' generator of the epoch keyed by `key`.
     fn rng(key: u64) -> Pcg32 {
-        Pcg32::new(stream_seed(key, 9), stream_seed(key, 10))
+        pcg(key, streams::BEST_CANDIDATE)
     }
 
     /// The points generated so far.

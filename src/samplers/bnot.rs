@@ -44,17 +44,15 @@
 //! are distinct); if rounding ever made them equal, the later one is nudged by a tiny hashed
 //! offset rather than failing.
 
-use rand_pcg::Pcg32;
-
-use super::poisson::uniform;
 use super::{SetGenerator, Sets};
-use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
+use crate::counts::CountRule;
+use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec};
 use crate::grid::{relative_radius_max, wrap_unit};
 use crate::power::transport::{TransportOptions, TransportReport, TransportSolver};
 use crate::power::{MIN_MAGNITUDE, check_coincident, find_coincident, validate_sites};
-use strata::counts::CountRule;
-use strata::hash::{mix64, stream_seed};
-use strata::{Error, Result};
+use crate::rng::{pcg, streams, uniform};
+use crate::{Error, Result};
+use strata::hash::mix64;
 
 /// The default cap on the Lloyd steps: high enough that the stopping rule ends the loop (it
 /// takes about 30 steps from uniform random points).
@@ -94,17 +92,13 @@ pub(crate) const ENTRY: Entry = Entry {
     description: "blue noise through optimal transport: Lloyd steps on the periodic power diagram with every cell of area 1/N (at most --iterations K, default 500)",
     paper: "de Goes et al. 2012",
     family: Family::BlueNoise,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Any,
     parameters: &[ITERATIONS],
     promise: "equal-area power cells (blue noise)",
-    rates: Rates::NONE,
     expensive: true,
     blue_noise: Some(BlueNoise::published(
         "none found (de Goes et al. 2012 could not be checked here)",
     )),
-    any_dims: false,
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
         Ok(Built::two(BnotSets::new(
@@ -112,6 +106,7 @@ pub(crate) const ENTRY: Entry = Entry {
             p.sampler_seed(),
         )?))
     },
+    ..Entry::DEFAULT
 };
 
 /// BNOT sets of `count` points.
@@ -162,7 +157,7 @@ impl Bnot {
     ///
     /// [`Error::Unreachable`] if the final capacity solve fails (never seen).
     pub fn optimize(&self, key: u64) -> Result<BnotResult> {
-        let mut rng = Pcg32::new(stream_seed(key, 11), stream_seed(key, 12));
+        let mut rng = pcg(key, streams::BNOT);
         let mut points: Vec<[f64; 2]> = (0..self.count)
             .map(|_| [snap(uniform(&mut rng)), snap(uniform(&mut rng))])
             .collect();

@@ -30,13 +30,12 @@
 
 use rand_pcg::Pcg32;
 
-use super::poisson::{below, uniform};
 use super::{SetGenerator, Sets};
+use crate::counts::CountRule;
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
 use crate::grid::{TorusGrid, torus_distance_squared, wrap_unit};
-use strata::counts::CountRule;
-use strata::hash::stream_seed;
-use strata::{Error, Result};
+use crate::rng::{below, pcg, streams, uniform};
+use crate::{Error, Result};
 
 /// Discrete points per site.
 pub const DEFAULT_CAPACITY: u32 = 256;
@@ -63,8 +62,6 @@ pub(crate) const ENTRY: Entry = Entry {
     description: "capacity-constrained Voronoi tessellation until no swap is left (--capacity C points per site, default 256; --iterations K caps the passes, default 10000)",
     paper: "Balzer, Schlömer, Deussen 2009",
     family: Family::BlueNoise,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Any,
     parameters: &[ITERATIONS, CAPACITY],
     promise: "equal-capacity Voronoi cells (blue noise)",
@@ -77,7 +74,6 @@ pub(crate) const ENTRY: Entry = Entry {
     blue_noise: Some(BlueNoise::published(
         "rho 0.764, mean NN 0.88 at N = 1024 (Balzer, Schlömer, Deussen 2009), as quoted in issue #28; not checked against the paper (this module's docs quote mean NN 0.891)",
     )),
-    any_dims: false,
     build: |p| {
         let (k, c) = (ITERATIONS.read_whole(p), CAPACITY.read_whole(p));
         Ok(Built::two(CcvtSets::new(
@@ -85,6 +81,7 @@ pub(crate) const ENTRY: Entry = Entry {
             p.sampler_seed(),
         )?))
     },
+    ..Entry::DEFAULT
 };
 
 /// `--iterations`: the cap on the passes.
@@ -173,7 +170,7 @@ impl Ccvt {
     /// fine stage starts close to its optimum. `iterations` caps the passes of each stage.
     pub fn optimize(&self, key: u64) -> CcvtResult {
         let (n, m) = (self.count as usize, self.capacity as usize);
-        let mut rng = Pcg32::new(stream_seed(key, 7), stream_seed(key, 8));
+        let mut rng = pcg(key, streams::CCVT);
         let mut sites: Vec<[f64; 2]> = (0..n)
             .map(|_| [uniform(&mut rng), uniform(&mut rng)])
             .collect();

@@ -16,12 +16,12 @@
 use spade::{DelaunayTriangulation, HasPosition, Point2 as SPoint, Triangulation};
 
 use super::{SetGenerator, Sets};
-use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
+use crate::counts::CountRule;
+use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec};
 use crate::grid::{relative_radius_max, wrap_unit as wrap};
-use strata::counts::CountRule;
+use crate::{Error, Result};
 use strata::float::{unit_f64_from_u32, unit_f64_from_u64};
 use strata::hash::{hash_u64, stream_seed};
-use strata::{Error, Result};
 
 /// The stream of the jitter that separates coincident points.
 const JITTER_STREAM: u64 = 0x110d;
@@ -60,17 +60,13 @@ pub(crate) const ENTRY: Entry = Entry {
     description: "Lloyd relaxation on the periodic Voronoi diagram from random points, to convergence (at most --iterations K, default 1000)",
     paper: "Lloyd 1982",
     family: Family::BlueNoise,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Any,
     parameters: &[ITERATIONS],
     promise: "a centroidal Voronoi tessellation (near-hexagonal), converged",
-    rates: Rates::NONE,
     expensive: true,
     blue_noise: Some(BlueNoise::published(
         "not reported (Lloyd 1982 is on quantization; the method predates its use for blue noise)",
     )),
-    any_dims: false,
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
         Ok(Built::two(LloydSets::new(
@@ -78,6 +74,7 @@ pub(crate) const ENTRY: Entry = Entry {
             p.sampler_seed(),
         )?))
     },
+    ..Entry::DEFAULT
 };
 
 #[derive(Clone, Copy, Debug)]
@@ -333,7 +330,7 @@ impl Lloyd {
 
 /// `count` uniform random points for key `key` (the start of the relaxations).
 pub(crate) fn random_start(count: usize, key: u64) -> Vec<[f64; 2]> {
-    let k = stream_seed(key, 5);
+    let k = stream_seed(key, crate::rng::streams::LLOYD_START);
     (0..count as u64)
         .map(|i| {
             [

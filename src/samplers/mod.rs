@@ -1,6 +1,7 @@
 //! The samplers that need `std`, one family per file: the constructed PMJ sequences (pmj,
 //! pmjbn, pmj02, pmj02bn), blue noise (Poisson disk, best candidate, Lloyd, CCVT, BNOT, the
-//! blue-noise (0,m,2)-nets) and orthogonal arrays. The renderer crate's samplers
+//! blue-noise (0,m,2)-nets), orthogonal arrays, and the blue-noise dither masks of the frame
+//! permutation ([`mask`]). The renderer crate's samplers
 //! (`strata::samplers`: the classic ones, Sobol', Halton, the lattices, stochastic pmj02) are
 //! the other half; [`crate::registry`] lists both.
 //!
@@ -23,6 +24,7 @@ pub mod best_candidate;
 pub mod bnot;
 pub mod ccvt;
 pub mod lloyd;
+pub mod mask;
 pub mod net02bn;
 pub mod oa;
 pub mod pmj;
@@ -39,7 +41,7 @@ pub use pmj::{Pmj, Pmj02Bn};
 pub use poisson::{Bridson, BridsonDisk, DartThrowing, PoissonDisk};
 pub use sets::{SetGenerator, Sets};
 
-use strata::{Error, Result};
+use crate::{Error, Result};
 
 /// Validates a point count of a sampler that makes 1 to `max` points.
 pub(crate) fn check_count(sampler: &'static str, count: u64, max: u64) -> Result<()> {

@@ -24,13 +24,14 @@
 //! (`tests/blue_noise.rs`, `docs/results.md`): larger nearest-neighbour distances and a weaker
 //! low-frequency band than `pmj02` or Sobol'.
 
+use crate::counts::CountRule;
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
 use crate::grid::relative_radius_max;
+use crate::rng::streams;
 use crate::samplers::{SetGenerator, Sets};
-use strata::counts::CountRule;
+use crate::{Error, Result};
 use strata::hash::{hash_u64, stream_seed};
 use strata::samplers::sobol;
-use strata::{Error, Result};
 
 /// The kernel width relative to `r_max(N)`.
 pub(crate) const SIGMA: f64 = 0.5;
@@ -63,8 +64,6 @@ pub(crate) const ENTRY: Entry = Entry {
     description: "a (0,m,2)-net of N = 2^m points made blue by net-preserving swaps in the boxes of area 2/N (--sweeps K caps them, default 64)",
     paper: "Ahmed, Wonka 2021",
     family: Family::BlueNoise,
-    progressive: false,
-    seeded: true,
     counts: CountRule::PowerOfTwo,
     parameters: &[SWEEPS],
     promise: "a (0,m,2)-net with blue-noise spacing",
@@ -77,7 +76,6 @@ pub(crate) const ENTRY: Entry = Entry {
     blue_noise: Some(BlueNoise::published(
         "none found (Ahmed and Wonka 2021 could not be checked here)",
     )),
-    any_dims: false,
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
         Ok(Built::two(Net02BnSets::new(
@@ -85,6 +83,7 @@ pub(crate) const ENTRY: Entry = Entry {
             p.sampler_seed(),
         )?))
     },
+    ..Entry::DEFAULT
 };
 
 /// Blue-noise (0,m,2)-nets of `2^m` points.
@@ -131,7 +130,7 @@ impl Net02Bn {
     pub fn optimize(&self, key: u64) -> Optimized {
         let m = self.log2;
         let n = 1usize << m;
-        let seed = stream_seed(key, 0x0602);
+        let seed = stream_seed(key, streams::NET02BN);
         let points: Vec<[f64; 2]> = (0..n as u32)
             .map(|i| {
                 let c = |d| f64::from(sobol::owen_scrambled(i, d, seed).unwrap_or(0.0));
@@ -150,7 +149,10 @@ impl Net02Bn {
                 .flat_map(|a| (0..(n as u32 / 2)).map(move |b| (a << 24) | b))
                 .collect();
             for sweep in 0..self.sweeps {
-                shuffle(&mut boxes, stream_seed(key, 0x0603 + u64::from(sweep)));
+                shuffle(
+                    &mut boxes,
+                    stream_seed(key, streams::NET02BN_SWEEPS + u64::from(sweep)),
+                );
                 let kept = boxes.iter().filter(|&&b| state.try_swap(b)).count() as u32;
                 out.sweeps += 1;
                 out.kept.push(kept);

@@ -23,13 +23,13 @@
 //! permutation of `i / q`, the index without its lowest digit (for fixed high digits the column
 //! is a bijection of the lowest one). Everything is computed sample by sample, as in the paper.
 
-use crate::entry::{Built, Entry, Family, ParameterSpec, Params, Rates};
-use strata::Result;
-use strata::counts::{CountRule, prime_power};
+use crate::counts::{CountRule, prime_power};
+use crate::entry::{Built, Entry, Family, ParameterSpec, Params};
+use crate::{Error, Result};
 use strata::float::Strata;
 use strata::hash::{DivMod, Permutation, hash_u64, hash32, key32, stream_seed};
-use strata::samplers::{Blocks, Fixed, check_dims};
-use strata::{Seed, StrataGrid};
+use strata::samplers::{Blocks, Fixed};
+use strata::{Point2, Seed, StrataGrid};
 
 /// The stream of a block key from which the sub-stratum permutations are keyed.
 const SUBSTRATA_STREAM: u64 = 0x5eed;
@@ -44,20 +44,27 @@ fn symbols(name: &'static str, count: u64, t: u32) -> Result<u32> {
         .expect("n = q^t for some q >= 2"))
 }
 
+/// Checks an array's columns: `dims` from 1 to `max`, `why` the limit.
+fn check_dims(name: &'static str, dims: u32, max: u32, why: &str) -> Result<()> {
+    if dims == 0 || dims > max {
+        return Err(Error::parameter(
+            name,
+            "dims",
+            dims,
+            format!("1 to {max} ({why})"),
+        ));
+    }
+    Ok(())
+}
+
 /// The registry entry of `oa-bose`.
 pub(crate) const BOSE: Entry = Entry {
     name: "oa-bose",
     description: "orthogonal array, strength 2 (N = q^2, up to q+1 dims), multi-jittered",
     paper: "Jarosz et al. 2019",
     family: Family::Multidim,
-    progressive: false,
-    seeded: true,
     counts: CountRule::OaPower(2),
-    parameters: &[],
     promise: "every 2D projection on `q x q`, every 1D into `N`",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
@@ -65,6 +72,7 @@ pub(crate) const BOSE: Entry = Entry {
             d => Built::nd(Bose::new(p.count, d, p.sampler_seed())?),
         })
     },
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `oa-bush`.
@@ -73,14 +81,9 @@ pub(crate) const BUSH: Entry = Entry {
     description: "orthogonal array, strength T (--strength T; N = q^T, up to q dims), multi-jittered",
     paper: "Jarosz et al. 2019",
     family: Family::Multidim,
-    progressive: false,
-    seeded: true,
     counts: CountRule::OaPower(3),
     parameters: &[STRENGTH],
     promise: "every t-D projection on `q^t`, every 1D into `N`",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
@@ -88,6 +91,7 @@ pub(crate) const BUSH: Entry = Entry {
             d => Built::nd(bush(p, d)?),
         })
     },
+    ..Entry::DEFAULT
 };
 
 /// The Bush array the registry builds: strength from the parameters (default 3).
@@ -105,7 +109,7 @@ const STRENGTH: ParameterSpec = ParameterSpec::whole(
     "the array's strength t: every t-dimensional projection is stratified on q^t cells",
 );
 
-pub use strata::counts::MAX_PRIME_POWER;
+pub use crate::counts::MAX_PRIME_POWER;
 
 /// A finite field `GF(q)`: arithmetic modulo a prime, or tables for a prime power.
 #[derive(Clone, Debug)]
@@ -250,10 +254,10 @@ impl Bose {
             BOSE.name,
             dims,
             q + 1,
-            " (a Bose array has at most q + 1 columns)",
+            "a Bose array has at most q + 1 columns",
         )?;
         let field = Field::new(q).expect("checked");
-        Fixed::new(
+        Ok(Fixed::new(
             Bose {
                 field,
                 q: DivMod::new(q).expect("q >= 2"),
@@ -263,7 +267,7 @@ impl Bose {
                 key: 0,
             },
             seed,
-        )
+        )?)
     }
 
     /// Samples per set.
@@ -310,6 +314,12 @@ impl Blocks for Bose {
         );
     }
 
+    fn point(&self, i: u32) -> Point2 {
+        let mut p = [0.0f32; 2];
+        self.point_into(i, &mut p);
+        p
+    }
+
     fn point_into(&self, i: u32, out: &mut [f32]) {
         let q = self.q.divisor();
         let (a1, a0) = self.q.div_rem(i);
@@ -346,8 +356,8 @@ impl Bush {
     pub fn new(count: u64, strength: u32, dims: u32, seed: Seed) -> Result<Fixed<Self>> {
         STRENGTH.check(BUSH.name, strength as f64)?;
         let q = symbols(BUSH.name, count, strength)?;
-        check_dims(BUSH.name, dims, q, " (a Bush array has at most q columns)")?;
-        Fixed::new(
+        check_dims(BUSH.name, dims, q, "a Bush array has at most q columns")?;
+        Ok(Fixed::new(
             Bush {
                 field: Field::new(q).expect("checked"),
                 q: DivMod::new(q).expect("q >= 2"),
@@ -359,7 +369,7 @@ impl Bush {
                 key: 0,
             },
             seed,
-        )
+        )?)
     }
 
     /// Samples per set.
@@ -399,6 +409,12 @@ impl Blocks for Bush {
                 Permutation::new(sub_count, kb).expect("q^(t-1) >= 1"),
             )
         }));
+    }
+
+    fn point(&self, i: u32) -> Point2 {
+        let mut p = [0.0f32; 2];
+        self.point_into(i, &mut p);
+        p
     }
 
     fn point_into(&self, i: u32, out: &mut [f32]) {

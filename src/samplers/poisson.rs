@@ -23,16 +23,14 @@
 //! points (weighted sample elimination, Yuksel 2015; a random subset would add white noise at
 //! low frequencies) and a smaller one is completed by dart throwing. Both keep the radius.
 
-use rand::Rng;
 use rand_pcg::Pcg32;
 
 use super::{SetGenerator, Sets};
+use crate::counts::CountRule;
 use crate::entry::{BlueNoise, Bound, Built, Entry, Family, ParameterSpec, Rates};
 use crate::grid::{DiskGrid, relative_radius_max, torus_distance_squared, wrap_unit as wrap};
-use strata::counts::CountRule;
-use strata::float::unit_f64_from_u64;
-use strata::hash::stream_seed;
-use strata::{Error, Result};
+use crate::rng::{below, pcg, streams, uniform};
+use crate::{Error, Result};
 
 /// The default relative radius.
 pub const DEFAULT_RHO: f64 = 0.7;
@@ -70,17 +68,13 @@ pub(crate) const POISSON: Entry = Entry {
     description: "Poisson disk by dart throwing to exactly N points (--radius RHO, default 0.7)",
     paper: "Cook 1986; Ebeida et al. 2011",
     family: Family::BlueNoise,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Any,
     parameters: &[DART_RADIUS],
     promise: "exactly `N` points at least `rho r_max(N)` apart",
     rates: POISSON_RATES,
-    expensive: false,
     blue_noise: Some(BlueNoise::published(
         "rho about 0.75-0.76, the largest dart throwing reaches (Lagae and Dutré 2008), as quoted in issue #28; not checked against the paper",
     )),
-    any_dims: false,
     build: |p| {
         let rho = DART_RADIUS.read(p);
         Ok(Built::two(PoissonDisk::new(
@@ -88,6 +82,7 @@ pub(crate) const POISSON: Entry = Entry {
             p.sampler_seed(),
         )?))
     },
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `bridson`.
@@ -96,20 +91,17 @@ pub(crate) const BRIDSON: Entry = Entry {
     description: "Poisson disk by Bridson's algorithm, periodic, N points (--radius RHO, default 0.7)",
     paper: "Bridson 2007",
     family: Family::BlueNoise,
-    progressive: false,
-    seeded: true,
     counts: CountRule::Any,
     parameters: &[BRIDSON_RADIUS, ATTEMPTS],
     promise: "exactly `N` points at least `rho r_max(N)` apart",
     rates: POISSON_RATES,
-    expensive: false,
     blue_noise: Some(BlueNoise::NOT_REPORTED),
-    any_dims: false,
     build: |p| {
         let rho = BRIDSON_RADIUS.read(p);
         let bridson = Bridson::new(p.count, rho)?.with_attempts(ATTEMPTS.read_whole(p));
         Ok(Built::two(BridsonDisk::new(bridson, p.sampler_seed())?))
     },
+    ..Entry::DEFAULT
 };
 
 /// The largest relative radius dart throwing accepts (random sequential adsorption jams near
@@ -137,16 +129,6 @@ const ATTEMPTS: ParameterSpec = ParameterSpec::whole(
 /// Slack added to the radius so that the guarantee survives rounding coordinates to `f32`
 /// (each coordinate moves by less than `2^-24`).
 const F32_SLACK: f64 = 1.0 / (1u64 << 22) as f64;
-
-/// A uniform `f64` in `[0, 1)` from the generator.
-pub(crate) fn uniform(rng: &mut Pcg32) -> f64 {
-    unit_f64_from_u64(rng.next_u64())
-}
-
-/// A uniform index in `[0, len)`.
-pub(crate) fn below(rng: &mut Pcg32, len: usize) -> usize {
-    ((rng.next_u32() as u64 * len as u64) >> 32) as usize
-}
 
 /// Validates the count and the relative radius (by its declaration) of a Poisson-disk sampler.
 fn check(name: &'static str, count: u64, rho: f64, radius: &ParameterSpec) -> Result<u32> {
@@ -184,7 +166,7 @@ impl SetGenerator for DartThrowing {
 
     fn generate(&self, key: u64) -> Result<Vec<[f64; 2]>> {
         let r = self.radius() + F32_SLACK;
-        let mut rng = Pcg32::new(stream_seed(key, 1), stream_seed(key, 2));
+        let mut rng = pcg(key, streams::DART_THROWING);
         if DiskGrid::new(r, MAX_GRID_CELLS).is_none() {
             // A radius so small that one cell per r / sqrt 2 would not fit: the disks cover
             // almost nothing, so plain darts checked on the general neighbour grid suffice.
@@ -363,7 +345,7 @@ impl Bridson {
 ///
 /// Returns an error when `r` is so small that the grid would exceed `2^26` cells.
 pub fn bridson(r: f64, key: u64) -> Result<Vec<[f64; 2]>> {
-    let mut rng = Pcg32::new(stream_seed(key, 3), stream_seed(key, 4));
+    let mut rng = pcg(key, streams::BRIDSON);
     let mut grid = disk_grid(BRIDSON.name, r)?;
     let mut points = Vec::new();
     grow_bridson(&mut points, &mut grid, r, BRIDSON_CANDIDATES, &mut rng);
@@ -422,7 +404,7 @@ impl SetGenerator for Bridson {
     fn generate(&self, key: u64) -> Result<Vec<[f64; 2]>> {
         let n = self.count as usize;
         let r = self.radius() + F32_SLACK;
-        let mut rng = Pcg32::new(stream_seed(key, 3), stream_seed(key, 4));
+        let mut rng = pcg(key, streams::BRIDSON);
         let mut grid = disk_grid(BRIDSON.name, r)?;
         let mut points = Vec::new();
         grow_bridson(&mut points, &mut grid, r, self.attempts, &mut rng);
@@ -550,7 +532,7 @@ mod tests {
                 .with_attempts(k);
             let r = b.radius() + F32_SLACK;
             let mut grid = disk_grid(BRIDSON.name, r).unwrap();
-            let mut rng = Pcg32::new(stream_seed(4, 3), stream_seed(4, 4));
+            let mut rng = pcg(4, streams::BRIDSON);
             let mut points = Vec::new();
             grow_bridson(&mut points, &mut grid, r, k, &mut rng);
             points.len()

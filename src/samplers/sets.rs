@@ -2,10 +2,11 @@
 //! [`SetGenerator`] makes the set of a key, and [`Sets`] streams one set per block of the
 //! renderer crate's [`Blocks`] machinery.
 
+use crate::Result;
 use strata::float::unit_f32_from_f64;
 use strata::hash::stream_seed;
 use strata::samplers::{Blocks, Fixed};
-use strata::{Point2, Result, Seed};
+use strata::{Point2, Seed};
 
 /// A generator of whole point sets (Poisson disk, relaxation): each set is built at once from a
 /// key, and [`Sets`] streams one set per block.
@@ -39,7 +40,7 @@ impl<G: SetGenerator> Sets<G> {
         // the key of block 0, as `Fixed` derives it
         let first_key = stream_seed(seed.0, 0);
         let first = to_points(&generator.generate(first_key)?);
-        Fixed::new(
+        Ok(Fixed::new(
             Sets {
                 generator,
                 first_key,
@@ -47,7 +48,7 @@ impl<G: SetGenerator> Sets<G> {
                 first,
             },
             seed,
-        )
+        )?)
     }
 
     /// The set of the current block.

@@ -20,7 +20,7 @@
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex64;
 
-use strata::{Error, Result};
+use crate::{Error, Result};
 
 /// The radius of the low band, in cycles per pixel.
 pub const LOW_BAND: f64 = 1.0 / 8.0;
@@ -64,7 +64,7 @@ pub struct ErrorImage {
 /// let m = error_image(&e, w as u32, h as u32)?;
 /// assert!((m.lowband - 0.049).abs() < 0.02);
 /// assert!(m.blur2_rmse < 0.3 * m.rmse);
-/// # Ok::<(), strata::Error>(())
+/// # Ok::<(), strata_lab::Error>(())
 /// ```
 pub fn error_image(errors: &[f64], width: u32, height: u32) -> Result<ErrorImage> {
     check(errors, width, height, "spectrum::error_image")?;
@@ -101,7 +101,7 @@ pub fn error_image(errors: &[f64], width: u32, height: u32) -> Result<ErrorImage
 /// let b = error_image_masked(&e, &keep, w, h)?;
 /// assert_eq!(a, b);
 /// assert!(error_image(&e, w, h)?.rmse > 1e4);
-/// # Ok::<(), strata::Error>(())
+/// # Ok::<(), strata_lab::Error>(())
 /// ```
 pub fn error_image_masked(
     errors: &[f64],

@@ -26,8 +26,8 @@ use super::check_points;
 use rayon::prelude::*;
 
 use crate::grid::{TorusGrid, relative_radius_max, torus_distance_squared};
+use crate::{Error, Result};
 use strata::Point2;
-use strata::{Error, Result};
 
 /// The largest point count per set for which [`point_set_measures`] computes the spectral
 /// measures (the pair counting is quadratic).
@@ -204,7 +204,7 @@ impl<'a> KdTree<'a> {
 /// assert!((m.global_min_distance.unwrap() - expected).abs() < 1e-6);
 /// let nu = m.effective_nyquist.unwrap();
 /// assert!(nu > 0.75 && nu <= 1.0);
-/// # Ok::<(), strata::Error>(())
+/// # Ok::<(), strata_lab::Error>(())
 /// ```
 pub fn point_set_measures(sets: &[Vec<Point2>]) -> Result<PointSetMeasures> {
     let Some(first) = sets.first() else {

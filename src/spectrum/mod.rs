@@ -43,8 +43,8 @@ pub use measures::{PointSetMeasures, nearest_neighbour_distances, point_set_meas
 
 use rayon::prelude::*;
 
+use crate::{Error, Result};
 use strata::Point2;
-use strata::{Error, Result};
 
 /// The largest resolution `K` accepted (the fast path's grid then needs about 300 MB).
 pub const MAX_RESOLUTION: u32 = 2048;
@@ -243,7 +243,7 @@ pub fn periodogram_direct(points: &[Point2], resolution: u32) -> Result<Spectrum
 /// let s = periodogram(&pts, 8)?;
 /// assert!((s.get(0, 0).unwrap() - 2.0).abs() < 1e-9); // DC = N
 /// assert!(s.get(1, 0).unwrap() < 1e-9); // the two points cancel at u = 1
-/// # Ok::<(), strata::Error>(())
+/// # Ok::<(), strata_lab::Error>(())
 /// ```
 pub fn periodogram(points: &[Point2], resolution: u32) -> Result<Spectrum> {
     check_resolution(resolution)?;

@@ -107,15 +107,23 @@ pub const fn hash_u64(key: u64, index: u64) -> u64 {
     (r as u64) ^ ((r >> 64) as u64)
 }
 
+/// The two multipliers of Wellons' `lowbias32` (`x ^= x >> 16; x *= M[0]; x ^= x >> 15;
+/// x *= M[1]; x ^= x >> 16`), the one home of the constants: [`hash32`] and the pixel kernel's
+/// lanes read them (the WGSL port spells them again; the GPU test compares the two).
+pub(crate) const LOWBIAS32: [u32; 2] = [0x7feb_352d, 0x846c_a68b];
+
+/// The high 32 bits of [`GOLDEN_GAMMA`] (`2^32 / phi`, odd), for 32-bit salts and multipliers.
+pub(crate) const GOLDEN_GAMMA_32: u32 = (GOLDEN_GAMMA >> 32) as u32;
+
 /// A bijective 32-bit hash of `x` under `key` (Wellons' "lowbias32" on `x ^ key`), for deriving
 /// per-row or per-column permutation keys cheaply.
 #[inline]
 pub const fn hash32(x: u32, key: u32) -> u32 {
     let mut x = x ^ key;
     x ^= x >> 16;
-    x = x.wrapping_mul(0x7feb_352d);
+    x = x.wrapping_mul(LOWBIAS32[0]);
     x ^= x >> 15;
-    x = x.wrapping_mul(0x846c_a68b);
+    x = x.wrapping_mul(LOWBIAS32[1]);
     x ^ (x >> 16)
 }
 

@@ -10,7 +10,7 @@
 
 use rand::Rng;
 use rand_pcg::Pcg32 as Pcg;
-use strata::Error;
+use strata_lab::Error;
 use strata_lab::power::PowerDiagram;
 use strata_lab::registry::{self, Params};
 use strata_lab::samplers::bnot::{self, Bnot, MAX_BNOT_COUNT, MAX_ITERATIONS};
@@ -644,7 +644,7 @@ fn power_nearest_is_the_brute_force_assignment() {
     }
     assert!(matches!(
         d.power_nearest([f64::NAN, 0.5]),
-        Err(Error::InvalidInput { .. })
+        Err(Error::Strata(strata::Error::InvalidInput { .. }))
     ));
 }
 
@@ -664,7 +664,7 @@ fn areas_sum_to_one() {
 #[test]
 fn bad_input_is_an_error_that_says_why() {
     let message = |e: Error| match e {
-        Error::InvalidInput { message, .. } => message,
+        Error::Strata(strata::Error::InvalidInput { message, .. }) => message,
         other => panic!("not an input error: {other:?}"),
     };
     let ok = [[0.1, 0.2], [0.3, 0.4]];
@@ -867,12 +867,18 @@ fn clustered_and_nearly_coincident_starts_are_handled() {
 fn bad_counts_parameters_and_starts_are_errors() {
     for n in [0, MAX_BNOT_COUNT + 1, u64::MAX] {
         let e = Bnot::new(n, 10).unwrap_err();
-        assert!(matches!(e, Error::InvalidCount { .. }), "{e:?}");
+        assert!(
+            matches!(e, Error::Strata(strata::Error::InvalidCount { .. })),
+            "{e:?}"
+        );
         assert!(e.to_string().contains("between 1 and 65536"), "{e}");
         assert!(registry::build("bnot", &Params::new(n)).is_err());
     }
     let e = Bnot::new(16, MAX_ITERATIONS + 1).unwrap_err();
-    assert!(matches!(e, Error::InvalidParameter { .. }), "{e:?}");
+    assert!(
+        matches!(e, Error::Strata(strata::Error::InvalidParameter { .. })),
+        "{e:?}"
+    );
     assert!(e.to_string().contains("0 to 10000"), "{e}");
     let mut p = Params::new(16);
     p.set("iterations", (u32::MAX) as f64);

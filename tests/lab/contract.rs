@@ -2,9 +2,10 @@
 //! Kensler's permute, and the registry's errors.
 
 use crate::common::take;
+use strata::Sampler;
 use strata::float::{ONE_MINUS_EPSILON, f32_in_stratum, unit_f32_from_f64, unit_f32_from_u32};
 use strata::hash::{Permutation, permute};
-use strata::{Error, Sampler};
+use strata_lab::Error;
 use strata_lab::registry::{self, Params};
 
 #[test]

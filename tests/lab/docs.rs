@@ -62,6 +62,33 @@ fn the_sampler_tables_are_the_registry() {
 }
 
 #[test]
+fn the_renderer_crate_s_built_in_mask_is_the_lab_s_void_and_cluster() {
+    use strata::pixel::frames::BlueNoiseMask;
+    use strata_lab::samplers::mask::{BUILTIN_SEED, BUILTIN_SIDE, rust_table, void_and_cluster};
+    // the table's file as the `mask` program writes it (`STRATA_BLESS=1` or the program)
+    let file = "strata/src/pixel/frames/blue_noise_64.rs";
+    let table = rust_table(BUILTIN_SIDE, BUILTIN_SEED).unwrap();
+    if std::env::var_os("STRATA_BLESS").is_some() {
+        std::fs::write(Path::new(env!("CARGO_MANIFEST_DIR")).join(file), &table).unwrap();
+    }
+    assert_eq!(
+        read(file),
+        table,
+        "{file} is stale (cargo run --release --example mask)"
+    );
+    // and the values the renderer's crate reads from it
+    let (mask, ranks) = (
+        BlueNoiseMask::builtin(),
+        void_and_cluster(BUILTIN_SIDE, BUILTIN_SEED).unwrap(),
+    );
+    assert_eq!(mask.side(), BUILTIN_SIDE);
+    for (i, &r) in ranks.iter().enumerate() {
+        let (x, y) = (i as u32 % BUILTIN_SIDE, i as u32 / BUILTIN_SIDE);
+        assert_eq!(mask.rank([x, y]), r as u32, "pixel ({x}, {y})");
+    }
+}
+
+#[test]
 fn the_sequence_tables_are_the_declarations() {
     // the crate docs include strata/docs/sequences.md (its own test keeps it); the programs'
     // contract and the README show the same table
@@ -210,8 +237,8 @@ fn the_entry_types_are_a_leaf_below_the_samplers_and_the_registry_is_above_them(
     // The import circle this breaks: the registry imports every sampler's ENTRY, and every
     // sampler imported the entry types from the registry. Now the entry types (src/entry.rs)
     // import no sampler and not the registry, neither directly nor through the modules they
-    // import (only the renderer crate, `strata`, which knows nothing of the lab), and no
-    // sampler imports the registry.
+    // import (the error type and the count rules, and the renderer crate, `strata`, which
+    // knows nothing of the lab), and no sampler imports the registry.
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     // the crate root's re-exports of single items: `pub use module::{A, B};`
     let lib = read("src/lib.rs");
@@ -251,7 +278,11 @@ fn the_entry_types_are_a_leaf_below_the_samplers_and_the_registry_is_above_them(
              types must stay a leaf below the samplers"
         );
     }
-    assert_eq!(reached.len(), 1, "{reached:?}");
+    // below it only the error type and the count rules, leaves themselves
+    assert_eq!(
+        reached.iter().map(String::as_str).collect::<Vec<_>>(),
+        ["counts", "entry", "error"]
+    );
     assert!(read("src/entry.rs").contains("use strata::"));
     // no sampler imports the registry (they name the entry types as crate::entry)
     let mut stack = vec![root.join("samplers")];
@@ -282,6 +313,52 @@ fn the_entry_types_are_a_leaf_below_the_samplers_and_the_registry_is_above_them(
         registry.contains("samplers") && registry.contains("entry"),
         "{registry:?}"
     );
+}
+
+#[test]
+fn no_two_sibling_modules_import_each_other() {
+    // within each directory of the lab's sources, the modules that a file reaches through
+    // `super::NAME` outside comments; no two siblings may reach each other (an import circle:
+    // `analysis/fit.rs` once took a constant from `analysis/study.rs`, which imports it)
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut stack = vec![root];
+    let mut checked = 0;
+    while let Some(dir) = stack.pop() {
+        let mut uses: std::collections::BTreeMap<String, std::collections::BTreeSet<String>> =
+            Default::default();
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            let Some(name) = path.file_stem().and_then(|n| n.to_str()) else {
+                continue;
+            };
+            let text = std::fs::read_to_string(&path).unwrap();
+            let code = text.lines().filter(|l| !l.trim_start().starts_with("//"));
+            let reached = code
+                .flat_map(|l| l.match_indices("super::").map(move |(i, _)| &l[i + 7..]))
+                .filter_map(|rest| {
+                    let n: String = rest
+                        .chars()
+                        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                        .collect();
+                    (!n.is_empty()).then_some(n)
+                })
+                .collect();
+            uses.insert(name.to_string(), reached);
+        }
+        for (a, reached) in &uses {
+            for b in reached {
+                if a != b && uses.get(b).is_some_and(|r| r.contains(a)) {
+                    panic!("{}: {a} and {b} import each other", dir.display());
+                }
+            }
+        }
+        checked += uses.len();
+    }
+    assert!(checked > 40, "{checked} files");
 }
 
 #[test]

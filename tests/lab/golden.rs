@@ -86,9 +86,23 @@ fn sampler_digests() -> Vec<(String, u64)> {
     })
 }
 
+/// The digests of the blue-noise masks the lab makes (seed 1; the renderer crate pinned the
+/// same digests while the fill was its own).
+fn mask_digests() -> Vec<(String, u64)> {
+    [4u32, 16, 64]
+        .map(|side| {
+            let mut d = Digest::default();
+            let ranks = strata_lab::samplers::mask::void_and_cluster(side, 1).unwrap();
+            ranks.iter().for_each(|&r| d.push(r as u32));
+            (format!("mask void_and_cluster {side}"), d.0)
+        })
+        .into()
+}
+
 #[test]
 fn every_sampler_gives_its_pinned_values() {
-    let digests = sampler_digests();
+    let mut digests = sampler_digests();
+    digests.extend(mask_digests());
     let text: String = digests
         .iter()
         .map(|(name, d)| format!("{d:016x} {name}\n"))

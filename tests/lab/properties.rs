@@ -101,7 +101,7 @@ proptest! {
         if set_params[1] { p.set("iterations", (iterations.min(if entry.expensive { 20 } else { u32::MAX })) as f64); }
         if set_params[2] { p.set("strength", (strength) as f64); }
         if set_params[3] { p.set("candidates", (candidates.min(if n > 1000 { 4 } else { u32::MAX })) as f64); }
-        let hint = |e: &strata::Error| {
+        let hint = |e: &strata_lab::Error| {
             let m = e.to_string();
             ["allowed", "must", "between", " to ", "nearest", "at most", "takes", "samplers that do", "saturated", "too small", "known"]
                 .iter()

@@ -175,7 +175,7 @@ fn expected_spectrum_is_bit_identical_for_any_thread_count() {
 #[test]
 fn bad_input_gives_clear_errors() {
     let ok = vec![[0.5, 0.5]];
-    let msg = |r: Result<Spectrum, strata::Error>| r.expect_err("must fail").to_string();
+    let msg = |r: Result<Spectrum, strata_lab::Error>| r.expect_err("must fail").to_string();
     assert!(msg(periodogram(&[], 8)).contains("empty"));
     assert!(msg(periodogram(&[[f32::NAN, 0.1]], 8)).contains("[0, 1)"));
     assert!(msg(periodogram(&[[1.0, 0.1]], 8)).contains("[0, 1)"));

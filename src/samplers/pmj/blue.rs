@@ -45,10 +45,11 @@
 //! counts above [`MAX_OPTIMIZED_LOG2`] are optimised up to `2^16`; each sample is then computed
 //! from the flags in `O(m)` and one hash.
 
+use crate::Result;
+use crate::counts::CountRule;
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
 use crate::grid::relative_radius_max;
-use strata::Result;
-use strata::counts::CountRule;
+use crate::rng::streams;
 use strata::float::unit_f32_from_u32;
 use strata::hash::{hash_u64, stream_seed};
 use strata::samplers::MAX_SEQUENCE_LEN;
@@ -92,20 +93,18 @@ pub(crate) const ENTRY: Entry = Entry {
     paper: "Christensen et al. 2018; Doignies et al. 2024",
     family: Family::Pmj,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
     parameters: &[SWEEPS],
     promise: "(0,m,2)-net at every `2^m` prefix and aligned block, blue noise up to `N`",
     rates: Rates::NETS,
-    expensive: false,
     blue_noise: Some(BlueNoise::published(
         "none found (Christensen et al. 2018 could not be checked here)",
     )),
-    any_dims: false,
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
         Ok(Built::two(Pmj02Bn::new(p.count, k, p.sampler_seed())?))
     },
+    ..Entry::DEFAULT
 };
 
 /// The scrambling flags of both coordinates: explicit up to a depth, hashed below it (the
@@ -123,7 +122,7 @@ struct Flags {
 impl Flags {
     /// Random flags (each a hash of the key, the depth and the node), stored to `depth`.
     fn random(key: u64, depth: u32) -> Self {
-        let keys = [stream_seed(key, 0x0b10), stream_seed(key, 0x0b11)];
+        let keys = streams::PMJBN.map(|s| stream_seed(key, s));
         let len = (1usize << depth).div_ceil(64);
         let mut bits = [vec![0u64; len], vec![0u64; len]];
         for (ax, b) in bits.iter_mut().enumerate() {
@@ -136,7 +135,7 @@ impl Flags {
                 }
             }
         }
-        let deep = [0x0b12, 0x0b13].map(|k| stream_seed(key, k) as u32);
+        let deep = streams::PMJBN_DEEP.map(|s| stream_seed(key, s) as u32);
         Flags { depth, bits, deep }
     }
 
@@ -176,7 +175,7 @@ impl Flags {
 ///     cells[(p[1] * 4.0) as usize * 4 + (p[0] * 4.0) as usize] += 1;
 /// }
 /// assert!(cells.iter().all(|&c| c == 1));
-/// # Ok::<(), strata::Error>(())
+/// # Ok::<(), strata_lab::Error>(())
 /// ```
 #[derive(Clone, Debug)]
 pub struct Pmj02Bn {

@@ -5,6 +5,7 @@ use rand_pcg::Pcg32;
 
 use crate::grid::{TorusGrid, torus_distance_squared};
 use crate::occupancy::{ElementaryIntervals, Strata1D, top_bits};
+use crate::rng::streams;
 use strata::float::unit_f64_from_u32;
 use strata::hash::{hash_u64, stream_seed};
 use strata::morton::{morton, unmorton};
@@ -73,8 +74,8 @@ impl Construction {
     pub(crate) fn new(variant: Variant, key: u64) -> Self {
         Construction {
             variant,
-            rng: Pcg32::new(stream_seed(key, 1), stream_seed(key, 2)),
-            candidate_key: stream_seed(key, 3),
+            rng: crate::rng::pcg(key, streams::PMJ),
+            candidate_key: stream_seed(key, streams::PMJ_CANDIDATES),
             intervals: ElementaryIntervals::default(),
             strata: Strata1D::default(),
             grid: (variant.candidates() > 1).then(|| TorusGrid::new(1)),

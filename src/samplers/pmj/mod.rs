@@ -45,11 +45,12 @@ mod construct;
 pub use blue::Pmj02Bn;
 use construct::{Construction, Variant};
 
+use crate::counts::CountRule;
 use crate::entry::{BlueNoise, Built, Entry, Family, ParameterSpec, Rates};
-use strata::counts::CountRule;
+use crate::{Error, Result};
 use strata::float::unit_f32_from_u32;
 use strata::samplers::{Epochs, MAX_SEQUENCE_LEN};
-use strata::{Error, Point2, Progression, Result, Sampler, Seed, StrataGrid};
+use strata::{Point2, Progression, Sampler, Seed, StrataGrid};
 
 /// The default number of best-candidate candidates (as in pmj-cpp and Helmer's code).
 pub const DEFAULT_CANDIDATES: u32 = 100;
@@ -73,15 +74,10 @@ pub(crate) const PMJ: Entry = Entry {
     paper: "Christensen, Kensler, Kilpatrick 2018",
     family: Family::Pmj,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "1D strata and squarest grid at every `2^m` prefix",
-    rates: Rates::NONE,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
     build: |p| Ok(Built::two(Pmj::new(p.sampler_seed()))),
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `pmjbn`.
@@ -91,20 +87,17 @@ pub(crate) const PMJBN: Entry = Entry {
     paper: "Christensen et al. 2018; Mitchell 1991",
     family: Family::Pmj,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
     parameters: &[CANDIDATES],
     promise: "`pmj` + best-candidate blue noise",
-    rates: Rates::NONE,
-    expensive: false,
     blue_noise: Some(BlueNoise::published(
         "none found (Christensen et al. 2018 could not be checked here)",
     )),
-    any_dims: false,
     build: |p| {
         let k = CANDIDATES.read_whole(p);
         Ok(Built::two(Pmj::pmjbn(k, p.sampler_seed())?))
     },
+    ..Entry::DEFAULT
 };
 
 /// The registry entry of `pmj02`.
@@ -114,15 +107,11 @@ pub(crate) const PMJ02: Entry = Entry {
     paper: "Christensen et al. 2018; Pharr 2019",
     family: Family::Pmj,
     progressive: true,
-    seeded: true,
     counts: CountRule::Any,
-    parameters: &[],
     promise: "(0,m,2)-net at every `2^m` prefix and aligned block",
     rates: Rates::NETS,
-    expensive: false,
-    blue_noise: None,
-    any_dims: false,
     build: |p| Ok(Built::two(Pmj::pmj02(p.sampler_seed()))),
+    ..Entry::DEFAULT
 };
 
 /// The 4-class label of sample `index`: the XOR of its base-4 digits.

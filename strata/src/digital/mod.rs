@@ -780,7 +780,7 @@ mod tests {
         let mut h = 0u64;
         for m in &SOBOL {
             for &c in m {
-                h = crate::hash::mix64(h ^ c as u64).wrapping_add(0x9e37_79b9_7f4a_7c15);
+                h = crate::hash::mix64(h ^ c as u64).wrapping_add(crate::hash::GOLDEN_GAMMA);
             }
         }
         assert_eq!(h, 0x54dc_7872_6bd6_acca);
@@ -789,7 +789,7 @@ mod tests {
         for (d, m) in SOBOL.iter().enumerate() {
             for (k, &c) in m.iter().enumerate() {
                 let c = if (d, k) == (999, 31) { c ^ 1 } else { c };
-                g = crate::hash::mix64(g ^ c as u64).wrapping_add(0x9e37_79b9_7f4a_7c15);
+                g = crate::hash::mix64(g ^ c as u64).wrapping_add(crate::hash::GOLDEN_GAMMA);
             }
         }
         assert_ne!(g, h);

@@ -20,165 +20,94 @@
 use crate::error::{Error, Result};
 use crate::prelude::*;
 
-/// The largest side of a [`BlueNoiseMask`].
-pub(crate) const MAX_MASK_SIDE: u32 = 256;
+/// The largest side of a [`BlueNoiseMask`] (its ranks fit `u16`).
+pub const MAX_MASK_SIDE: u32 = 256;
 
 /// The largest side of a tile of [`SeedPermutation`].
 pub const MAX_TILE: u32 = 64;
 
-/// A blue-noise dither mask: the ranks `0..side^2` on a `side x side` torus, each threshold's
-/// set of pixels (rank below `k`) spread as evenly as the void-and-cluster fill makes it
-/// (Ulichney, "The void-and-cluster method for dither array generation", SPIE 1993): starting
-/// from one pixel, each next rank goes to the pixel of least energy, the energy of a pixel
-/// being the sum of a compact bump `(1 - d^2 / R^2)^8` (about a Gaussian of `R / 4`) over the
-/// ranked pixels at toroidal distance `d < R`. The bump follows the spacing of the ranked
-/// pixels: while `k` pixels are ranked (`2^j <= k < 2^(j+1)`), `R = 2 side / 2^(j/2)`, twice
-/// their spacing (at least 2 pixels, at most `side / 2`), and the energy is summed anew when `R`
-/// changes. (A radius fixed by the side, too wide for the dense thresholds of a large mask,
-/// clumped them 10 to 20 pixels apart; one too narrow leaves the sparse thresholds white.)
-/// Ties are broken by a hash of `seed`.
-/// Integer and `f32` arithmetic only: the same ranks on every platform.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct BlueNoiseMask {
+/// The table of the built-in mask ([`BlueNoiseMask::builtin`]).
+mod blue_noise_64;
+
+/// A blue-noise dither mask: the ranks `0..side^2` on a `side x side` torus (repeated over the
+/// plane), each threshold's set of pixels (rank below `k`) spread evenly, as a void-and-cluster
+/// fill makes it (Ulichney, "The void-and-cluster method for dither array generation", SPIE
+/// 1993). The mask is data: [`builtin`](BlueNoiseMask::builtin) is a 64 x 64 table made
+/// offline by the lab (`strata_lab::samplers::mask`, with a fixed seed; the table's file names
+/// the command), and [`new`](BlueNoiseMask::new) takes any other, checked to be a permutation
+/// of its ranks. Nothing is computed at run time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BlueNoiseMask<'a> {
     side: u32,
     /// The rank of each pixel, row-major.
-    ranks: Vec<u32>,
+    ranks: &'a [u16],
 }
 
-/// The bump `(1 - d^2 / R^2)^8` of radius `radius` as a table over the offsets `(dx, dy)` in `[-R, R]^2`.
-fn bump(radius: i32) -> Vec<f32> {
-    let width = (2 * radius + 1) as usize;
-    let r2 = (radius * radius) as f32;
-    (0..width * width)
-        .map(|k| {
-            let (dx, dy) = ((k % width) as i32 - radius, (k / width) as i32 - radius);
-            let d2 = (dx * dx + dy * dy) as f32;
-            if d2 < r2 {
-                let u = 1.0 - d2 / r2;
-                let u2 = u * u;
-                u2 * u2 * (u2 * u2)
-            } else {
-                0.0
-            }
-        })
-        .collect()
-}
-
-/// The void-and-cluster fill's state: the energy of every pixel and, per row, the unranked
-/// pixel of least energy (recomputed when the row's energies change).
-struct Fill {
-    side: u32,
-    energy: Vec<f32>,
-    ranks: Vec<u32>,
-    row_best: Vec<(f32, u32)>,
-    row_dirty: Vec<bool>,
-}
-
-impl Fill {
-    /// Adds the bump `b` of radius `radius` around pixel `i`.
-    fn add(&mut self, i: usize, b: &[f32], radius: i32) {
-        let side = self.side as i32;
-        let (m, width) = (side - 1, 2 * radius + 1);
-        let (x, y) = (i as i32 % side, i as i32 / side);
-        for dy in -radius..=radius {
-            let py = (y + dy) & m;
-            self.row_dirty[py as usize] = true;
-            let row = &b[((dy + radius) * width) as usize..][..width as usize];
-            for (k, &v) in row.iter().enumerate() {
-                if v != 0.0 {
-                    let px = (x + k as i32 - radius) & m;
-                    self.energy[(py * side + px) as usize] += v;
-                }
-            }
+impl BlueNoiseMask<'static> {
+    /// The built-in 64 x 64 mask (8 KiB of `const` data).
+    pub fn builtin() -> Self {
+        BlueNoiseMask {
+            side: 64,
+            ranks: &blue_noise_64::RANKS,
         }
     }
-
-    /// The unranked pixel of least energy (the first on a tie).
-    fn least(&mut self) -> usize {
-        let side = self.side as usize;
-        let mut best = (f32::INFINITY, u32::MAX);
-        for y in 0..side {
-            if self.row_dirty[y] {
-                let mut r = (f32::INFINITY, u32::MAX);
-                for x in 0..side {
-                    let i = y * side + x;
-                    if self.ranks[i] == u32::MAX && self.energy[i] < r.0 {
-                        r = (self.energy[i], i as u32);
-                    }
-                }
-                self.row_best[y] = r;
-                self.row_dirty[y] = false;
-            }
-            let r = self.row_best[y];
-            if r.1 != u32::MAX && (r.0 < best.0 || (r.0 == best.0 && r.1 < best.1)) {
-                best = r;
-            }
-        }
-        best.1 as usize
-    }
 }
 
-impl BlueNoiseMask {
-    /// The mask of `side x side` pixels (a power of two from 4 to 256) for `seed`.
-    /// `O(side^4)` time at worst, about 0.1 s at 256 on one core; `O(side^2)` memory.
-    pub fn new(side: u32, seed: u64) -> Result<Self> {
+impl<'a> BlueNoiseMask<'a> {
+    /// The mask of `side x side` pixels (a power of two from 4 to [`MAX_MASK_SIDE`]) whose
+    /// ranks, row-major, are `ranks`: a permutation of `0..side^2`, or an error saying what is
+    /// wrong. (Whether it is blue is the maker's promise: the lab's `void_and_cluster` makes
+    /// one and measures it.)
+    pub fn new(side: u32, ranks: &'a [u16]) -> Result<Self> {
+        let context = "BlueNoiseMask::new";
         if !side.is_power_of_two() || !(4..=MAX_MASK_SIDE).contains(&side) {
             return Err(Error::parameter(
-                "BlueNoiseMask::new",
+                context,
                 "side",
                 side,
                 format!("a power of two from 4 to {MAX_MASK_SIDE}"),
             ));
         }
         let n = (side * side) as usize;
-        // a tiny hashed energy per pixel breaks the ties of the empty start
-        let jitter: Vec<f32> = (0..n as u32)
-            .map(|i| {
-                let h = crate::hash::hash_u64(seed, i as u64);
-                (h >> 40) as f32 * (1e-6 / (1u64 << 24) as f32)
-            })
-            .collect();
-        let mut fill = Fill {
-            side,
-            energy: jitter.clone(),
-            ranks: vec![u32::MAX; n],
-            row_best: vec![(f32::INFINITY, u32::MAX); side as usize],
-            row_dirty: vec![true; side as usize],
-        };
-        let mut order = Vec::with_capacity(n);
-        let (mut radius, mut b) = (0, Vec::new());
-        for rank in 0..n as u32 {
-            // the radius of the stage 2^j <= max(rank, 1) < 2^(j+1): 2 side / 2^(j/2)
-            let j = rank.max(1).ilog2();
-            // (floor of sqrt(4 side^2 / 2^j), exact in integers: no `sqrt` without `std`)
-            let r = ((((4 * side as u64 * side as u64) << 16) >> j).isqrt() >> 8) as i32;
-            let r = r.clamp(2, side as i32 / 2);
-            if r != radius {
-                radius = r;
-                b = bump(radius);
-                fill.energy.copy_from_slice(&jitter);
-                fill.row_dirty.fill(true);
-                for &i in &order {
-                    fill.add(i, &b, radius);
-                }
-            }
-            let best = fill.least();
-            fill.ranks[best] = rank;
-            order.push(best);
-            fill.row_dirty[best / side as usize] = true;
-            fill.add(best, &b, radius);
+        if ranks.len() != n {
+            return Err(Error::input(
+                context,
+                format!(
+                    "{} ranks for a side of {side}; side^2 = {n} are needed",
+                    ranks.len()
+                ),
+            ));
         }
-        Ok(BlueNoiseMask {
-            side,
-            ranks: fill.ranks,
-        })
+        let mut seen = vec![0u64; n.div_ceil(64)];
+        for (i, &r) in ranks.iter().enumerate() {
+            let r = r as usize;
+            if r >= n || seen[r / 64] >> (r % 64) & 1 == 1 {
+                return Err(Error::input(
+                    context,
+                    format!(
+                        "the rank {r} of pixel ({}, {}) is {}; each of 0 to {} once is needed",
+                        i % side as usize,
+                        i / side as usize,
+                        if r >= n { "too large" } else { "repeated" },
+                        n - 1
+                    ),
+                ));
+            }
+            seen[r / 64] |= 1 << (r % 64);
+        }
+        Ok(BlueNoiseMask { side, ranks })
+    }
+
+    /// The side of the mask.
+    pub fn side(&self) -> u32 {
+        self.side
     }
 
     /// The rank at `pixel`, the mask repeated over the plane (`0..side^2`).
     #[inline]
     pub fn rank(&self, pixel: [u32; 2]) -> u32 {
         let m = self.side - 1;
-        self.ranks[((pixel[1] & m) * self.side + (pixel[0] & m)) as usize]
+        self.ranks[((pixel[1] & m) * self.side + (pixel[0] & m)) as usize] as u32
     }
 }
 
@@ -187,7 +116,7 @@ impl BlueNoiseMask {
 ///
 /// ```
 /// use strata::pixel::frames::{BlueNoiseMask, SeedPermutation};
-/// let mask = BlueNoiseMask::new(16, 1)?;
+/// let mask = BlueNoiseMask::builtin();
 /// let mut seeds = SeedPermutation::new(32, 32, 4)?;
 /// assert_eq!(seeds.source([5, 7]), [5, 7]); // the first frame: every pixel its own draws
 /// // after a frame whose estimates are `frame` (row-major, 32 x 32):
@@ -258,7 +187,7 @@ impl SeedPermutation {
     /// smallest estimate go to the pixel of the `r`-th smallest rank of `mask` (ties in the
     /// order of the pixels). Refuses estimates of the wrong length or with a NaN or infinite
     /// value (naming the first), leaving the permutation as it was.
-    pub fn update(&mut self, estimates: &[f32], mask: &BlueNoiseMask) -> Result<()> {
+    pub fn update(&mut self, estimates: &[f32], mask: &BlueNoiseMask<'_>) -> Result<()> {
         let context = "SeedPermutation::update";
         let n = (self.width * self.height) as usize;
         if estimates.len() != n {
@@ -315,112 +244,27 @@ mod tests {
 
     #[test]
     fn the_mask_is_a_permutation_of_its_ranks() {
-        for side in [4u32, 8, 32] {
-            let m = BlueNoiseMask::new(side, 7).unwrap();
-            let mut seen = vec![false; (side * side) as usize];
-            for y in 0..side {
-                for x in 0..side {
-                    let r = m.rank([x, y]) as usize;
-                    assert!(!seen[r], "rank {r} twice");
-                    seen[r] = true;
-                }
-            }
-            assert_eq!(m.rank([side + 1, 2 * side]), m.rank([1, 0]));
-        }
-        assert!(BlueNoiseMask::new(12, 1).is_err());
-        assert!(BlueNoiseMask::new(512, 1).is_err());
-        assert_ne!(BlueNoiseMask::new(16, 1), BlueNoiseMask::new(16, 2));
-    }
-
-    /// The mean periodogram of the pixels of rank below `k` over the frequencies
-    /// `0 < |f| <= band` (cycles per mask), normalised so that `k` pixels drawn at random
-    /// without replacement give `1 - k / n` in expectation. A DFT by rows, then by columns.
-    fn low_band(rank: impl Fn(u32, u32) -> u32, side: u32, k: u32, band: f64) -> f64 {
-        let s = side as usize;
-        let b = band.floor() as i64;
-        let tau = 2.0 * core::f64::consts::PI / side as f64;
-        let (cos, sin): (Vec<f64>, Vec<f64>) = (0..s)
-            .map(|t| ((tau * t as f64).cos(), (tau * t as f64).sin()))
-            .unzip();
-        let at = |u: i64, t: usize| (u.rem_euclid(side as i64) as usize * t) % s;
-        // rows[y][u + b]: the row's transform at frequency u
-        let rows: Vec<Vec<(f64, f64)>> = (0..side)
-            .map(|y| {
-                (-b..=b)
-                    .map(|u| {
-                        let (mut re, mut im) = (0.0, 0.0);
-                        for x in 0..side {
-                            if rank(x, y) < k {
-                                re += cos[at(u, x as usize)];
-                                im -= sin[at(u, x as usize)];
-                            }
-                        }
-                        (re, im)
-                    })
-                    .collect()
-            })
-            .collect();
-        let (mut sum, mut count) = (0.0, 0);
-        for v in -b..=b {
-            for u in -b..=b {
-                if (u, v) == (0, 0) || ((u * u + v * v) as f64) > band * band {
-                    continue;
-                }
-                let (mut re, mut im) = (0.0, 0.0);
-                for (y, row) in rows.iter().enumerate() {
-                    let (r, i) = row[(u + b) as usize];
-                    let (c, sn) = (cos[at(v, y)], sin[at(v, y)]);
-                    re += r * c + i * sn;
-                    im += i * c - r * sn;
-                }
-                sum += (re * re + im * im) / k as f64;
-                count += 1;
-            }
-        }
-        sum / count as f64
-    }
-
-    #[test]
-    fn the_mask_s_thresholds_are_blue_at_every_side() {
-        // The pixels of rank below k, for k from 1/64 to 3/4 of the mask, at every side allowed:
-        // their power below half their own spacing's frequency (0 < |f| <= sqrt(k / n) side / 2
-        // cycles per mask, with n - k for k past half) under a fifth of a random set's (white:
-        // 1 - k/n; measured at most 0.125); a random ranking fails the same bound. (The former
-        // bump radius, fixed by the side, gave 0.24-0.49 at sides 16-64 and 1.3-28 at 128-256.)
-        for side in [4u32, 8, 16, 32, 64, 128, 256] {
-            let n = side * side;
-            let m = BlueNoiseMask::new(side, 11).unwrap();
-            let key = |i: u32| crate::hash::hash_u64(5, i as u64);
-            let mut order: Vec<u32> = (0..n).collect();
-            order.sort_by_key(|&i| key(i));
-            let mut random = vec![0u32; n as usize];
-            for (r, &i) in order.iter().enumerate() {
-                random[i as usize] = r as u32;
-            }
-            for k in [n / 64, n / 16, n / 4, n / 2, 3 * n / 4] {
-                // half the frequency of the spacing of the k pixels (or of the n - k others)
-                let band = (k.min(n - k) as f64 / n as f64).sqrt() * side as f64 / 2.0;
-                if band < 1.0 {
-                    continue;
-                }
-                let white = 1.0 - k as f64 / n as f64;
-                let blue = low_band(|x, y| m.rank([x, y]), side, k, band);
-                assert!(
-                    blue < 0.2 * white,
-                    "side {side} k {k}: {blue:.4} against white {white:.4}"
-                );
-                let r = low_band(|x, y| random[(y * side + x) as usize], side, k, band);
-                assert!(
-                    r > 0.3 * white,
-                    "side {side} k {k}: the random ranking gives {r}"
-                );
-            }
-        }
+        let m = BlueNoiseMask::builtin();
+        assert_eq!(BlueNoiseMask::new(64, &blue_noise_64::RANKS), Ok(m));
+        assert_eq!(m.rank([65, 128]), m.rank([1, 0]));
+        // a table that is not a permutation, or of the wrong size, is refused and named
+        let mut bad = blue_noise_64::RANKS;
+        bad[70] = bad[3];
+        let e = BlueNoiseMask::new(64, &bad).unwrap_err().to_string();
+        assert!(e.contains("pixel (6, 1)") && e.contains("repeated"), "{e}");
+        bad[70] = 4096;
+        let e = BlueNoiseMask::new(64, &bad).unwrap_err().to_string();
+        assert!(e.contains("too large"), "{e}");
+        assert!(BlueNoiseMask::new(32, &blue_noise_64::RANKS).is_err());
+        assert!(BlueNoiseMask::new(12, &[0; 144]).is_err());
+        let sixteen: Vec<u16> = (0..16).rev().collect();
+        assert_eq!(BlueNoiseMask::new(4, &sixteen).unwrap().rank([0, 0]), 15);
     }
 
     #[test]
     fn the_permutation_moves_draws_within_tiles_and_follows_the_mask() {
-        let mask = BlueNoiseMask::new(8, 3).unwrap();
+        let ranks: Vec<u16> = (0..64u16).map(|i| (i * 37) % 64).collect();
+        let mask = BlueNoiseMask::new(8, &ranks).unwrap();
         let (w, h, t) = (21u32, 10u32, 4u32);
         let mut p = SeedPermutation::new(w, h, t).unwrap();
         let values: Vec<f32> = (0..w * h).map(|i| ((i * 7919) % 211) as f32).collect();

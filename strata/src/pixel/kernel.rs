@@ -25,7 +25,7 @@
 //!    toroidal shift for `lattice`; two hashes of an affine map of the index for `random`.
 
 use crate::digital::{ByteTables, PairTables, lookup};
-use crate::hash::{hash32, mix64, stream_seed};
+use crate::hash::{GOLDEN_GAMMA_32, LOWBIAS32, hash32, mix64, stream_seed};
 use crate::morton::morton;
 use crate::sampler::Seed;
 use crate::samplers::lattice;
@@ -88,8 +88,8 @@ pub(crate) fn pixel_keys(key: &Key, pixel: [u32; 2]) -> PixelKeys {
 /// Wellons' `lowbias32` in every lane (as [`crate::hash::hash32`] with a zero key).
 #[inline(always)]
 fn lowbias_lanes<L: Lanes>(x: L) -> L {
-    let x = x.xor(x.shr::<16>()).mul(L::splat(0x7feb_352d));
-    let x = x.xor(x.shr::<15>()).mul(L::splat(0x846c_a68b));
+    let x = x.xor(x.shr::<16>()).mul(L::splat(LOWBIAS32[0]));
+    let x = x.xor(x.shr::<15>()).mul(L::splat(LOWBIAS32[1]));
     x.xor(x.shr::<16>())
 }
 
@@ -197,9 +197,9 @@ impl DrawKeys {
     #[inline(always)]
     pub(crate) fn new(p: &PixelKeys, dim: u32) -> Self {
         let p = p.0;
-        let x = (dim ^ p[0]).wrapping_mul(0x7feb_352d);
+        let x = (dim ^ p[0]).wrapping_mul(LOWBIAS32[0]);
         let h = x ^ (x >> 15);
-        let e = (dim ^ p[1]).wrapping_mul(0x9e37_79b9) & !1;
+        let e = (dim ^ p[1]).wrapping_mul(GOLDEN_GAMMA_32) & !1;
         DrawKeys {
             h,
             e,
@@ -218,7 +218,7 @@ impl DrawKeys {
     /// multiply-xorshift of `dim ^ p0`, a bijection of the dimension.
     #[inline(always)]
     pub(crate) fn hash(p: &PixelKeys, dim: u32) -> u32 {
-        let x = (dim ^ p.0[0]).wrapping_mul(0x7feb_352d);
+        let x = (dim ^ p.0[0]).wrapping_mul(LOWBIAS32[0]);
         x ^ (x >> 15)
     }
 

@@ -134,7 +134,7 @@ fn mix(v: u32, top: u32, key: u32) -> u32 {
 }
 
 /// Salt of the shells' keys per shell.
-const SHELL: u32 = 0x9e37_79b9;
+const SHELL: u32 = crate::hash::GOLDEN_GAMMA_32;
 
 /// What the shell padding needs of a sample index, computed once per pixel sample (every draw
 /// of the sample reorders the same shell): [`Shell::map_rev`] is then a hash, a table lookup

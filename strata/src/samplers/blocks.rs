@@ -79,18 +79,14 @@ pub trait Blocks: Clone + Send {
 
     /// The first two coordinates of point `i` of the current block, `i` below
     /// [`set_len`](Blocks::set_len) (all that [`Fixed`] asks; past it a construction may answer
-    /// anything, a point outside the unit square or a panic in a debug build). (Implement this
-    /// or [`point_into`](Blocks::point_into).)
-    #[inline]
-    fn point(&self, i: u32) -> Point2 {
-        let mut p = [0.0f32; 2];
-        self.point_into(i, &mut p);
-        [p[0], p[1]]
-    }
+    /// anything, a point outside the unit square or a panic in a debug build). A D-dimensional
+    /// construction writes [`point_into`](Blocks::point_into) and answers this from it.
+    fn point(&self, i: u32) -> Point2;
 
     /// Point `i` of the current block (`i` below [`set_len`](Blocks::set_len), as for
     /// [`point`](Blocks::point)): its first `out.len()` coordinates (at most
-    /// [`set_dims`](Blocks::set_dims)).
+    /// [`set_dims`](Blocks::set_dims)). The default, for a 2D construction, copies
+    /// [`point`](Blocks::point).
     #[inline]
     fn point_into(&self, i: u32, out: &mut [f32]) {
         let p = self.point(i);

@@ -156,6 +156,12 @@ impl Blocks for LatinHypercube {
         None
     }
 
+    fn point(&self, i: u32) -> Point2 {
+        let mut p = [0.0f32; 2];
+        self.point_into(i, &mut p);
+        p
+    }
+
     fn point_into(&self, i: u32, out: &mut [f32]) {
         for (d, (o, perm)) in out.iter_mut().zip(&self.perms).enumerate() {
             let h = hash_u64(self.key, (i as u64) << 16 | d as u64);

@@ -50,7 +50,7 @@ pub const MAX_DIMENSIONS: u32 = 1 << 16;
 
 /// Validates a dimension count: 1 to `max`; `note` (empty, or starting with a space) follows
 /// the allowed range in the error.
-pub fn check_dims(sampler: &'static str, dims: u32, max: u32, note: &str) -> Result<()> {
+pub(crate) fn check_dims(sampler: &'static str, dims: u32, max: u32, note: &str) -> Result<()> {
     if dims == 0 || dims > max {
         return Err(Error::parameter(
             sampler,

@@ -13,7 +13,7 @@ use crate::counts::CountRule;
 use crate::float::Strata;
 use crate::hash::{DivMod, Permutation, hash_u64};
 use crate::prelude::*;
-use crate::sampler::{Seed, StrataGrid};
+use crate::sampler::{Point2, Seed, StrataGrid};
 
 /// The name of the sampler.
 const NAME: &str = "uncorrelated";
@@ -93,6 +93,12 @@ impl Blocks for UncorrelatedJitter {
     fn begin_block(&mut self, key: u64) {
         self.key = key;
         block_permutations(&mut self.perms, self.count, key, self.dims.div_ceil(2));
+    }
+
+    fn point(&self, i: u32) -> Point2 {
+        let mut p = [0.0f32; 2];
+        self.point_into(i, &mut p);
+        p
     }
 
     fn point_into(&self, i: u32, out: &mut [f32]) {
