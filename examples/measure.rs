@@ -166,7 +166,7 @@ const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_secs(2);
 /// The rows of every set of a file, in parallel. The first set is measured alone and timed:
 /// a file whose sets would take a second or more in all (or of 100 sets or more) says so first,
 /// with the estimate
-/// (issue 43, A6: a 64 MiB file of 65,536 sets ran for an hour in silence), then how far it
+/// (a 64 MiB file of 65,536 sets once ran for an hour in silence), then how far it
 /// got every two seconds.
 fn measure_all(label: &str, sets: &[PointSet]) -> Result<Vec<Row>, strata_lab::Error> {
     let Some((first, rest)) = sets.split_first() else {
@@ -315,7 +315,7 @@ fn main() -> ExitCode {
         let labels = file_labels(&args.files);
         for (path, label) in args.files.iter().zip(labels) {
             let sets = pointsets::read_file(path)?;
-            // a long file says what it does (issue 38, N16: a minute in silence)
+            // a long file says what it does (not a minute in silence)
             let work: u128 = sets
                 .iter()
                 .filter(|s| pairwise_allowed(s.len(), s.dims))

@@ -171,7 +171,7 @@ fn main() -> ExitCode {
                 "-n N is required (1 to {MAX_CLI_COUNT}); usage: {USAGE}"
             ))
         })?;
-        // options that would be ignored are refused (issue 38, N23)
+        // options that would be ignored are refused
         if args.resolution.is_some() && args.pixel.is_none() {
             return Err(cli_error(
                 "--resolution is the image of the Z-ordered sequences and needs --pixel X,Y; \
@@ -225,7 +225,7 @@ fn main() -> ExitCode {
         }
         // everything is checked (the build refuses what the sampler cannot make) before a long
         // run says what it is doing, on stderr (stdout holds the values); relaxations and
-        // optimisations are long from a few thousand points on (issue 38, N23; #29)
+        // optimisations are long from a few thousand points on
         enum Source {
             Pixel(Box<PixelSampler>),
             Built(Built),

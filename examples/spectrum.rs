@@ -171,7 +171,7 @@ fn parse() -> Result<Option<Args>, CliError> {
     } else {
         common::check_output_dir("--out", &a.out)?;
     }
-    // realization r uses seed S + r: refused where that would wrap (issue 38, N18)
+    // realization r uses seed S + r: refused where that would wrap
     let most = a.realizations.unwrap_or(64) as u64;
     if a.seed.checked_add(most - 1).is_none() {
         return Err(cli_error(format!(
@@ -271,7 +271,7 @@ fn run_one(
 /// Mean power over the low band `0 < |w| < sqrt(N)/2` (what smooth integrands see): the mean of
 /// the radial bins `b = 1, 2, ...` below `sqrt(N)/2` (at least bin 1).
 fn low_band_power(radial: &[RadialBin], count: u64) -> f64 {
-    // bin 1 always: below N = 5 the band holds no other (issue 38, N19: it held none, NaN)
+    // bin 1 always: below N = 5 the band holds no other (it once held none: NaN)
     let band = (count as f64).sqrt() / 2.0;
     let low: Vec<f64> = radial
         .iter()

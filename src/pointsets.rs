@@ -732,7 +732,7 @@ mod tests {
 
     #[test]
     fn comments_before_the_points_and_line_ends_that_end_lines() {
-        // issue 38, N20: '#' lines and CR-only line ends got messages that named neither
+        // '#' lines and CR-only line ends once got messages that named neither
         let plain = parse_csv("0.5,0.25\n0.125,0.75\n").unwrap();
         assert_eq!(
             parse_csv("# made by numpy\n#x,y\nx,y\n0.5,0.25\r\n0.125,0.75\n").unwrap(),

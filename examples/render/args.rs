@@ -369,11 +369,11 @@ const BYTES_PER_RENDER_PIXEL: u64 = 72;
 const BYTES_PER_PIXEL: u64 = 96;
 
 /// Bytes per pixel that `--frames` adds (its frames' estimates and the permutation of the
-/// pixels' draws): about 60 measured (issue 43, A9).
+/// pixels' draws): about 60 measured.
 const BYTES_PER_FRAMES_PIXEL: u64 = 64;
 
 /// Bytes per pixel that `--interactions` adds (the split's one-draw and interaction images):
-/// about 35 measured (issue 43, A9).
+/// about 35 measured.
 const BYTES_PER_SPLIT_PIXEL: u64 = 40;
 
 /// What a run needs whatever its size (the program, its threads, the scene): measured 4 MiB.
@@ -384,8 +384,8 @@ pub const MAX_MEMORY: u64 = 4 << 30;
 
 /// The memory a run needs, at most (the test `render_memory_stays_within_its_estimate`
 /// compares it with the peak measured): refused before any work above [`MAX_MEMORY`]
-/// (issue 38, N10: 1024^2 with every sequence at eight counts took 5.1 GB against a
-/// documented "under 4 GB").
+/// (1024^2 with every sequence at eight counts once took 5.1 GB against a documented
+/// "under 4 GB").
 pub fn memory_estimate(a: &Args) -> u64 {
     let renders = (a.samplers.len() * a.spp.len()) as u64;
     let pixels = a.size.0 as u64 * a.size.1 as u64;

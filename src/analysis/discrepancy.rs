@@ -167,8 +167,8 @@ pub fn mixture_squared<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result
 /// # Ok::<(), strata_lab::Error>(())
 /// ```
 pub fn net_t_value<T: Copy + Into<f64>>(points: &[T]) -> Result<Option<u32>> {
-    // a net's cells are half-open: [0, 1) is checked first, whatever the count (issue 38, N22:
-    // the message said [0, 1], and 1.0 passed when the count was not a power of two)
+    // a net's cells are half-open: [0, 1) is checked first, whatever the count (the message
+    // once said [0, 1], and 1.0 passed when the count was not a power of two)
     if let Some(v) = points
         .iter()
         .map(|v| (*v).into())

@@ -329,7 +329,7 @@ mod tests {
 
     #[test]
     fn nearest_and_listed_counts_are_accepted_over_the_whole_range() {
-        // issue 24, row 5: nearest(2^64 - 1) was 0 for squares and counts past the largest
+        // nearest(2^64 - 1) was once 0 for squares and counts past the largest
         // allowed for the orthogonal arrays and n-rooks
         for e in entries().iter().filter(|e| !e.progressive) {
             for n in [

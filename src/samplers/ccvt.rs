@@ -72,7 +72,7 @@ pub(crate) const ENTRY: Entry = Entry {
     },
     expensive: true,
     blue_noise: Some(BlueNoise::published(
-        "rho 0.764, mean NN 0.88 at N = 1024 (Balzer, Schlömer, Deussen 2009), as quoted in issue #28; not checked against the paper (this module's docs quote mean NN 0.891)",
+        "rho 0.764, mean NN 0.88 at N = 1024 (Balzer, Schlömer, Deussen 2009), quoted second-hand; not checked against the paper (this module's docs quote mean NN 0.891)",
     )),
     build: |p| {
         let (k, c) = (ITERATIONS.read_whole(p), CAPACITY.read_whole(p));

@@ -73,7 +73,7 @@ pub(crate) const POISSON: Entry = Entry {
     promise: "exactly `N` points at least `rho r_max(N)` apart",
     rates: POISSON_RATES,
     blue_noise: Some(BlueNoise::published(
-        "rho about 0.75-0.76, the largest dart throwing reaches (Lagae and Dutré 2008), as quoted in issue #28; not checked against the paper",
+        "rho about 0.75-0.76, the largest dart throwing reaches (Lagae and Dutré 2008), quoted second-hand; not checked against the paper",
     )),
     build: |p| {
         let rho = DART_RADIUS.read(p);

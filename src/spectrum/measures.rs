@@ -54,8 +54,8 @@ pub struct PointSetMeasures {
 
 /// Nearest-neighbour distances of a point set on the torus (`None` for a single point), by a
 /// balanced k-d tree: `O(n log n)` for any spread of the points, coincident or clustered ones
-/// included (a uniform grid of cells is quadratic when most points share a cell: issue 38's
-/// second hostile pass, 2^17 copies of one point took 127 s).
+/// included (a uniform grid of cells is quadratic when most points share a cell: 2^17 copies
+/// of one point took minutes).
 pub fn nearest_neighbour_distances(points: &[Point2]) -> Option<Vec<f64>> {
     if points.len() < 2 {
         return None;
@@ -228,7 +228,7 @@ pub fn point_set_measures(sets: &[Vec<Point2>]) -> Result<PointSetMeasures> {
     }
     let r_max = relative_radius_max(n);
     let k = sets.len() as f64;
-    // single points have no neighbour: no distances (issue 38, N22: they were NaN)
+    // single points have no neighbour: no distances (not NaN)
     let (mut global, mut average) = (0.0, 0.0);
     let mut distances = n >= 2;
     for s in sets {

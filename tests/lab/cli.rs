@@ -718,6 +718,61 @@ fn points_writes_every_format_and_measure_reads_them_back() {
 }
 
 #[test]
+fn mask_writes_the_built_in_table_and_refuses_bad_sides() {
+    let dir = std::env::temp_dir().join(format!("strata-mask-{}", std::process::id()));
+    let (table, png) = (dir.join("t/mask.rs"), dir.join("mask.png"));
+    let (code, out, err) = run_example(
+        "mask",
+        &[
+            "--out",
+            table.to_str().unwrap(),
+            "--png",
+            png.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("64 x 64 ranks"), "{out}");
+    // the defaults are the built-in's: the same bytes as the table the renderer's crate reads
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    assert_eq!(
+        std::fs::read_to_string(&table).unwrap(),
+        std::fs::read_to_string(root.join("strata/src/pixel/frames/blue_noise_64.rs")).unwrap()
+    );
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    let (code, _, _) = run_example(
+        "mask",
+        &[
+            "--side",
+            "8",
+            "--seed",
+            "3",
+            "--out",
+            table.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0);
+    assert!(
+        std::fs::read_to_string(&table)
+            .unwrap()
+            .contains("[u16; 64]")
+    );
+    for (bad, says) in [
+        (&["--side", "12"][..], "power of two"),
+        (&["--side", "512"][..], "--side"),
+        (&["--seed", "-1"][..], "--seed"),
+        (&["--sides", "8"][..], "--sides"),
+    ] {
+        let (code, _, err) = run_example("mask", bad);
+        assert_eq!(code, 2, "{bad:?}");
+        assert!(
+            err.contains(says) && err.lines().count() == 1,
+            "{bad:?}: {err}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn nets_tabulates_every_pair_of_a_group_and_refuses_bad_groups() {
     let (code, out, err) = run_example("nets", &["--group", "4", "--max-m", "4"]);
     assert_eq!(code, 0, "{err}");

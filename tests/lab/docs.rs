@@ -316,6 +316,43 @@ fn the_entry_types_are_a_leaf_below_the_samplers_and_the_registry_is_above_them(
 }
 
 #[test]
+fn no_source_cites_an_issue_number() {
+    // the code says why in its own words; an issue's number means nothing to a reader of the
+    // published crates (history is git's)
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut stack: Vec<_> = ["strata/src", "src", "python/src", "examples"]
+        .iter()
+        .map(|d| root.join(d))
+        .collect();
+    let (mut files, mut cited) = (0, Vec::new());
+    while let Some(p) = stack.pop() {
+        if p.is_dir() {
+            stack.extend(std::fs::read_dir(&p).unwrap().map(|e| e.unwrap().path()));
+            continue;
+        }
+        if p.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        files += 1;
+        for (n, line) in std::fs::read_to_string(&p).unwrap().lines().enumerate() {
+            let lower = line.to_lowercase();
+            for (i, _) in lower.match_indices("issue") {
+                let rest = lower[i + 5..].trim_start_matches(['s', ' ', '#']);
+                if rest.starts_with(|c: char| c.is_ascii_digit()) {
+                    cited.push(format!("{}:{}: {}", p.display(), n + 1, line.trim()));
+                }
+            }
+        }
+    }
+    assert!(files > 100, "{files} files");
+    assert!(
+        cited.is_empty(),
+        "issue numbers cited:\n{}",
+        cited.join("\n")
+    );
+}
+
+#[test]
 fn no_two_sibling_modules_import_each_other() {
     // within each directory of the lab's sources, the modules that a file reaches through
     // `super::NAME` outside comments; no two siblings may reach each other (an import circle:

@@ -188,6 +188,7 @@ fn help_and_lists() -> Vec<(&'static str, Vec<&'static str>)> {
         "render",
         "path_tracer",
         "nets",
+        "mask",
     ]
     .into_iter()
     .map(|p| (p, vec!["--help"]))
