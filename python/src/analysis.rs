@@ -369,6 +369,46 @@ fn convergence<'py>(
     Ok(list)
 }
 
+/// One seed's estimate of the integrand named `integrand` over `points` (`(n, d)` float32,
+/// `d` at least the integrand's dimensions): the mean of its values, summed in the points'
+/// order, as the convergence study computes it.
+#[pyfunction]
+fn estimate(py: Python<'_>, integrand: &str, points: PyReadonlyArray2<'_, f32>) -> PyResult<f64> {
+    let f = Integrand::by_name(integrand).map_err(to_py_err)?;
+    let (n, d) = (points.shape()[0], points.shape()[1]);
+    if n == 0 || d < f.dimensions() as usize {
+        return Err(value_error(format!(
+            "estimate: points have shape ({n}, {d}); (n, d) with n >= 1 and d >= {} (the \
+             dimensions of {integrand}) is needed",
+            f.dimensions()
+        )));
+    }
+    let s = input_slice(&points, "estimate: points")?;
+    if let Some(i) = s.iter().position(|v| !v.is_finite()) {
+        return Err(value_error(format!(
+            "estimate: coordinate {} of point {} is {}; finite values are needed",
+            i % d,
+            i / d,
+            s[i]
+        )));
+    }
+    Ok(py.detach(|| f.estimate(s, d)))
+}
+
+/// The statistics of the estimates of `integrand` over seeds, in the seeds' order: `(mean,
+/// variance, rmse)` as a row of the convergence study has them (its sums run in that order).
+#[pyfunction]
+fn summarize(integrand: &str, estimates: Vec<f64>) -> PyResult<(f64, f64, f64)> {
+    let f = Integrand::by_name(integrand).map_err(to_py_err)?;
+    if estimates.is_empty() {
+        return Err(value_error(
+            "summarize: no estimates; one per seed (at least one) is needed",
+        ));
+    }
+    let s = study::Summary::of(f, &estimates);
+    Ok((s.mean, s.variance, s.rmse))
+}
+
 /// The least-squares slope of `log y` against `log x` over the pairs with `x, y > 0` (`None`
 /// with fewer than two such pairs).
 #[pyfunction]
@@ -397,6 +437,8 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(net_t_value, m)?)?;
     m.add_function(wrap_pyfunction!(integrands, m)?)?;
     m.add_function(wrap_pyfunction!(convergence, m)?)?;
+    m.add_function(wrap_pyfunction!(estimate, m)?)?;
+    m.add_function(wrap_pyfunction!(summarize, m)?)?;
     m.add_function(wrap_pyfunction!(fit_slope, m)?)?;
     m.add_function(wrap_pyfunction!(published_rate, m)?)?;
     m.add("DISCREPANCY_METHODS", METHODS.to_vec())?;

@@ -110,6 +110,14 @@ impl Integrand {
         )
     }
 
+    /// The Monte Carlo estimate over a set of points of `dims` coordinates each (`dims >=
+    /// dimensions()`; `points.len()` a multiple of `dims`): the mean of the values, summed in
+    /// the points' order (the estimate of one seed in a convergence study).
+    pub fn estimate(&self, points: &[f32], dims: usize) -> f64 {
+        let n = points.len() / dims;
+        points.chunks_exact(dims).map(|p| self.eval(p)).sum::<f64>() / n as f64
+    }
+
     /// The value at `x` (`x.len() >= dimensions()`).
     #[inline]
     pub fn eval(&self, x: &[f32]) -> f64 {

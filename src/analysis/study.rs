@@ -458,12 +458,7 @@ fn study_count(
     for &f in integrands {
         let estimates: Vec<f64> = sets
             .par_iter()
-            .map(|v| {
-                v.chunks_exact(dims as usize)
-                    .map(|p| f.eval(p))
-                    .sum::<f64>()
-                    / n as f64
-            })
+            .map(|v| f.estimate(v, dims as usize))
             .collect();
         let predicted = match (&spectrum, f.dimensions()) {
             (Some((res, spec)), 2) => {
@@ -484,12 +479,39 @@ fn study_count(
     Ok(())
 }
 
+/// The statistics of a row: the estimates of one integrand over seeds, summarised.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Summary {
+    /// Mean of the estimates.
+    pub mean: f64,
+    /// Unbiased sample variance of the estimates (0 for fewer than two).
+    pub variance: f64,
+    /// Root mean squared error against the integrand's exact value.
+    pub rmse: f64,
+}
+
+impl Summary {
+    /// The statistics of `estimates` of `f` (in the order of their seeds: the sums run in
+    /// that order, so a study split over machines and gathered by seed gives the same bits).
+    pub fn of(f: Integrand, estimates: &[f64]) -> Self {
+        let k = estimates.len() as f64;
+        let exact = f.exact();
+        Summary {
+            mean: estimates.iter().sum::<f64>() / k,
+            variance: variance(estimates.iter().copied()),
+            rmse: (estimates.iter().map(|e| (e - exact).powi(2)).sum::<f64>() / k).sqrt(),
+        }
+    }
+}
+
 /// The row of one integrand at one count, from its estimates.
 fn row(at: &Count<'_>, f: Integrand, estimates: &[f64], predicted: Option<f64>) -> Row {
-    let k = estimates.len() as f64;
-    let mean = estimates.iter().sum::<f64>() / k;
-    let exact = f.exact();
-    let rmse = (estimates.iter().map(|e| (e - exact).powi(2)).sum::<f64>() / k).sqrt();
+    let Summary {
+        mean,
+        variance,
+        rmse,
+    } = Summary::of(f, estimates);
     let timing = at.timing;
     Row {
         sampler: at.entry.name,
@@ -497,7 +519,7 @@ fn row(at: &Count<'_>, f: Integrand, estimates: &[f64], predicted: Option<f64>) 
         n: at.n,
         seeds: at.seeds,
         mean,
-        variance: variance(estimates.iter().copied()),
+        variance,
         rmse,
         ns_per_sample: timing.median / at.n as f64,
         set_ns: timing.median,

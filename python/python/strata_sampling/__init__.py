@@ -5,7 +5,7 @@ orthogonal arrays, Poisson disk, CCVT, Lloyd, ...), its path-tracer pixel sample
 analysis tools (power spectra with radial means and anisotropy, PSA measures, discrepancies,
 convergence studies), without a second implementation: the values are the crate's, bit for bit.
 
->>> import strata
+>>> import strata_sampling
 >>> x = strata_sampling.points("pmj02", 256, seed=7)            # (256, 2) float32
 >>> s = strata_sampling.spectrum(x, 64)                          # (65, 65) periodogram, DC in the centre
 >>> r = strata_sampling.radial(s)                                # radial mean and anisotropy
@@ -37,6 +37,7 @@ __all__ = [
     "allowed_counts",
     "convergence",
     "discrepancy",
+    "estimate",
     "expected_spectrum",
     "fit_slope",
     "integrands",
@@ -52,6 +53,7 @@ __all__ = [
     "samplers",
     "sequences",
     "spectrum",
+    "summarize",
 ]
 
 #: The discrepancy methods: scipy's ``"CD"``, ``"WD"``, ``"MD"`` (squared, as scipy returns
@@ -512,6 +514,26 @@ def _convergence_callable(
             }
         )
     return rows
+
+
+def estimate(integrand: str, points: np.ndarray) -> float:
+    """One seed's estimate ``(1/N) sum f(x_k)`` of the integrand named ``integrand`` (one of
+    ``integrands()``) over ``points`` (``(N, d)``, ``d`` at least its dimensions), summed in the
+    points' order: what ``convergence`` computes for each seed. With ``summarize``, a study
+    split over seeds (on several processes or machines) gives ``convergence``'s rows bit for
+    bit: ``estimate(f, points(name, N, seed=s))`` for each seed ``s``."""
+    a = np.ascontiguousarray(points, dtype=np.float32)
+    if a.ndim != 2:
+        raise ValueError(f"estimate: points have shape {a.shape}; (N, d) is needed")
+    return _strata.estimate(integrand, a)
+
+
+def summarize(integrand: str, estimates: Iterable[float]) -> Dict[str, float]:
+    """The ``mean``, ``variance`` (unbiased) and ``rmse`` (against the exact value) of the
+    estimates of ``integrand`` over seeds, given in the seeds' order, as ``convergence``'s rows
+    have them."""
+    mean, variance, rmse = _strata.summarize(integrand, [float(e) for e in estimates])
+    return {"mean": mean, "variance": variance, "rmse": rmse}
 
 
 def fit_slope(x: Iterable[float], y: Iterable[float]) -> Optional[float]:
