@@ -461,42 +461,21 @@ pub fn shell_quote(arg: &std::ffi::OsStr) -> String {
     q
 }
 
-/// `old` with section `name` replaced by `section` (appended when the file has no such
-/// section); an error, naming `path`, when the section's markers appear more than once, out of
-/// order, or one without the other.
+/// `old` with section `name` set to `section` (the library's rules,
+/// `strata_lab::io::markdown`), or an error naming `path` and saying it was left untouched.
 fn splice_section(
     path: &std::path::Path,
     old: &str,
     name: &str,
     section: &str,
 ) -> Result<String, CliError> {
-    let (begin, end) = (
-        format!("<!-- begin {name} -->"),
-        format!("<!-- end {name} -->"),
-    );
-    let where_ = |text: &str| -> Result<Option<usize>, CliError> {
-        let mut found = old.match_indices(text).map(|(i, _)| i);
-        let first = found.next();
-        if found.next().is_some() {
-            return Err(cli_error(format!(
-                "{}: the marker {text} appears more than once; the file was left untouched",
-                path.display()
-            )));
-        }
-        Ok(first)
-    };
-    match (where_(&begin)?, where_(&end)?) {
-        (Some(a), Some(b)) if b > a => {
-            Ok(format!("{}{section}{}", &old[..a], &old[b + end.len()..]))
-        }
-        (None, None) if old.is_empty() => Ok(format!("{section}\n")),
-        (None, None) => Ok(format!("{}\n\n{section}\n", old.trim_end())),
-        _ => Err(cli_error(format!(
-            "{}: the markers of section '{name}' are out of order or one is missing \
-             ({begin} must come before {end}); the file was left untouched",
-            path.display()
-        ))),
-    }
+    strata_lab::io::markdown::splice_section(old, name, section).map_err(|e| {
+        cli_error(format!(
+            "{}: {}; the file was left untouched",
+            path.display(),
+            e.to_string().trim_start_matches("markdown: ")
+        ))
+    })
 }
 
 /// Checks, before any work, that `--markdown FILE` can be rewritten: an error now rather than
@@ -505,7 +484,8 @@ fn splice_section(
 /// file with other hard links gets a note: the rewrite gives this name a new file.
 pub fn check_markdown(path: &std::path::Path, name: &str) -> Result<(), CliError> {
     let flag = format!("--markdown {}", path.display());
-    splice_section(path, &read_markdown(path)?, name, "")?;
+    let (begin, end) = strata_lab::io::markdown::markers(name);
+    splice_section(path, &read_markdown(path)?, name, &format!("{begin}{end}"))?;
     strata_lab::io::check_writable(path).map_err(|e| cli_error(format!("--markdown: {e}")))?;
     #[cfg(target_os = "linux")]
     DirectoryLock::open(path)?;

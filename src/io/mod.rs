@@ -6,6 +6,7 @@
 //! needs a system library and the output is reproducible byte for byte.
 
 mod canvas;
+pub mod markdown;
 mod plot;
 
 pub use canvas::{Canvas, Rgb};

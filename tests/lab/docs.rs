@@ -17,27 +17,64 @@ fn read(path: &str) -> String {
 
 /// Checks that the text of `file` between the lines `<!-- begin NAME -->` and `<!-- end NAME
 /// -->` is `content` (generated from the one place that states the facts); `STRATA_BLESS=1`
-/// rewrites it.
+/// rewrites it (the library's section rules, `strata_lab::io::markdown`, and its atomic write).
 fn section(file: &str, name: &str, content: &str) {
-    let (begin, end) = (
-        format!("<!-- begin {name} -->\n"),
-        format!("<!-- end {name} -->"),
-    );
+    use strata_lab::io::markdown::{markers, section_text, splice_section};
     let doc = read(file);
-    let (Some(a), Some(b)) = (doc.find(&begin), doc.find(&end)) else {
-        panic!("{file} lacks the markers of section {name}");
-    };
-    assert!(a < b, "{file}: the markers of {name} are out of order");
-    let inside = &doc[a + begin.len()..b];
+    let inside = section_text(&doc, name)
+        .unwrap_or_else(|e| panic!("{file}: {e}"))
+        .unwrap_or_else(|| panic!("{file} lacks the markers of section {name}"));
     if std::env::var_os("STRATA_BLESS").is_some() && inside != content {
-        let fresh = format!("{}{content}{}", &doc[..a + begin.len()], &doc[b..]);
-        std::fs::write(Path::new(env!("CARGO_MANIFEST_DIR")).join(file), fresh).unwrap();
+        let (begin, end) = markers(name);
+        let fresh = splice_section(&doc, name, &format!("{begin}\n{content}{end}")).unwrap();
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
+        strata_lab::io::write_text(path, &fresh).unwrap();
         return;
     }
     assert_eq!(
         inside, content,
         "{file}'s section {name} is stale (STRATA_BLESS=1 cargo test --test lab docs)"
     );
+}
+
+#[test]
+fn the_python_tools_splice_sections_by_the_library_s_rules() {
+    // tools/markdown_section.py against strata_lab::io::markdown::splice_section, case by case:
+    // the same text or both refusing (the programs, the tests and the Python tools write
+    // docs/results.md and the READMEs; one set of rules)
+    use strata_lab::io::markdown::splice_section;
+    let tool = Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/markdown_section.py");
+    let block = "<!-- begin s -->\nnew\n<!-- end s -->";
+    let cases = [
+        "",
+        "# T\n",
+        "# T\n\n\n",
+        "# T\n\n<!-- begin s -->\nold\n<!-- end s -->\n\ntail\n",
+        "<!-- begin s -->\n",
+        "a\n<!-- end s -->\n",
+        "<!-- end s -->\n<!-- begin s -->\n",
+        "<!-- begin s -->\n<!-- end s -->\n<!-- begin s -->\n<!-- end s -->\n",
+        "<!-- begin t -->\nx\n<!-- end t -->",
+        "caf\u{e9}\n<!-- begin s --><!-- end s -->",
+    ];
+    for old in cases {
+        let out = std::process::Command::new("python3")
+            .arg(&tool)
+            .args(["splice", "s", old, block])
+            .output()
+            .expect("python3 runs (the Python tools need it)");
+        let python = out
+            .status
+            .success()
+            .then(|| String::from_utf8(out.stdout).unwrap());
+        let rust = splice_section(old, "s", block).ok();
+        assert_eq!(
+            python,
+            rust,
+            "{old:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
 }
 
 #[test]
