@@ -1231,7 +1231,7 @@ fn a_writer_waiting_for_the_markdown_lock_says_so_and_for_whom() {
     let dir = scratch("markdown-wait");
     let md = dir.join("r.md");
     let mut holder = Command::new("flock")
-        .args([s(&dir), "sleep", "2"])
+        .args([s(&dir), "sleep", "5"])
         .spawn()
         .expect("flock(1) runs");
     std::thread::sleep(std::time::Duration::from_millis(300));
@@ -1242,7 +1242,7 @@ fn a_writer_waiting_for_the_markdown_lock_says_so_and_for_whom() {
     holder.wait().unwrap();
     assert_eq!(r.code, 0, "{}", r.err);
     assert!(r.err.contains("waiting for another writer"), "{}", r.err);
-    assert!(r.err.contains("sleep 2"), "the holder is named: {}", r.err);
+    assert!(r.err.contains("sleep 5"), "the holder is named: {}", r.err);
     assert_eq!(
         std::fs::read_to_string(&md)
             .unwrap()
