@@ -181,6 +181,67 @@ pub fn unexpected(arg: lexopt::Arg<'_>, usage: &str) -> CliError {
     cli_error(format!("{what}; usage: {usage}"))
 }
 
+/// Parses the command line by `command` (a clap declaration: the options, their help, defaults
+/// and allowed values, written once): the matches, or `None` after `--help` (the help printed
+/// on stdout), or a one-line error (clap's message, its lines joined, the usage and the tip of
+/// a close flag kept). Repeated flags: the last one wins.
+pub fn clap_matches(command: clap::Command) -> Result<Option<clap::ArgMatches>, CliError> {
+    clap_matches_from(command, std::env::args_os())
+}
+
+/// [`clap_matches`] on the given arguments (the first is the program).
+pub fn clap_matches_from(
+    command: clap::Command,
+    args: impl IntoIterator<Item = std::ffi::OsString>,
+) -> Result<Option<clap::ArgMatches>, CliError> {
+    let command = command
+        .args_override_self(true)
+        .disable_version_flag(true)
+        // the same text on every terminal (docs/cli.md holds it)
+        .term_width(HELP_WIDTH)
+        .max_term_width(HELP_WIDTH)
+        .help_template(HELP_TEMPLATE);
+    match command.try_get_matches_from(args) {
+        Ok(m) => Ok(Some(m)),
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelp => {
+            out(e.render().to_string().trim_end())?;
+            Ok(None)
+        }
+        Err(e) => Err(cli_error(one_line(&e.render().to_string()))),
+    }
+}
+
+/// The width of every program's help.
+const HELP_WIDTH: usize = 96;
+
+/// The help's layout for every program: what it does, the usage, the options, then notes.
+const HELP_TEMPLATE: &str =
+    "{about-with-newline}\nUsage: {usage}\n\nOptions:\n{options}{after-help}";
+
+/// A clap message on one line: its lines joined, without the `error: ` prefix and the closing
+/// pointer to `--help`.
+fn one_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with("For more information"))
+        .map(|l| l.trim_start_matches("error: "))
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// A clap value parser from a function giving one-line messages (`Err` of a [`CliError`]
+/// message, which clap shows after "invalid value 'V' for '--FLAG'").
+pub fn value_parser<T: Clone + Send + Sync + 'static>(
+    f: fn(&str) -> Result<T, CliError>,
+) -> impl clap::builder::TypedValueParser<Value = T> {
+    move |v: &str| match f(v) {
+        Ok(t) => Ok(t),
+        Err(CliError::Message(m)) => Err(m),
+        Err(CliError::BrokenPipe) => Err("standard output is closed".to_string()),
+    }
+}
+
 /// True when `flag` (without dashes) names a parameter some registered sampler declares
 /// (`strata_lab::registry::parameter_names`): the programs take `--NAME VALUE` for every one.
 pub fn is_sampler_param(flag: &str) -> bool {

@@ -5,98 +5,125 @@ use std::path::PathBuf;
 
 use strata::pixel::{Padding, Sequence};
 
-use crate::common::{self, CliError, cli_error, parse_int, string_value};
-use crate::outln;
+use crate::common::{self, CliError, cli_error, parse_int};
 use crate::scene::SceneKind;
 use crate::trace::Layout;
 
-/// The one-line usage, in the message of an unknown flag.
-const USAGE: &str = "render [--samplers a,b,..|all] [--spp N[,N,..]] [--size WxH] \
-[--scene cornell|spheres|cornell-direct|studio|studio-direct] [--reference-spp N] [--seed S] [--seeds K] [--out DIR] [--markdown FILE]";
+/// What the program does (the first lines of `--help`).
+const ABOUT: &str = "render: a small path tracer rendered with each sampler at one or more \
+sample counts and compared with a converged reference.";
 
-/// The text of `--help`.
-const HELP: &str = "\
-render: a small path tracer rendered with each sampler at one or more sample counts and
-compared with a converged reference.
-
-Usage:
-  cargo run --release --example render -- [options]
-
-Options:
-  --samplers a,b,..|all  path-tracer sequences (default all; the Z-ordered ones for the image
-                         size): {SEQUENCES};
-                         also two references written in this program, not in all:
-                         pbrt-padded (pbrt-v4's PaddedSobolSampler, FastOwen) and pbrt-zsobol
-                         (its ZSobolSampler; powers of two), and experiments on a sequence SEQ,
-                         not in all: SEQ+permute (each draw reads its samples through a random
-                         permutation of the pixel's 0..spp, pbrt's pairing; powers of two) and
-                         SEQ+shells (a random permutation inside each shell [2^j, 2^(j+1)) of
-                         the index: every power-of-two prefix keeps its samples)
-  --spp N[,N,..]         samples per pixel, one to eight counts (default 4,16,64,256; each 1
-                         to 65536; jittered needs squares)
-  --size WxH             image size (default 128x128; each side 8 to 1024; every sequence and
-                         count keeps its images until the pictures are drawn: a run whose
-                         estimate passes 4 GiB is refused before any work, see docs/cli.md)
-  --scene NAME           cornell (default: a Cornell box, up to 8 bounces, two lights, a
-                         discrete light and lobe choice, Russian roulette, thin lens), spheres
-                         (direct lighting, seven dimensions), cornell-direct (the Cornell box
-                         in direct lighting: the first diffuse hit's next-event estimate),
-                         studio (not a box: a checkered floor with glossy tiles, a striped
-                         wall, a plastic, a metal and a textured sphere, one small light, up to
-                         8 bounces, the next direction from a lobe chosen by weight) or
-                         studio-direct (studio in direct lighting: the first hit's next-event
-                         estimate through both lobes)
-  --padding nested|uniform|shells  how two draws' samples meet (strata::Padding; default
-                         shells: each dyadic shell [2^j, 2^(j+1)) of the index reordered per
-                         draw by a sharply 2-transitive map, every power-of-two prefix a net;
-                         nested: the nested index shuffle alone, every prefix a net; uniform:
-                         each block of spp samples reordered per draw, only whole blocks nets)
-  --layout bounce|interacting  where a path's draws go (default bounce: the camera's and each
-                         bounce's own block; interacting: the film position with the first
-                         light point and each direction with the next light point in one
-                         aligned group of four dimensions, for zquad and sobol12-4/zsobol12-4)
-  --frames F             also a sequence of F frames (2 to 64) of the static camera per
-                         sampler, count and seed, whose pixels exchange their draws within
-                         tiles between frames so that the error follows a blue-noise mask
-                         (Heitz and Belcour 2019; strata::pixel::frames), measured over
-                         frames 2 to F beside frame 1: a table on stdout and in --markdown
-                         (with --interactions, the interaction part's low band too)
-  --frame-tile T         the tiles' side of --frames (1 to 64, default 4)
-  --reference-spp N      samples per pixel of the reference (default 16 x the largest count,
-                         at least 1024, at most 65536; never below the largest count)
-  --seed S               seed of the samplers (u64, default 1; the reference has its own)
-  --seeds K              renders per sampler and count, seeds S to S+K-1 (default 4, 1 to
-                         64): rmse and rel_rmse are over all of them (the root of the mean
-                         squared error), ms is the mean time; the pictures show seed S
-  --out DIR              output directory (default out/render)
-  --interactions         at the smallest count, also split the error (emitters masked) into
-                         its one-draw part (each draw's main effect, the other draws
-                         integrated out by 64 Sobol' points) and the interaction part (the
-                         rest), and print their RMSE, blurred RMSE and low-band share
-                         (direct-lighting scenes only: spheres, cornell-direct,
-                         studio-direct)
-  --markdown FILE        also write the tables into FILE, as its section
-                         'render-SCENE-COUNTS' (e.g. render-cornell-4,16,64,256), followed by
-                         -interacting, -frames, -nested or -uniform with those options
-  -h, --help             this text
-
-Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband,
-masked_rmse,masked_blur1_rmse,masked_blur2_rmse,masked_lowband: one row per sampler and count;
-rmse over all pixels and channels of linear radiance, rel_rmse of |I - R| / (R + 0.02) on
-luminance, ms the render time on all cores; blur1_rmse, blur2_rmse and lowband describe the
-signed luminance error image: its RMSE after a Gaussian blur of sigma 1 and 2 pixels, and the
-share of its power (mean error excluded) below 1/8 cycle per pixel, about 0.05 for white
-error; the masked_ columns are rmse and those three without the pixels that see an emitter,
-directly or in a mirror, whose error is the emitter's edge), emitter-mask.png (the reference with
-those pixels in magenta), NAME.png and NAME-error.png (the largest count; the error map is the per-pixel
-relative error, colour-mapped from 0 to 0.5), NAME-SPP.png and NAME-SPP-error-spectrum.png
-(the signed error image beside its periodogram) for each count, reference.png, compare.png
-(one row per sampler), blue-noise.png (every sampler's error image and periodogram at the
-smallest count) and blue-noise-masked.png (the same without the pixels that see an emitter), convergence.png (RMSE against spp with the fitted slope per sampler) and
-pareto.png (RMSE against render time, the sequences on the Pareto front bold); prints the
-tables, the slopes and the renderer's trade: per sequence the render time to reach the RMSE
-that the median sequence reaches at each count but the smallest (power laws of RMSE and
+/// What a run writes and prints (the end of `--help`).
+const WRITES: &str = "\
+Writes, into DIR: render.csv (sampler,spp,rmse,rel_rmse,ms,blur1_rmse,blur2_rmse,lowband, \
+masked_rmse,masked_blur1_rmse,masked_blur2_rmse,masked_lowband: one row per sampler and count; \
+rmse over all pixels and channels of linear radiance, rel_rmse of |I - R| / (R + 0.02) on \
+luminance, ms the render time on all cores; blur1_rmse, blur2_rmse and lowband describe the \
+signed luminance error image: its RMSE after a Gaussian blur of sigma 1 and 2 pixels, and the \
+share of its power (mean error excluded) below 1/8 cycle per pixel, about 0.05 for white \
+error; the masked_ columns are rmse and those three without the pixels that see an emitter, \
+directly or in a mirror, whose error is the emitter's edge), emitter-mask.png (the reference with \
+those pixels in magenta), NAME.png and NAME-error.png (the largest count; the error map is the per-pixel \
+relative error, colour-mapped from 0 to 0.5), NAME-SPP.png and NAME-SPP-error-spectrum.png \
+(the signed error image beside its periodogram) for each count, reference.png, compare.png \
+(one row per sampler), blue-noise.png (every sampler's error image and periodogram at the \
+smallest count) and blue-noise-masked.png (the same without the pixels that see an emitter), convergence.png (RMSE against spp with the fitted slope per sampler) and \
+pareto.png (RMSE against render time, the sequences on the Pareto front bold); prints the \
+tables, the slopes and the renderer's trade: per sequence the render time to reach the RMSE \
+that the median sequence reaches at each count but the smallest (power laws of RMSE and \
 time against spp fitted over the counts; '*' where extrapolated).";
+
+/// The options as the command line declares them: each one's help, default and allowed
+/// values, written once (clap makes `--help`, the usage and the errors from them).
+#[derive(clap::Parser)]
+#[command(name = "render", about = ABOUT, after_help = WRITES)]
+struct Cli {
+    /// path-tracer sequences, or all (the default); the list is added at run time
+    #[arg(long, value_name = "a,b,..|all", default_value = "all",
+          value_parser = common::value_parser(samplers))]
+    samplers: Names,
+    /// samples per pixel, one to eight counts, each 1 to 65536 (jittered needs squares)
+    #[arg(long, value_name = "N[,N,..]", default_value = "4,16,64,256",
+          value_parser = common::value_parser(spp))]
+    spp: Counts,
+    /// image size, each side 8 to 1024; every sequence and count keeps its images until the
+    /// pictures are drawn: a run whose estimate passes 4 GiB is refused before any work (see
+    /// docs/cli.md)
+    #[arg(long, value_name = "WxH", default_value = "128x128",
+          value_parser = common::value_parser(size))]
+    size: Size,
+    /// the scene
+    #[arg(long, value_enum, value_name = "NAME", default_value_t = SceneKind::Cornell)]
+    scene: SceneKind,
+    /// how two draws' samples meet (strata::Padding)
+    #[arg(long, value_enum, default_value_t = PaddingArg::Shells)]
+    padding: PaddingArg,
+    /// where a path's draws go
+    #[arg(long, value_enum, default_value_t = Layout::Bounce)]
+    layout: Layout,
+    /// also a sequence of F frames (2 to 64) of the static camera per sampler, count and seed,
+    /// whose pixels exchange their draws within tiles between frames so that the error
+    /// follows a blue-noise mask (Heitz and Belcour 2019; strata::pixel::frames), measured over
+    /// frames 2 to F beside frame 1: a table on stdout and in --markdown (with --interactions,
+    /// the interaction part's low band too)
+    #[arg(long, value_name = "F", value_parser = clap::value_parser!(u32).range(2..=64))]
+    frames: Option<u32>,
+    /// the tiles' side of --frames, 1 to 64
+    #[arg(long, value_name = "T", default_value_t = 4,
+          value_parser = clap::value_parser!(u32).range(1..=strata::pixel::frames::MAX_TILE as i64))]
+    frame_tile: u32,
+    /// samples per pixel of the reference (default 16 x the largest count, at least 1024, at
+    /// most 65536; never below the largest count)
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=65536))]
+    reference_spp: Option<u32>,
+    /// seed of the samplers (the reference has its own)
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    seed: u64,
+    /// renders per sampler and count, seeds S to S+K-1, 1 to 64: rmse and rel_rmse are over
+    /// all of them (the root of the mean squared error), ms is the mean time; the pictures
+    /// show seed S
+    #[arg(long, value_name = "K", default_value_t = 4,
+          value_parser = clap::value_parser!(u32).range(1..=64))]
+    seeds: u32,
+    /// output directory
+    #[arg(long, value_name = "DIR", default_value = "out/render")]
+    out: PathBuf,
+    /// at the smallest count, also split the error (emitters masked) into its one-draw part
+    /// (each draw's main effect, the other draws integrated out by 64 Sobol' points) and the
+    /// interaction part (the rest), and print their RMSE, blurred RMSE and low-band share
+    /// (direct-lighting scenes only: spheres, cornell-direct, studio-direct)
+    #[arg(long)]
+    interactions: bool,
+    /// also write the tables into FILE, as its section 'render-SCENE-COUNTS' (e.g.
+    /// render-cornell-4,16,64,256), followed by -interacting, -frames, -nested or -uniform with
+    /// those options
+    #[arg(long, value_name = "FILE")]
+    markdown: Option<PathBuf>,
+}
+
+/// `--samplers`: the names, each once in the order given.
+#[derive(Clone)]
+struct Names(Vec<String>);
+
+/// `--spp`: the counts, sorted, each once.
+#[derive(Clone)]
+struct Counts(Vec<u32>);
+
+/// `--size WxH`.
+#[derive(Clone)]
+struct Size(u32, u32);
+
+/// `--padding`, as the command line names them.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum PaddingArg {
+    /// each dyadic shell [2^j, 2^(j+1)) of the index reordered per draw by a sharply
+    /// 2-transitive map, every power-of-two prefix a net
+    Shells,
+    /// the nested index shuffle alone, every prefix a net
+    Nested,
+    /// each block of spp samples reordered per draw, only whole blocks nets
+    Uniform,
+}
 
 /// The options of a run.
 pub struct Args {
@@ -123,68 +150,42 @@ pub struct Args {
 /// The options from the command line (`None` after `--help`), checked: the reference at
 /// least the largest count, the output directory and the Markdown file writable.
 pub fn parse() -> Result<Option<Args>, CliError> {
-    use lexopt::prelude::*;
-    let mut a = Args {
-        samplers: every_sequence(),
-        spp: vec![4, 16, 64, 256],
-        size: (128, 128),
-        scene: SceneKind::Cornell,
-        padding: Padding::default(),
-        layout: Layout::Bounce,
-        frames: 0,
-        frame_tile: 4,
-        reference_spp: None,
-        seed: 1,
-        seeds: 4,
-        out: PathBuf::from("out/render"),
-        markdown: None,
-        interactions: false,
+    use clap::{CommandFactory, FromArgMatches};
+    let sequences = format!(
+        "path-tracer sequences (default all; the Z-ordered ones for the image size): {}; also \
+         two references written in this program, not in all: pbrt-padded (pbrt-v4's \
+         PaddedSobolSampler, FastOwen) and pbrt-zsobol (its ZSobolSampler; powers of two), and \
+         experiments on a sequence SEQ, not in all: SEQ+permute (each draw reads its samples \
+         through a random permutation of the pixel's 0..spp, pbrt's pairing; powers of two) and \
+         SEQ+shells (a random permutation inside each shell [2^j, 2^(j+1)) of the index: every \
+         power-of-two prefix keeps its samples)",
+        common::sequence_help(false, 0, 0, usize::MAX)
+    );
+    let command = Cli::command().mut_arg("samplers", |a| a.help(sequences));
+    let Some(matches) = common::clap_matches(command)? else {
+        return Ok(None);
     };
-    let mut p = lexopt::Parser::from_env();
-    while let Some(arg) = p.next()? {
-        match arg {
-            Long("samplers") => samplers(&string_value("--samplers", p.value()?)?, &mut a)?,
-            Long("spp") => a.spp = spp(&string_value("--spp", p.value()?)?)?,
-            Long("reference-spp") => {
-                let v = string_value("--reference-spp", p.value()?)?;
-                a.reference_spp = Some(parse_int("--reference-spp", &v, 1, 65536)? as u32);
-            }
-            Long("scene") => a.scene = scene(&string_value("--scene", p.value()?)?)?,
-            Long("padding") => a.padding = padding(&string_value("--padding", p.value()?)?)?,
-            Long("layout") => a.layout = layout(&string_value("--layout", p.value()?)?)?,
-            Long("frames") => {
-                let v = string_value("--frames", p.value()?)?;
-                a.frames = parse_int("--frames", &v, 2, 64)? as u32;
-            }
-            Long("frame-tile") => {
-                let v = string_value("--frame-tile", p.value()?)?;
-                a.frame_tile = parse_int(
-                    "--frame-tile",
-                    &v,
-                    1,
-                    strata::pixel::frames::MAX_TILE as u64,
-                )? as u32;
-            }
-            Long("size") => a.size = size(&string_value("--size", p.value()?)?)?,
-            Long("seeds") => {
-                let v = string_value("--seeds", p.value()?)?;
-                a.seeds = parse_int("--seeds", &v, 1, 64)? as u32;
-            }
-            Long("seed") => {
-                let v = string_value("--seed", p.value()?)?;
-                a.seed = parse_int("--seed", &v, 0, u64::MAX)?;
-            }
-            Long("out") => a.out = p.value()?.into(),
-            Long("markdown") => a.markdown = Some(p.value()?.into()),
-            Long("interactions") => a.interactions = true,
-            Short('h') | Long("help") => {
-                let help = HELP.replace("{SEQUENCES}", &common::sequence_help(false, 32, 25, 95));
-                outln!("{help}")?;
-                return Ok(None);
-            }
-            other => return Err(common::unexpected(other, USAGE)),
-        }
-    }
+    let c = Cli::from_arg_matches(&matches).map_err(|e| cli_error(e.to_string()))?;
+    let a = Args {
+        samplers: c.samplers.0,
+        spp: c.spp.0,
+        size: (c.size.0, c.size.1),
+        scene: c.scene,
+        padding: match c.padding {
+            PaddingArg::Shells => Padding::Shells,
+            PaddingArg::Nested => Padding::Nested,
+            PaddingArg::Uniform => Padding::Uniform,
+        },
+        layout: c.layout,
+        frames: c.frames.unwrap_or(0),
+        frame_tile: c.frame_tile,
+        reference_spp: c.reference_spp,
+        seed: c.seed,
+        seeds: c.seeds,
+        out: c.out,
+        markdown: c.markdown,
+        interactions: c.interactions,
+    };
     check(&a)?;
     Ok(Some(a))
 }
@@ -194,27 +195,26 @@ fn every_sequence() -> Vec<String> {
     Sequence::NAMES.iter().map(|s| s.to_string()).collect()
 }
 
-/// `--samplers`: the names, or `all` (the last `--samplers` wins, `all` too).
-fn samplers(v: &str, a: &mut Args) -> Result<(), CliError> {
+/// `--samplers`: the names, or `all`.
+fn samplers(v: &str) -> Result<Names, CliError> {
     if v == "all" {
-        a.samplers = every_sequence();
-    } else {
-        // each name once, in the order given (a repeated name rendered twice before)
-        a.samplers = Vec::new();
-        for name in v.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-            if !a.samplers.iter().any(|n| n == name) {
-                a.samplers.push(name.to_string());
-            }
-        }
-        if a.samplers.is_empty() {
-            return Err(cli_error("--samplers needs at least one name (or all)"));
+        return Ok(Names(every_sequence()));
+    }
+    // each name once, in the order given (a repeated name rendered twice before)
+    let mut names: Vec<String> = Vec::new();
+    for name in v.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        if !names.iter().any(|n| n == name) {
+            names.push(name.to_string());
         }
     }
-    Ok(())
+    if names.is_empty() {
+        return Err(cli_error("--samplers needs at least one name (or all)"));
+    }
+    Ok(Names(names))
 }
 
 /// `--spp`: the counts, sorted, each once, at most [`MAX_COUNTS`] of them.
-fn spp(v: &str) -> Result<Vec<u32>, CliError> {
+fn spp(v: &str) -> Result<Counts, CliError> {
     let mut spp: Vec<u32> = v
         .split(',')
         .map(|s| parse_int("--spp", s, 1, 65536).map(|n| n as u32))
@@ -227,56 +227,18 @@ fn spp(v: &str) -> Result<Vec<u32>, CliError> {
             spp.len()
         )));
     }
-    Ok(spp)
-}
-
-/// `--scene`: `cornell`, `spheres`, `cornell-direct`, `studio` or `studio-direct`.
-fn scene(v: &str) -> Result<SceneKind, CliError> {
-    match v {
-        "cornell" => Ok(SceneKind::Cornell),
-        "spheres" => Ok(SceneKind::Spheres),
-        "cornell-direct" => Ok(SceneKind::CornellDirect),
-        "studio" => Ok(SceneKind::Studio),
-        "studio-direct" => Ok(SceneKind::StudioDirect),
-        other => Err(cli_error(format!(
-            "--scene {other:?} is not a scene; allowed: cornell, spheres, cornell-direct, \
-             studio, studio-direct"
-        ))),
-    }
-}
-
-/// `--layout`: `bounce` or `interacting`.
-fn layout(v: &str) -> Result<Layout, CliError> {
-    match v {
-        "bounce" => Ok(Layout::Bounce),
-        "interacting" => Ok(Layout::Interacting),
-        other => Err(cli_error(format!(
-            "--layout {other:?} is not a layout; allowed: bounce, interacting"
-        ))),
-    }
-}
-
-/// `--padding`: `nested` or `uniform`.
-fn padding(v: &str) -> Result<Padding, CliError> {
-    match v {
-        "nested" => Ok(Padding::Nested),
-        "uniform" => Ok(Padding::Uniform),
-        "shells" => Ok(Padding::Shells),
-        other => Err(cli_error(format!(
-            "--padding {other:?} is not a padding; allowed: nested, uniform, shells"
-        ))),
-    }
+    Ok(Counts(spp))
 }
 
 /// `--size WxH`: each side 8 to [`MAX_SIDE`].
-fn size(v: &str) -> Result<(u32, u32), CliError> {
+fn size(v: &str) -> Result<Size, CliError> {
     let bad = || {
         cli_error(format!(
             "--size {v:?} is not WxH; allowed: two whole numbers 8 to {MAX_SIDE}, e.g. 128x128"
         ))
     };
     let (w, h) = v.split_once(['x', 'X']).ok_or_else(bad)?;
-    Ok((
+    Ok(Size(
         parse_int("--size", w, 8, MAX_SIDE)? as u32,
         parse_int("--size", h, 8, MAX_SIDE)? as u32,
     ))

@@ -6,18 +6,22 @@ use glam::{Vec2, Vec3};
 use strata::pixel::warp;
 
 /// Which scene.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, clap::ValueEnum)]
 pub enum SceneKind {
+    /// a Cornell box, up to 8 bounces, two lights, a discrete light and lobe choice, Russian
+    /// roulette, thin lens
     Cornell,
+    /// direct lighting, seven dimensions
     Spheres,
-    /// The Cornell box in direct lighting: the first diffuse hit's next-event estimate (and the
-    /// lights seen directly or in a mirror), no further bounce.
+    /// the Cornell box in direct lighting: the first diffuse hit's next-event estimate (and the
+    /// lights seen directly or in a mirror), no further bounce
     CornellDirect,
-    /// Not a box: a checkered floor with glossy tiles, a striped wall, a plastic, a metal and a
-    /// textured sphere under one small light; every bounce.
+    /// not a box: a checkered floor with glossy tiles, a striped wall, a plastic, a metal and a
+    /// textured sphere under one small light; up to 8 bounces, the next direction from a lobe
+    /// chosen by weight
     Studio,
-    /// `studio` in direct lighting: the first hit's next-event estimate (through its diffuse
-    /// and glossy lobes), and the light seen directly.
+    /// studio in direct lighting: the first hit's next-event estimate (through its diffuse
+    /// and glossy lobes), and the light seen directly
     StudioDirect,
 }
 

@@ -33,9 +33,12 @@ const ROULETTE: u32 = 6;
 ///   the lobe choice at 5, Russian roulette at 6. Bounce `k`'s light draws are then in bounce
 ///   `k - 1`'s block (the camera's for the first). Groups of 4 hold a position and the light
 ///   point it meets, groups of 8 the light choice too.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Layout {
+    /// the camera's and each bounce's own block
     Bounce,
+    /// the film position with the first light point and each direction with the next light
+    /// point in one aligned group of four dimensions, for zquad and sobol12-4/zsobol12-4
     Interacting,
 }
 

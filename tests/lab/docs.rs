@@ -125,6 +125,48 @@ fn the_renderer_crate_s_built_in_mask_is_the_lab_s_void_and_cluster() {
     }
 }
 
+/// Every program under `examples/`: a file `NAME.rs` or a directory `NAME/main.rs`.
+fn programs() -> Vec<String> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.unwrap().path();
+            let stem = p.file_stem()?.to_str()?.to_string();
+            let program = if p.is_dir() {
+                p.join("main.rs").is_file()
+            } else {
+                p.extension().is_some_and(|x| x == "rs")
+            };
+            program.then_some(stem)
+        })
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn the_cli_contract_shows_each_program_s_help_as_it_prints_it() {
+    // docs/cli.md's section `help-NAME` is NAME --help, run now: the options each program
+    // declares, their help, defaults and allowed values (STRATA_BLESS=1 rewrites the sections)
+    let names = programs();
+    assert!(names.len() >= 9, "{names:?}");
+    for name in &names {
+        let bin = crate::common::example_bin(name).unwrap_or_else(|| panic!("{name} builds"));
+        let out = std::process::Command::new(bin)
+            .arg("--help")
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{name} --help");
+        let help = String::from_utf8(out.stdout).unwrap();
+        section(
+            "docs/cli.md",
+            &format!("help-{name}"),
+            &format!("```text\n{}\n```\n", help.trim_end()),
+        );
+    }
+}
+
 #[test]
 fn the_sequence_tables_are_the_declarations() {
     // the crate docs include strata/docs/sequences.md (its own test keeps it); the programs'

@@ -327,7 +327,7 @@ fn render_refuses_early() {
         (vec!["--size", "1025x8"], vec!["1024"]),
         (vec!["--spp", "1,2,3,4,5,6,7,8,9"], vec!["at most 8"]),
         (vec!["--out", s(&file)], vec!["a-file", "not a directory"]),
-        (vec!["--out", ""], vec!["empty directory name"]),
+        (vec!["--out", ""], vec!["--out", "a value is required"]),
     ] {
         let r = run("render", &args);
         let says: Vec<&str> = says.to_vec();
