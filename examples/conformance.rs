@@ -11,44 +11,65 @@ mod common;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use common::{CliError, cli_error, parse_int, parse_open_float, string_value};
+use common::{CliError, cli_error, parse_open_float};
 use strata::pixel::Sequence;
 use strata_lab::conformance::{PairStudy, SequenceSource, Shuffle, Source, Suite};
 
-const USAGE: &str = "conformance --sampler NAME|all [--spp N] [--dims D] [--pixels K] [--seeds K] \
-[--false-alarm A] [--markdown FILE] | conformance --pairs [--sampler NAME|all] [--seeds K] \
-[--markdown FILE]";
+/// What the program does (the first lines of `--help`).
+const ABOUT: &str = "conformance: run the statistical conformance suite on a path-tracer \
+sequence: unbiased estimates, independent draws (inside a pixel sample, across pixels, across \
+seeds), chi-square uniformity of every pair of dimensions, and the promised stratification \
+counted cell by cell. Prints a table of tests with their worst statistic, bound and verdict; \
+exits with status 1 when any test fails.";
 
-const HELP: &str = "\
-conformance: run the statistical conformance suite on a path-tracer sequence: unbiased
-estimates, independent draws (inside a pixel sample, across pixels, across seeds), chi-square
-uniformity of every pair of dimensions, and the promised stratification counted cell by cell.
-Prints a table of tests with their worst statistic, bound and verdict; exits with status 1 when
-any test fails.
+/// The end of `--help`.
+const LIMITS: &str = "A run draws spp x dims x pixels x seeds values, at most 2^25 (a few \
+minutes); larger runs are refused.";
 
-Usage:
-  cargo run --release --example conformance -- --sampler NAME [options]
+/// The options, each declared once (clap makes `--help`, the usage and the errors from them).
+#[derive(clap::Parser)]
+#[command(name = "conformance", about = ABOUT, after_help = LIMITS)]
+struct Cli {
+    /// the sequence, or all of them (required without --pairs; the list is added at run time)
+    #[arg(long, value_name = "NAME|all")]
+    sampler: Option<String>,
+    /// samples per pixel, 16 to 1048576
+    #[arg(long, value_name = "N", default_value_t = Suite::default().spp,
+          value_parser = common::whole::<u32>("--spp", 16, Suite::MAX_SPP as u64))]
+    spp: u32,
+    /// dimensions per sample, 2 to 64 (the default: four 2D draws)
+    #[arg(long, value_name = "D", default_value_t = Suite::default().dimensions,
+          value_parser = common::whole::<u32>("--dims", 2, 64))]
+    dims: u32,
+    /// pixels tested, 1 to 256 (the default: neighbours and distant ones)
+    #[arg(long, value_name = "K", default_value_t = Suite::default().pixels.len() as u32,
+          value_parser = common::whole::<u32>("--pixels", 1, 256))]
+    pixels: u32,
+    /// seeds, 1 to 1024 (default: the suite's 16; 1 with --pairs)
+    #[arg(long, value_name = "K", value_parser = common::whole::<u64>("--seeds", 1, 1024))]
+    seeds: Option<u64>,
+    /// family-wise false-alarm rate, 0 < A < 0.5
+    #[arg(long, value_name = "A", default_value_t = Suite::default().false_alarm,
+          value_parser = common::value_parser(false_alarm))]
+    false_alarm: f64,
+    /// also write a summary (one line per sequence) into FILE, as its section 'conformance'
+    /// ('pair-test' with --pairs)
+    #[arg(long, value_name = "FILE")]
+    markdown: Option<std::path::PathBuf>,
+    /// the pair test instead: for 390 pixels, every pair of their first 64 draws (786,240
+    /// pairs), Pearson's chi-square of the two draws' first coordinates over 4096 samples on
+    /// 31 x 31 cells; the reference index shuffles (an ideal nested shuffle, one plain round,
+    /// two rounds, the shipped round) first, then the sequences (default: all); --seeds K
+    /// repeats it for seeds 1..K. Fails (status 1) when a case exceeds 1400, the bound
+    /// calibrated on the ideal shuffle
+    #[arg(long)]
+    pairs: bool,
+}
 
-Options:
-  --sampler NAME|all  the sequence: {SEQUENCES}, or all of them
-  --spp N             samples per pixel, 16 to 1048576 (default 4096)
-  --dims D            dimensions per sample, 2 to 64 (default 8: four 2D draws)
-  --pixels K          pixels tested, 1 to 256 (default 8: neighbours and distant ones)
-  --seeds K           seeds, 1 to 1024 (default 16)
-  --false-alarm A     family-wise false-alarm rate, 0 < A < 0.5 (default 1e-6)
-  --markdown FILE     also write a summary (one line per sequence) into FILE, as its section
-                      'conformance' ('pair-test' with --pairs)
-  --pairs             the pair test instead: for 390 pixels, every pair of their first 64 draws
-                      (786,240 pairs), Pearson's chi-square of the two draws' first coordinates
-                      over 4096 samples on 31 x 31 cells; the reference index shuffles (an
-                      ideal nested shuffle, one plain round, two rounds, the shipped round)
-                      first, then the sequences (default: all); --seeds K repeats it for seeds
-                      1..K (default 1). Fails (status 1) when a case exceeds 1400, the bound
-                      calibrated on the ideal shuffle
-  -h, --help          this text
-
-A run draws spp x dims x pixels x seeds values, at most 2^25 (a few minutes); larger runs
-are refused.";
+/// `--false-alarm A`: `0 < A < 0.5`.
+fn false_alarm(v: &str) -> Result<f64, CliError> {
+    parse_open_float("--false-alarm", v, 0.0, 0.5)
+}
 
 struct Args {
     samplers: Vec<String>,
@@ -58,69 +79,49 @@ struct Args {
 }
 
 fn parse() -> Result<Option<Args>, CliError> {
-    use lexopt::prelude::*;
-    let mut samplers = None;
+    use clap::{CommandFactory, FromArgMatches};
+    let command = Cli::command().mut_arg("sampler", |a| {
+        a.help(format!(
+            "the sequence: {}, or all of them (required without --pairs)",
+            Sequence::NAMES.join(", ")
+        ))
+    });
+    let Some(matches) = common::clap_matches(command)? else {
+        return Ok(None);
+    };
+    let c = Cli::from_arg_matches(&matches).map_err(|e| cli_error(e.to_string()))?;
     let mut suite = Suite::default();
-    let mut markdown: Option<std::path::PathBuf> = None;
-    let mut pairs = false;
-    let mut seeds_given = false;
-    let default_pixels = suite.pixels.clone();
-    let mut parser = lexopt::Parser::from_env();
-    while let Some(arg) = parser.next()? {
-        match arg {
-            Long("sampler") => {
-                let v = string_value("--sampler", parser.value()?)?;
-                samplers = Some(if v == "all" {
-                    Sequence::NAMES.iter().map(|s| s.to_string()).collect()
-                } else {
-                    vec![v]
-                });
-            }
-            Long("spp") => {
-                let v = string_value("--spp", parser.value()?)?;
-                suite.spp = parse_int("--spp", &v, 16, Suite::MAX_SPP as u64)? as u32;
-            }
-            Long("dims") => {
-                let v = string_value("--dims", parser.value()?)?;
-                suite.dimensions = parse_int("--dims", &v, 2, 64)? as u32;
-            }
-            Long("pixels") => {
-                let v = string_value("--pixels", parser.value()?)?;
-                let k = parse_int("--pixels", &v, 1, 256)? as usize;
-                // the default pixels first, then a diagonal of distant ones
-                suite.pixels = default_pixels
-                    .iter()
-                    .copied()
-                    .chain((0..).map(|i: u32| [37 * i + 11, 53 * i + 29]))
-                    .take(k)
-                    .collect();
-            }
-            Long("seeds") => {
-                let v = string_value("--seeds", parser.value()?)?;
-                suite.seeds = (1..=parse_int("--seeds", &v, 1, 1024)?).collect();
-                seeds_given = true;
-            }
-            Long("false-alarm") => {
-                let v = string_value("--false-alarm", parser.value()?)?;
-                suite.false_alarm = parse_open_float("--false-alarm", &v, 0.0, 0.5)?;
-            }
-            Long("markdown") => markdown = Some(parser.value()?.into()),
-            Long("pairs") => pairs = true,
-            Short('h') | Long("help") => {
-                outln!(
-                    "{}",
-                    HELP.replace("{SEQUENCES}", &Sequence::NAMES.join(", "))
-                )?;
-                return Ok(None);
-            }
-            other => return Err(common::unexpected(other, USAGE)),
-        }
+    suite.spp = c.spp;
+    suite.dimensions = c.dims;
+    // the default pixels first, then a diagonal of distant ones
+    suite.pixels = suite
+        .pixels
+        .iter()
+        .copied()
+        .chain((0..).map(|i: u32| [37 * i + 11, 53 * i + 29]))
+        .take(c.pixels as usize)
+        .collect();
+    let seeds_given = c.seeds.is_some();
+    if let Some(k) = c.seeds {
+        suite.seeds = (1..=k).collect();
     }
+    suite.false_alarm = c.false_alarm;
+    let (markdown, pairs) = (c.markdown, c.pairs);
+    let samplers = c.sampler.map(|v| {
+        if v == "all" {
+            Sequence::NAMES.iter().map(|s| s.to_string()).collect()
+        } else {
+            vec![v]
+        }
+    });
     let samplers = match (samplers, pairs) {
         (Some(s), _) => s,
         (None, true) => Sequence::NAMES.iter().map(|s| s.to_string()).collect(),
         (None, false) => {
-            return Err(cli_error(format!("--sampler is required; usage: {USAGE}")));
+            return Err(cli_error(
+                "--sampler is required (or --pairs); usage: conformance --sampler NAME|all \
+                 [options] | conformance --pairs [options] (see --help)",
+            ));
         }
     };
     if pairs && !seeds_given {

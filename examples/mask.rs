@@ -10,80 +10,60 @@ mod common;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use common::{CliError, cli_error, parse_int, string_value};
+use common::{CliError, cli_error, parse_int};
 use strata::pixel::frames::MAX_MASK_SIDE;
 use strata_lab::io::{Canvas, Rgb};
 use strata_lab::samplers::mask::{BUILTIN_SEED, BUILTIN_SIDE, rust_table, void_and_cluster};
 
-const USAGE: &str = "mask [--side N] [--seed S] [--out FILE] [--png FILE]";
-
 /// Where the renderer's crate reads its built-in mask, from the repository's root.
 const BUILTIN_TABLE: &str = "strata/src/pixel/frames/blue_noise_64.rs";
 
+/// What the program does (the first lines of `--help`).
+const ABOUT: &str = "mask: a blue-noise dither mask of side x side pixels by void and cluster \
+(Ulichney 1993; strata_lab::samplers::mask), written as a Rust table of its ranks (row-major, \
+u16) under a header naming the options that made it. The renderer's crate reads its built-in \
+mask (strata::pixel::frames::BlueNoiseMask::builtin) from the default output, and the lab's \
+tests check that file against the function.";
+
+/// The options, each declared once (clap makes `--help`, the usage and the errors from them).
+#[derive(clap::Parser)]
+#[command(name = "mask", about = ABOUT)]
 struct Args {
+    /// a power of two from 4 to 256
+    #[arg(long, value_name = "N", default_value_t = BUILTIN_SIDE,
+          value_parser = common::value_parser(side))]
     side: u32,
+    /// the seed that breaks the fill's ties (the default is the built-in's)
+    #[arg(long, value_name = "S", default_value_t = BUILTIN_SEED,
+          value_parser = common::whole::<u64>("--seed", 0, u64::MAX))]
     seed: u64,
+    /// the Rust table (the default is the built-in's, from the repository's root)
+    #[arg(long, value_name = "FILE", default_value = BUILTIN_TABLE)]
     out: std::path::PathBuf,
+    /// also the mask as a grey picture, one pixel per rank (black: rank 0)
+    #[arg(long, value_name = "FILE")]
     png: Option<std::path::PathBuf>,
 }
 
-fn help() -> String {
-    format!(
-        "\
-mask: a blue-noise dither mask of side x side pixels by void and cluster (Ulichney 1993;
-strata_lab::samplers::mask), written as a Rust table of its ranks (row-major, u16) under a
-header naming the options that made it. The renderer's crate reads its built-in mask
-(strata::pixel::frames::BlueNoiseMask::builtin) from the default output, and the lab's tests
-check that file against the function.
-
-Usage:
-  cargo run --release --example mask -- [options]
-
-Options:
-  --side N      a power of two from 4 to {MAX_MASK_SIDE} (default {BUILTIN_SIDE})
-  --seed S      the seed that breaks the fill's ties (default {BUILTIN_SEED}, the built-in's)
-  --out FILE    the Rust table (default {BUILTIN_TABLE}, the built-in's, from the repository's
-                root)
-  --png FILE    also the mask as a grey picture, one pixel per rank (black: rank 0)
-  -h, --help    this text"
-    )
+/// `--side N`: a power of two from 4 to [`MAX_MASK_SIDE`].
+fn side(v: &str) -> Result<u32, CliError> {
+    let side = parse_int("--side", v, 4, MAX_MASK_SIDE as u64)? as u32;
+    if !side.is_power_of_two() {
+        return Err(cli_error(format!(
+            "--side {side}: a power of two from 4 to {MAX_MASK_SIDE} is needed"
+        )));
+    }
+    Ok(side)
 }
 
 fn parse() -> Result<Option<Args>, CliError> {
-    use lexopt::prelude::*;
-    let mut args = Args {
-        side: BUILTIN_SIDE,
-        seed: BUILTIN_SEED,
-        out: BUILTIN_TABLE.into(),
-        png: None,
+    use clap::{CommandFactory, FromArgMatches};
+    let Some(matches) = common::clap_matches(Args::command())? else {
+        return Ok(None);
     };
-    let mut parser = lexopt::Parser::from_env();
-    while let Some(arg) = parser.next()? {
-        match arg {
-            Long("side") => {
-                let v = string_value("--side", parser.value()?)?;
-                let side = parse_int("--side", &v, 4, MAX_MASK_SIDE as u64)? as u32;
-                if !side.is_power_of_two() {
-                    return Err(cli_error(format!(
-                        "--side {side}: a power of two from 4 to {MAX_MASK_SIDE} is needed"
-                    )));
-                }
-                args.side = side;
-            }
-            Long("seed") => {
-                let v = string_value("--seed", parser.value()?)?;
-                args.seed = parse_int("--seed", &v, 0, u64::MAX)?;
-            }
-            Long("out") => args.out = parser.value()?.into(),
-            Long("png") => args.png = Some(parser.value()?.into()),
-            Short('h') | Long("help") => {
-                common::out(help())?;
-                return Ok(None);
-            }
-            other => return Err(common::unexpected(other, USAGE)),
-        }
-    }
-    Ok(Some(args))
+    Ok(Some(
+        Args::from_arg_matches(&matches).map_err(|e| cli_error(e.to_string()))?,
+    ))
 }
 
 fn main() -> ExitCode {

@@ -9,98 +9,93 @@ mod common;
 
 use std::process::ExitCode;
 
-use common::{CliError, cli_error, parse_int, string_value};
+use common::{CliError, cli_error, parse_int};
 use strata::samplers::sobol;
 
-const USAGE: &str = "nets [--sequence zjoint|zquad] [--group G] [--max-m M] [--markdown FILE]";
+/// What the program does (the first lines of `--help`).
+const ABOUT: &str = "\
+nets: the t-values of the projections that `zjoint` or `zquad` draws read, from the generator \
+matrices (exact, by the rank criterion of digital nets). A pixel's 2^m samples of a group \
+are an aligned block of 2^m points of the multi-dimensional sequence (Sobol' for zjoint, the \
+base-4 Faure sequence in binary form for zquad), nested-shuffled and Owen-scrambled, which \
+keeps every elementary interval: each pair of the group's dimensions is a (t, m, 2)-net and \
+each set of four a (t, m, 4)-net with the t printed here (t = 0 is the best possible; an \
+independent pair, as two draws of zsobol are, has no such guarantee). Prints, for m = 2, 4, \
+..., M (2^m points, 4^(m/2) for even m), the t-value of every pair of dimensions of one group, \
+the largest and the mean t over every set of four, and the t of dimensions 0-3 as a base-4 \
+net of 4^(m/2) points.";
 
-const HELP: &str = "\
-nets: the t-values of the projections that `zjoint` or `zquad` draws read, from the generator
-matrices (exact, by the rank criterion of digital nets). A pixel's 2^m samples of a group
-are an aligned block of 2^m points of the multi-dimensional sequence (Sobol' for zjoint, the
-base-4 Faure sequence in binary form for zquad), nested-shuffled and Owen-scrambled, which
-keeps every elementary interval: each pair of the group's dimensions is a (t, m, 2)-net and
-each set of four a (t, m, 4)-net with the t printed here (t = 0 is the best possible; an
-independent pair, as two draws of zsobol are, has no such guarantee). Prints, for m = 2, 4,
-..., M (2^m points, 4^(m/2) for even m), the t-value of every pair of dimensions of one group,
-the largest and the mean t over every set of four, and the t of dimensions 0-3 as a base-4
-net of 4^(m/2) points.
-
-Usage:
-  cargo run --release --example nets -- [options]
-
-Options:
-  --sequence S     zjoint (default) or zquad (groups of 4, and the fifth matrix its 2D draws
-                   at a group's last dimension read)
-  --group G        zjoint's dimensions of a group: a power of two from 2 to 16 (default 8)
-  --max-m M        the largest m, an even number from 2 to 24 (default 16)
-  --markdown FILE  also write the tables into FILE, as its section 'nets-zjoint-G' or
-                   'nets-zquad'
-  -h, --help       this text";
-
+/// The options, each declared once (clap makes `--help`, the usage and the errors from them).
+#[derive(clap::Parser)]
+#[command(name = "nets", about = ABOUT)]
 struct Args {
-    /// The sampler whose matrices are read: `sobol` (zjoint) or `faure4` (zquad).
-    sampler: &'static str,
+    /// zjoint, or zquad (groups of 4, and the fifth matrix its 2D draws at a group's last
+    /// dimension read)
+    #[arg(long, value_enum, default_value_t = SequenceArg::Zjoint)]
+    sequence: SequenceArg,
+    /// zjoint's dimensions of a group: a power of two from 2 to 16 (zquad: 4)
+    #[arg(long, value_name = "G", default_value_t = 8,
+          value_parser = common::value_parser(group))]
     group: u32,
+    /// the largest m, an even number from 2 to 24
+    #[arg(long, value_name = "M", default_value_t = 16,
+          value_parser = common::value_parser(max_m))]
     max_m: u32,
+    /// also write the tables into FILE, as its section 'nets-zjoint-G' or 'nets-zquad'
+    #[arg(long, value_name = "FILE")]
     markdown: Option<std::path::PathBuf>,
 }
 
-fn parse() -> Result<Option<Args>, CliError> {
-    use lexopt::prelude::*;
-    let mut args = Args {
-        sampler: "sobol",
-        group: 8,
-        max_m: 16,
-        markdown: None,
-    };
-    let mut parser = lexopt::Parser::from_env();
-    let mut group_given = false;
-    while let Some(arg) = parser.next()? {
-        match arg {
-            Long("sequence") => {
-                let v = string_value("--sequence", parser.value()?)?;
-                args.sampler = match v.as_str() {
-                    "zjoint" => "sobol",
-                    "zquad" => "faure4",
-                    other => {
-                        return Err(cli_error(format!(
-                            "--sequence {other}: zjoint or zquad is needed"
-                        )));
-                    }
-                };
-            }
-            Long("group") => {
-                let v = string_value("--group", parser.value()?)?;
-                let g = parse_int("--group", &v, 2, 16)? as u32;
-                if !g.is_power_of_two() {
-                    return Err(cli_error(format!(
-                        "--group {g}: a power of two from 2 to 16 is needed"
-                    )));
-                }
-                args.group = g;
-                group_given = true;
-            }
-            Long("max-m") => {
-                let v = string_value("--max-m", parser.value()?)?;
-                let m = parse_int("--max-m", &v, 2, 24)? as u32;
-                if !m.is_multiple_of(2) {
-                    return Err(cli_error(format!(
-                        "--max-m {m}: an even number from 2 to 24 is needed"
-                    )));
-                }
-                args.max_m = m;
-            }
-            Long("markdown") => args.markdown = Some(parser.value()?.into()),
-            Short('h') | Long("help") => {
-                outln!("{HELP}")?;
-                return Ok(None);
-            }
-            other => return Err(common::unexpected(other, USAGE)),
+/// `--sequence`.
+#[derive(Clone, Copy, PartialEq, clap::ValueEnum)]
+enum SequenceArg {
+    /// Sobol' matrices, groups of G dimensions
+    Zjoint,
+    /// the base-4 Faure matrices in binary form, groups of 4
+    Zquad,
+}
+
+impl Args {
+    /// The sampler whose matrices are read: `sobol` (zjoint) or `faure4` (zquad).
+    fn sampler(&self) -> &'static str {
+        match self.sequence {
+            SequenceArg::Zjoint => "sobol",
+            SequenceArg::Zquad => "faure4",
         }
     }
-    if args.sampler == "faure4" {
-        if group_given && args.group != 4 {
+}
+
+/// `--group G`: a power of two from 2 to 16.
+fn group(v: &str) -> Result<u32, CliError> {
+    let g = parse_int("--group", v, 2, 16)? as u32;
+    if !g.is_power_of_two() {
+        return Err(cli_error(format!(
+            "--group {g}: a power of two from 2 to 16 is needed"
+        )));
+    }
+    Ok(g)
+}
+
+/// `--max-m M`: an even number from 2 to 24.
+fn max_m(v: &str) -> Result<u32, CliError> {
+    let m = parse_int("--max-m", v, 2, 24)? as u32;
+    if !m.is_multiple_of(2) {
+        return Err(cli_error(format!(
+            "--max-m {m}: an even number from 2 to 24 is needed"
+        )));
+    }
+    Ok(m)
+}
+
+fn parse() -> Result<Option<Args>, CliError> {
+    use clap::{CommandFactory, FromArgMatches};
+    let Some(matches) = common::clap_matches(Args::command())? else {
+        return Ok(None);
+    };
+    let mut args = Args::from_arg_matches(&matches).map_err(|e| cli_error(e.to_string()))?;
+    if args.sequence == SequenceArg::Zquad {
+        let given = matches.value_source("group") == Some(clap::parser::ValueSource::CommandLine);
+        if given && args.group != 4 {
             return Err(cli_error(format!(
                 "--group {}: zquad's groups have 4 dimensions",
                 args.group
@@ -115,7 +110,7 @@ fn parse() -> Result<Option<Args>, CliError> {
 }
 
 fn section(args: &Args) -> String {
-    if args.sampler == "faure4" {
+    if args.sequence == SequenceArg::Zquad {
         String::from("nets-zquad")
     } else {
         format!("nets-zjoint-{}", args.group)
@@ -154,8 +149,8 @@ fn tables(args: &Args) -> Result<String, CliError> {
         )
     };
     let t_of =
-        |dims: &[u32], m: u32, base: u32| sobol::projection_t_value(args.sampler, dims, m, base);
-    let quad = args.sampler == "faure4";
+        |dims: &[u32], m: u32, base: u32| sobol::projection_t_value(args.sampler(), dims, m, base);
+    let quad = args.sequence == SequenceArg::Zquad;
     // zquad: the four dimensions and the fifth matrix a 2D draw at dimension 3 pairs with
     let dims = if quad { 5 } else { args.group };
     let mut text = if quad {

@@ -196,6 +196,7 @@ pub fn clap_matches_from(
 ) -> Result<Option<clap::ArgMatches>, CliError> {
     let command = command
         .args_override_self(true)
+        .allow_negative_numbers(true)
         .disable_version_flag(true)
         // the same text on every terminal (docs/cli.md holds it)
         .term_width(HELP_WIDTH)
@@ -204,7 +205,7 @@ pub fn clap_matches_from(
     match command.try_get_matches_from(args) {
         Ok(m) => Ok(Some(m)),
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelp => {
-            out(e.render().to_string().trim_end())?;
+            out(format!("{}\n", e.render().to_string().trim_end()))?;
             Ok(None)
         }
         Err(e) => Err(cli_error(one_line(&e.render().to_string()))),
@@ -228,6 +229,25 @@ fn one_line(message: &str) -> String {
         .map(|l| l.trim_start_matches("error: "))
         .collect::<Vec<_>>()
         .join("; ")
+}
+
+/// A clap value parser of a whole number from `min` to `max` (which must fit `T`), with
+/// [`parse_int`]'s message: "--FLAG V is out of range; allowed: MIN to MAX".
+pub fn whole<T>(
+    flag: &'static str,
+    min: u64,
+    max: u64,
+) -> impl clap::builder::TypedValueParser<Value = T>
+where
+    T: TryFrom<u64> + Clone + Send + Sync + 'static,
+{
+    move |v: &str| -> Result<T, String> {
+        let n = parse_int(flag, v, min, max).map_err(|e| match e {
+            CliError::Message(m) => m,
+            CliError::BrokenPipe => String::new(),
+        })?;
+        T::try_from(n).map_err(|_| format!("{flag} {n}: too large for this option"))
+    }
 }
 
 /// A clap value parser from a function giving one-line messages (`Err` of a [`CliError`]

@@ -66,24 +66,25 @@ struct Cli {
     /// follows a blue-noise mask (Heitz and Belcour 2019; strata::pixel::frames), measured over
     /// frames 2 to F beside frame 1: a table on stdout and in --markdown (with --interactions,
     /// the interaction part's low band too)
-    #[arg(long, value_name = "F", value_parser = clap::value_parser!(u32).range(2..=64))]
+    #[arg(long, value_name = "F", value_parser = common::whole::<u32>("--frames", 2, 64))]
     frames: Option<u32>,
     /// the tiles' side of --frames, 1 to 64
     #[arg(long, value_name = "T", default_value_t = 4,
-          value_parser = clap::value_parser!(u32).range(1..=strata::pixel::frames::MAX_TILE as i64))]
+          value_parser = common::whole::<u32>("--frame-tile", 1, strata::pixel::frames::MAX_TILE as u64))]
     frame_tile: u32,
     /// samples per pixel of the reference (default 16 x the largest count, at least 1024, at
     /// most 65536; never below the largest count)
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=65536))]
+    #[arg(long, value_name = "N", value_parser = common::whole::<u32>("--reference-spp", 1, 65536))]
     reference_spp: Option<u32>,
     /// seed of the samplers (the reference has its own)
-    #[arg(long, value_name = "S", default_value_t = 1)]
+    #[arg(long, value_name = "S", default_value_t = 1,
+          value_parser = common::whole::<u64>("--seed", 0, u64::MAX))]
     seed: u64,
     /// renders per sampler and count, seeds S to S+K-1, 1 to 64: rmse and rel_rmse are over
     /// all of them (the root of the mean squared error), ms is the mean time; the pictures
     /// show seed S
     #[arg(long, value_name = "K", default_value_t = 4,
-          value_parser = clap::value_parser!(u32).range(1..=64))]
+          value_parser = common::whole::<u32>("--seeds", 1, 64))]
     seeds: u32,
     /// output directory
     #[arg(long, value_name = "DIR", default_value = "out/render")]
