@@ -16,25 +16,27 @@ use strata_lab::analysis::discrepancy;
 use strata_lab::pointsets::{self, PointSet};
 use strata_lab::{io, spectrum};
 
-const USAGE: &str = "measure FILE... [--out DIR] [--resolution K]";
+/// The most work, `n^2 d`, of the O(n^2 d) discrepancies of one set.
+const MAX_PAIRWISE_WORK: u128 = 1 << 33;
 
-const HELP: &str = "\
-measure: read point sets and print their discrepancies, spacing and spectral measures.
+/// The pairwise work of a file from which `measure` says what it does (about a second).
+const LONG_PAIRWISE_WORK: u128 = 1 << 28;
 
-Usage:
-  cargo run --release --example measure -- FILE... [options]
+/// Whether the O(n^2 d) sums of a set of `n` points in `d` dimensions are within the bound.
+fn pairwise_allowed(n: usize, d: usize) -> bool {
+    (n as u128) * (n as u128) * (d as u128) <= MAX_PAIRWISE_WORK
+}
 
+/// What the program does (the first lines of `--help`).
+const ABOUT: &str = "measure: read point sets and print their discrepancies, spacing and \
+spectral measures.";
+
+/// The files it reads and the columns it prints (the end of `--help`).
+const DETAILS: &str = "\
 Files: CSV (one point per line, comma-separated, optional header), UTK text (space-separated,
 sets separated by lines starting with '#'), or UTK binary (.bin: magic UTK!, data type f32 or
 f64, counts of sets, points and dimensions, then the values). The format is read from the
 content. Coordinates must lie in [0, 1).
-
-Options:
-  --out DIR          also write, per file whose sets are 2D and of one size, the expected
-                     spectrum over its sets as `spectrum` does: FILE-spectrum.png/.exr,
-                     FILE-radial.csv/.png, FILE-points.png; and measures.csv with the table
-  --resolution K     spectrum grid, frequencies |u|, |v| <= K/2 (even, default 128)
-  -h, --help         this text
 
 Columns (one row per set, then the mean of each file's sets):
   n, d        points and dimensions
@@ -60,60 +62,43 @@ Columns (one row per set, then the mean of each file's sets):
 
 The pairwise sums are O(n^2 d): sets with n^2 d above 2^33 (65536 points in 2D, 2930 in 1000
 dimensions) show '-' for them; sets near that bound take tens of seconds each, and a file whose
-sums are that long says so on stderr when it starts and when it is done. Each file is labelled by its name without
-the extension; files whose names would give the same label keep their extension, then a
-number ('pts.csv', 'pts-2.csv').";
+sums are that long says so on stderr when it starts and when it is done. Each file is
+labelled by its name without the extension; files whose names would give the same label keep
+their extension, then a number ('pts.csv', 'pts-2.csv').";
 
-/// The most work, `n^2 d`, of the O(n^2 d) discrepancies of one set.
-const MAX_PAIRWISE_WORK: u128 = 1 << 33;
-
-/// The pairwise work of a file from which `measure` says what it does (about a second).
-const LONG_PAIRWISE_WORK: u128 = 1 << 28;
-
-/// Whether the O(n^2 d) sums of a set of `n` points in `d` dimensions are within the bound.
-fn pairwise_allowed(n: usize, d: usize) -> bool {
-    (n as u128) * (n as u128) * (d as u128) <= MAX_PAIRWISE_WORK
-}
-
+/// The options, each declared once (clap makes `--help`, the usage and the errors from them).
+#[derive(clap::Parser)]
+#[command(name = "measure", about = ABOUT, after_help = DETAILS)]
 struct Args {
+    /// point-set files (CSV, UTK text or UTK binary)
+    #[arg(value_name = "FILE", required = true)]
     files: Vec<PathBuf>,
+    /// also write, per file whose sets are 2D and of one size, the expected spectrum over its
+    /// sets as `spectrum` does: FILE-spectrum.png/.exr, FILE-radial.csv/.png, FILE-points.png;
+    /// and measures.csv with the table
+    #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// spectrum grid, frequencies |u|, |v| <= K/2 (even)
+    #[arg(long, value_name = "K", default_value_t = 128,
+          value_parser = common::value_parser(resolution))]
     resolution: u32,
 }
 
+/// `--resolution K`: an even grid the spectrum takes.
+fn resolution(v: &str) -> Result<u32, CliError> {
+    let k = common::parse_int("--resolution", v, 2, u64::from(spectrum::MAX_RESOLUTION))? as u32;
+    spectrum::check_resolution(k)?;
+    Ok(k)
+}
+
 fn parse() -> Result<Option<Args>, CliError> {
-    use lexopt::prelude::*;
-    let mut args = Args {
-        files: Vec::new(),
-        out: None,
-        resolution: 128,
+    use clap::{CommandFactory, FromArgMatches};
+    let Some(matches) = common::clap_matches(Args::command())? else {
+        return Ok(None);
     };
-    let mut parser = lexopt::Parser::from_env();
-    while let Some(arg) = parser.next()? {
-        match arg {
-            Long("out") => args.out = Some(parser.value()?.into()),
-            Long("resolution") => {
-                let v = common::string_value("--resolution", parser.value()?)?;
-                args.resolution =
-                    common::parse_int("--resolution", &v, 2, u64::from(spectrum::MAX_RESOLUTION))?
-                        as u32;
-                spectrum::check_resolution(args.resolution)?;
-            }
-            Short('h') | Long("help") => {
-                outln!("{HELP}")?;
-                return Ok(None);
-            }
-            Value(v) => args.files.push(v.into()),
-            other => return Err(common::unexpected(other, USAGE)),
-        }
-    }
+    let args = Args::from_arg_matches(&matches).map_err(|e| cli_error(e.to_string()))?;
     if let Some(dir) = &args.out {
         common::check_output_dir("--out", dir)?;
-    }
-    if args.files.is_empty() {
-        return Err(cli_error(format!(
-            "at least one FILE is required; usage: {USAGE}"
-        )));
     }
     Ok(Some(args))
 }

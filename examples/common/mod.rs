@@ -222,13 +222,18 @@ const HELP_TEMPLATE: &str =
 /// A clap message on one line: its lines joined, without the `error: ` prefix and the closing
 /// pointer to `--help`.
 fn one_line(message: &str) -> String {
-    message
+    let mut out = String::new();
+    for line in message
         .lines()
         .map(str::trim)
         .filter(|l| !l.is_empty() && !l.starts_with("For more information"))
-        .map(|l| l.trim_start_matches("error: "))
-        .collect::<Vec<_>>()
-        .join("; ")
+    {
+        if !out.is_empty() {
+            out.push_str(if out.ends_with(':') { " " } else { "; " });
+        }
+        out.push_str(line.trim_start_matches("error: "));
+    }
+    out
 }
 
 /// A clap value parser of a whole number from `min` to `max` (which must fit `T`), with
