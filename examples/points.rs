@@ -12,7 +12,7 @@ mod common;
 use std::io::Write;
 use std::process::ExitCode;
 
-use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_pair, string_value};
+use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, parse_pair};
 use strata::SamplerNd;
 use strata::pixel::{PixelSampler, Sequence};
 use strata_lab::pointsets::{self, Format};
@@ -29,34 +29,94 @@ const LONG_RUN_VALUES: u64 = 1 << 22;
 /// The count from which an expensive sampler (a relaxation, an optimisation) says what it does.
 const LONG_RUN_EXPENSIVE: u64 = 1 << 12;
 
-const USAGE: &str = "points --sampler NAME -n N [--seed S] [--dims D] [--pixel X,Y] \
-[--radius|--iterations|... X (a sampler parameter; see --help)] [--resolution WxH] [--png FILE] \
-[--format csv|utk|bin] [--no-header] [--list]";
+/// The short usage, in the messages of a missing option.
+const USAGE: &str = "points --sampler NAME -n N [options] (see --help)";
 
-const HELP: &str = "\
-points: print a sample set as CSV (header, then one row per sample in sequence order), or draw it.
+/// What the program does (the first lines of `--help`).
+const ABOUT: &str = "points: print a sample set as CSV (header, then one row per sample in \
+sequence order), or draw it.";
 
-Usage:
-  cargo run --release --example points -- --sampler NAME -n N [options]
+/// The end of `--help`.
+const NOTES: &str = "Fixed-count samplers print their first set of N; progressive samplers the \
+first N points of their endless sequence.";
 
-Options:
-  --sampler NAME     the sampler (see --list)
-  -n N               number of samples, 1 to 67108864 (2^26)
-  --seed S           seed of everything (u64, default 1); same arguments, same bytes
-  --dims D           dimensions per sample (default 2)
-  --pixel X,Y        the values the path-tracer adapter gives pixel (X,Y); --sampler is then
-                     a sequence: {SEQUENCES}
-  --resolution WxH   the image of the Z-ordered adapter sequences {Z_SEQUENCES}
-                     (with --pixel; default 256x256; the others ignore it)
-{PARAMETERS}  --png FILE         also draw the points (with the strata grid) into FILE
-  --format F         csv (default), utk (UTK text: space-separated, no header) or bin (UTK
-                     binary: the magic UTK!, data type 4 = f32, counts, then the values)
-  --no-header        omit the CSV header line
-  --list             print every registered sampler with a one-line description
-  -h, --help         this text
+/// The options, each declared once (clap makes `--help`, the usage and the errors from them);
+/// the sampler parameters are added from the registry ([`common::with_sampler_params`]).
+#[derive(clap::Parser)]
+#[command(name = "points", about = ABOUT, after_help = NOTES)]
+struct Cli {
+    /// the sampler (see --list)
+    #[arg(long, value_name = "NAME")]
+    sampler: Option<String>,
+    /// number of samples, 1 to 67108864 (2^26)
+    #[arg(short = 'n', value_name = "N", value_parser = common::whole::<u64>("-n", 1, MAX_CLI_COUNT))]
+    n: Option<u64>,
+    /// seed of everything; same arguments, same bytes
+    #[arg(long, value_name = "S", default_value_t = 1,
+          value_parser = common::whole::<u64>("--seed", 0, u64::MAX))]
+    seed: u64,
+    /// dimensions per sample
+    #[arg(long, value_name = "D", default_value_t = 2,
+          value_parser = common::whole::<u64>("--dims", 1, 1 << 16))]
+    dims: u64,
+    /// the values the path-tracer adapter gives pixel (X,Y); --sampler is then a sequence (the
+    /// list is added at run time)
+    #[arg(long, value_name = "X,Y", value_parser = common::value_parser(pixel))]
+    pixel: Option<Pixel>,
+    /// the image of the Z-ordered adapter sequences (the list is added at run time)
+    #[arg(long, value_name = "WxH", value_parser = common::value_parser(resolution))]
+    resolution: Option<Resolution>,
+    /// also draw the points (with the strata grid) into FILE
+    #[arg(long, value_name = "FILE")]
+    png: Option<std::path::PathBuf>,
+    /// csv, utk (UTK text: space-separated, no header) or bin (UTK binary: the magic UTK!, data
+    /// type 4 = f32, counts, then the values)
+    #[arg(long, value_name = "F", default_value = "csv", value_parser = common::value_parser(format))]
+    format: FormatArg,
+    /// omit the CSV header line
+    #[arg(long)]
+    no_header: bool,
+    /// print every registered sampler with a one-line description
+    #[arg(long)]
+    list: bool,
+}
 
-Fixed-count samplers print their first set of N; progressive samplers the first N points of
-their endless sequence.";
+/// `--pixel X,Y`.
+#[derive(Clone)]
+struct Pixel(u64, u64);
+
+/// `--resolution WxH`.
+#[derive(Clone)]
+struct Resolution([u32; 2]);
+
+/// `--format`.
+#[derive(Clone)]
+struct FormatArg(Format);
+
+/// `--pixel X,Y`: two whole numbers up to `u32::MAX`.
+fn pixel(v: &str) -> Result<Pixel, CliError> {
+    let (x, y) = parse_pair("--pixel", v, u32::MAX as u64)?;
+    Ok(Pixel(x, y))
+}
+
+/// `--resolution WxH`: each side 1 to 65536.
+fn resolution(v: &str) -> Result<Resolution, CliError> {
+    let bad = || {
+        cli_error(format!(
+            "--resolution {v:?} is not WxH; allowed: two whole numbers 1 to 65536, e.g. 256x256"
+        ))
+    };
+    let (w, h) = v.split_once(['x', 'X']).ok_or_else(bad)?;
+    Ok(Resolution([
+        parse_int("--resolution", w, 1, 65536)? as u32,
+        parse_int("--resolution", h, 1, 65536)? as u32,
+    ]))
+}
+
+/// `--format`: csv, utk or bin.
+fn format(v: &str) -> Result<FormatArg, CliError> {
+    Ok(FormatArg(Format::by_name(v)?))
+}
 
 struct Args {
     sampler: Option<String>,
@@ -71,91 +131,53 @@ struct Args {
 }
 
 fn parse() -> Result<Option<Args>, CliError> {
-    use lexopt::prelude::*;
-    let mut args = Args {
-        sampler: None,
-        n: None,
-        params: Params::new(1),
-        dims: 2,
-        pixel: None,
-        resolution: None,
-        png: None,
-        header: true,
-        format: Format::Csv,
+    use clap::{CommandFactory, FromArgMatches};
+    let sequences = format!(
+        "the values the path-tracer adapter gives pixel (X,Y); --sampler is then a sequence: {}",
+        common::sequence_help(false, 0, 0, usize::MAX)
+    );
+    let z = format!(
+        "the image of the Z-ordered adapter sequences {} (with --pixel; default 256x256; the \
+         others ignore it)",
+        common::sequence_help(true, 0, 0, usize::MAX)
+    );
+    let command = common::with_sampler_params(Cli::command())
+        .mut_arg("pixel", |a| a.help(sequences))
+        .mut_arg("resolution", |a| a.help(z));
+    let Some(matches) = common::clap_matches(command)? else {
+        return Ok(None);
     };
-    let mut parser = lexopt::Parser::from_env();
-    while let Some(arg) = parser.next()? {
-        match arg {
-            Long("sampler") => args.sampler = Some(string_value("--sampler", parser.value()?)?),
-            Short('n') => {
-                let v = string_value("-n", parser.value()?)?;
-                args.n = Some(parse_int("-n", &v, 1, MAX_CLI_COUNT)?);
-            }
-            Long("seed") => {
-                let v = string_value("--seed", parser.value()?)?;
-                args.params.seed = parse_int("--seed", &v, 0, u64::MAX)?;
-            }
-            Long("dims") => {
-                let v = string_value("--dims", parser.value()?)?;
-                args.dims = parse_int("--dims", &v, 1, 1 << 16)?;
-            }
-            Long("pixel") => {
-                let v = string_value("--pixel", parser.value()?)?;
-                args.pixel = Some(parse_pair("--pixel", &v, u32::MAX as u64)?);
-            }
-            Long(flag) if common::is_sampler_param(flag) => {
-                let flag = flag.to_owned(); // the argument borrows the parser
-                common::sampler_param(&flag, &mut parser, &mut args.params)?
-            }
-            Long("png") => args.png = Some(parser.value()?.into()),
-            Long("resolution") => {
-                let v = string_value("--resolution", parser.value()?)?;
-                let bad = || {
-                    cli_error(format!(
-                        "--resolution {v:?} is not WxH; allowed: two whole numbers 1 to 65536, e.g. 256x256"
-                    ))
-                };
-                let (w, h) = v.split_once(['x', 'X']).ok_or_else(bad)?;
-                args.resolution = Some([
-                    parse_int("--resolution", w, 1, 65536)? as u32,
-                    parse_int("--resolution", h, 1, 65536)? as u32,
-                ]);
-            }
-            Long("no-header") => args.header = false,
-            Long("format") => {
-                let v = string_value("--format", parser.value()?)?;
-                args.format = Format::by_name(&v)?;
-            }
-            Long("list") => {
-                for e in registry::entries() {
-                    let kind = if e.progressive {
-                        "progressive"
-                    } else {
-                        "fixed-count"
-                    };
-                    outln!(
-                        "{:<16} {:<12} {:<16} {}",
-                        e.name,
-                        kind,
-                        e.counts.to_string(),
-                        e.description
-                    )?;
-                }
-                return Ok(None);
-            }
-            Short('h') | Long("help") => {
-                outln!(
-                    "{}",
-                    HELP.replace("{PARAMETERS}", &common::parameter_help())
-                        .replace("{SEQUENCES}", &common::sequence_help(false, 33, 21, 95))
-                        .replace("{Z_SEQUENCES}", &common::sequence_help(true, 64, 21, 95))
-                )?;
-                return Ok(None);
-            }
-            other => return Err(common::unexpected(other, USAGE)),
+    let c = Cli::from_arg_matches(&matches).map_err(|e| cli_error(e.to_string()))?;
+    if c.list {
+        for e in registry::entries() {
+            let kind = if e.progressive {
+                "progressive"
+            } else {
+                "fixed-count"
+            };
+            outln!(
+                "{:<16} {:<12} {:<16} {}",
+                e.name,
+                kind,
+                e.counts.to_string(),
+                e.description
+            )?;
         }
+        return Ok(None);
     }
-    Ok(Some(args))
+    let mut params = Params::new(1).seed(c.seed);
+    common::read_sampler_params(&matches, &mut params)?;
+    Ok(Some(Args {
+        sampler: c.sampler,
+        n: c.n,
+        params,
+        dims: c.dims,
+        pixel: c.pixel.map(|p| (p.0, p.1)),
+        resolution: c.resolution.map(|r| r.0),
+        png: c.png,
+        header: !c.no_header,
+        format: c.format.0,
+    }))
 }
 
 fn main() -> ExitCode {

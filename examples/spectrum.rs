@@ -15,54 +15,65 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int, string_value};
+use common::{CliError, MAX_CLI_COUNT, cli_error, parse_int};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use strata_lab::io::{self, Canvas, Rgb};
 use strata_lab::registry::{self, Entry, Params};
 use strata_lab::spectrum::{self, PointSetMeasures, RadialBin, Spectrum};
 
-const USAGE: &str = "spectrum [--sampler NAME|all] [-n N] [--realizations R] [--seed S] [--resolution K] [--out DIR] [--markdown FILE] | spectrum --blue-noise-table [-n N] [--realizations R] [--seed S] [--resolution K] [--markdown FILE]";
+/// What the program does (the first lines of `--help`).
+const ABOUT: &str = "spectrum: expected power spectra of sample patterns, their radial means, \
+anisotropy and PSA measures, written as pictures and files.";
 
-const HELP: &str = "\
-spectrum: expected power spectra of sample patterns, their radial means, anisotropy and PSA
-measures, written as pictures and files.
+/// What a run writes, and the blue-noise table (the end of `--help`).
+const DETAILS: &str = "For each sampler NAME it writes DIR/NAME-spectrum.png (log scale, DC centred), NAME-spectrum.exr (the values, channel Y, f32), NAME-radial.csv (frequency,power,anisotropy), NAME-radial.png and NAME-points.png, then DIR/overview.png and a table on stdout. ms/set is the time to generate one set on one core (construction and points; one-time tables, built by a warm-up before timing, are not counted).\n\n\
+--blue-noise-table: one row per blue-noise sampler of the registry and count (N = 1024 and 4096, each sampler's allowed count nearest to it; -n N for one count, at most 16384), from R seeds (default 8; seed S + r as above), at each sampler's default parameters: rho (the smallest toroidal distance between two points of a set relative to r_max(N) = sqrt(2 / (sqrt(3) N)), Lagae and Dutre 2008; mean over the seeds), the mean nearest-neighbour distance relative to r_max(N) (mean over the seeds), the low-band power of the expected spectrum (the mean of its radial bins b = 1, 2, ... below sqrt(N)/2, bin b averaging P over w != 0 with round(|w|) == b, as in the main table), the median time per set over the seeds (one thread, measured now), and the figure the sampler's paper reports, with the reference. A row whose first set takes so long that its R sets would take more than 60 s is skipped after that set, and says so. Writes no files but --markdown FILE (section 'blue-noise-table').";
 
-Usage:
-  cargo run --release --example spectrum -- [options]
+/// The options, each declared once (clap makes `--help`, the usage and the errors from them);
+/// the sampler parameters are added from the registry ([`common::with_sampler_params`]).
+#[derive(clap::Parser)]
+#[command(name = "spectrum", about = ABOUT, after_help = DETAILS)]
+struct Cli {
+    /// one sampler, or every registered one
+    #[arg(long, value_name = "NAME|all", default_value = "all")]
+    sampler: String,
+    /// points per realization (default 1024; with 'all', each sampler uses its allowed count
+    /// nearest to N)
+    #[arg(short = 'n', value_name = "N", value_parser = common::whole::<u64>("-n", 2, MAX_CLI_COUNT))]
+    n: Option<u64>,
+    /// realizations averaged (default 64; 16 for slow samplers)
+    #[arg(long, value_name = "R", value_parser = common::whole::<u32>("--realizations", 1, 100_000))]
+    realizations: Option<u32>,
+    /// realization r uses seed S + r, exactly the points that `points --sampler NAME -n N --seed
+    /// S+r` prints
+    #[arg(long, value_name = "S", default_value_t = 1,
+          value_parser = common::whole::<u64>("--seed", 0, u64::MAX))]
+    seed: u64,
+    /// frequencies |u|, |v| <= K/2 (even)
+    #[arg(long, value_name = "K", default_value_t = 256, value_parser = common::value_parser(resolution))]
+    resolution: u32,
+    /// output directory, created when missing
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    out: PathBuf,
+    /// skip DIR/overview.png
+    #[arg(long)]
+    no_overview: bool,
+    /// also write the table into FILE, as its section 'spectrum' ('blue-noise-table' with
+    /// --blue-noise-table)
+    #[arg(long, value_name = "FILE")]
+    markdown: Option<PathBuf>,
+    /// instead: the published-figures table of every blue-noise sampler (below)
+    #[arg(long)]
+    blue_noise_table: bool,
+}
 
-Options:
-  --sampler NAME|all  one sampler, or every registered one (default all)
-  -n N                points per realization (default 1024; with 'all', each sampler uses its
-                      allowed count nearest to N)
-  --realizations R    realizations averaged (default 64; 16 for slow samplers)
-  --seed S            realization r uses seed S + r (default 1), exactly the points that
-                      `points --sampler NAME -n N --seed S+r` prints
-  --resolution K      frequencies |u|, |v| <= K/2 (even, default 256)
-  --out DIR           output directory (default out), created when missing
-{PARAMETERS}  --no-overview       skip out/overview.png
-  --markdown FILE     also write the table into FILE, as its section 'spectrum'
-                      ('blue-noise-table' with --blue-noise-table)
-  --blue-noise-table  instead: the published-figures table of every blue-noise sampler (below)
-  -h, --help          this text
-
-For each sampler NAME it writes DIR/NAME-spectrum.png (log scale, DC centred), NAME-spectrum.exr
-(the values, channel Y, f32), NAME-radial.csv (frequency,power,anisotropy), NAME-radial.png and
-NAME-points.png, then DIR/overview.png and a table on stdout. ms/set is the time to generate
-one set on one core (construction and points; one-time tables, built by a warm-up before
-timing, are not counted).
-
---blue-noise-table: one row per blue-noise sampler of the registry and count (N = 1024 and
-4096, each sampler's allowed count nearest to it; -n N for one count, at most 16384), from R
-seeds (default 8; seed S + r as above), at each sampler's default parameters: rho (the
-smallest toroidal distance between two points of a set relative to r_max(N) =
-sqrt(2 / (sqrt(3) N)), Lagae and Dutre 2008; mean over the seeds), the mean nearest-neighbour
-distance relative to r_max(N) (mean over the seeds), the low-band power of the expected
-spectrum (the mean of its radial bins b = 1, 2, ... below sqrt(N)/2, bin b averaging P over
-w != 0 with round(|w|) == b, as in the main table), the median time per set over the seeds (one
-thread, measured now), and the figure the sampler's paper reports, with the reference. A row
-whose first set takes so long that its R sets would take more than 60 s is skipped after that
-set, and says so. Writes no files but --markdown FILE (section 'blue-noise-table').";
+/// `--resolution K`: an even grid the spectrum takes.
+fn resolution(v: &str) -> Result<u32, CliError> {
+    let k = parse_int("--resolution", v, 2, spectrum::MAX_RESOLUTION as u64)? as u32;
+    spectrum::check_resolution(k)?;
+    Ok(k)
+}
 
 /// The most points per set in `--blue-noise-table` (the relaxations are quadratic or worse).
 const MAX_TABLE_COUNT: u64 = 1 << 14;
@@ -82,85 +93,42 @@ struct Args {
     markdown: Option<PathBuf>,
     /// `--blue-noise-table`.
     table: bool,
-    /// The flags given that the table mode does not take.
-    not_for_table: Vec<String>,
 }
 
 fn parse() -> Result<Option<Args>, CliError> {
-    use lexopt::prelude::*;
-    let mut a = Args {
-        sampler: "all".into(),
-        n: None,
-        realizations: None,
-        seed: 1,
-        resolution: 256,
-        out: PathBuf::from("out"),
-        params: Params::new(1),
-        overview: true,
-        markdown: None,
-        table: false,
-        not_for_table: Vec::new(),
+    use clap::parser::ValueSource;
+    use clap::{CommandFactory, FromArgMatches};
+    let Some(matches) = common::clap_matches(common::with_sampler_params(Cli::command()))? else {
+        return Ok(None);
     };
-    let mut p = lexopt::Parser::from_env();
-    while let Some(arg) = p.next()? {
-        match arg {
-            Long("sampler") => {
-                a.sampler = string_value("--sampler", p.value()?)?;
-                a.not_for_table.push("--sampler".into());
-            }
-            Short('n') => {
-                // two points at least: the spacing measures need a neighbour
-                a.n = Some(parse_int(
-                    "-n",
-                    &string_value("-n", p.value()?)?,
-                    2,
-                    MAX_CLI_COUNT,
-                )?)
-            }
-            Long("realizations") => {
-                let v = string_value("--realizations", p.value()?)?;
-                a.realizations = Some(parse_int("--realizations", &v, 1, 100_000)? as u32);
-            }
-            Long("seed") => {
-                a.seed = parse_int("--seed", &string_value("--seed", p.value()?)?, 0, u64::MAX)?
-            }
-            Long("resolution") => {
-                let v = string_value("--resolution", p.value()?)?;
-                let k = parse_int("--resolution", &v, 2, spectrum::MAX_RESOLUTION as u64)? as u32;
-                spectrum::check_resolution(k)?;
-                a.resolution = k;
-            }
-            Long("out") => {
-                a.out = p.value()?.into();
-                a.not_for_table.push("--out".into());
-            }
-            Long(flag) if common::is_sampler_param(flag) => {
-                let flag = flag.to_owned(); // the argument borrows the parser
-                common::sampler_param(&flag, &mut p, &mut a.params)?;
-                a.not_for_table.push(format!("--{flag}"));
-            }
-            Long("no-overview") => {
-                a.overview = false;
-                a.not_for_table.push("--no-overview".into());
-            }
-            Long("blue-noise-table") => a.table = true,
-            Long("markdown") => a.markdown = Some(p.value()?.into()),
-            Short('h') | Long("help") => {
-                outln!(
-                    "{}",
-                    HELP.replace("{PARAMETERS}", &common::parameter_help())
-                )?;
-                return Ok(None);
-            }
-            other => return Err(common::unexpected(other, USAGE)),
-        }
-    }
+    let c = Cli::from_arg_matches(&matches).map_err(|e| cli_error(e.to_string()))?;
+    let mut params = Params::new(1);
+    common::read_sampler_params(&matches, &mut params)?;
+    let a = Args {
+        sampler: c.sampler,
+        n: c.n,
+        realizations: c.realizations,
+        seed: c.seed,
+        resolution: c.resolution,
+        out: c.out,
+        params,
+        overview: !c.no_overview,
+        markdown: c.markdown,
+        table: c.blue_noise_table,
+    };
     if a.table {
-        if let Some(flag) = a.not_for_table.first() {
+        // the flags the table does not take, in the order of the help
+        let given = |id: &str| matches.value_source(id) == Some(ValueSource::CommandLine);
+        let not_for_table = ["sampler", "out", "no_overview"]
+            .into_iter()
+            .chain(registry::parameter_names())
+            .find(|id| given(id));
+        if let Some(id) = not_for_table {
             return Err(cli_error(format!(
                 "--blue-noise-table takes -n, --realizations, --seed, --resolution and \
-                 --markdown, not {flag} (the table covers every blue-noise sampler at its \
-                 default parameters and writes no files but --markdown)"
+                 --markdown, not --{} (the table covers every blue-noise sampler at its \
+                 default parameters and writes no files but --markdown)",
+                id.replace('_', "-")
             )));
         }
         if let Some(n) = a.n.filter(|&n| n > MAX_TABLE_COUNT) {

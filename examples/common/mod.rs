@@ -117,13 +117,6 @@ macro_rules! outln {
     };
 }
 
-/// The value of a flag as a UTF-8 string.
-pub fn string_value(flag: &str, value: std::ffi::OsString) -> Result<String, CliError> {
-    value
-        .into_string()
-        .map_err(|v| cli_error(format!("{flag}: {v:?} is not valid UTF-8")))
-}
-
 /// Parses a flag's value as an integer in `[min, max]`.
 pub fn parse_int(flag: &str, value: &str, min: u64, max: u64) -> Result<u64, CliError> {
     let v: u64 = value.trim().parse().map_err(|e: std::num::ParseIntError| {
@@ -171,16 +164,6 @@ pub fn parse_pair(flag: &str, value: &str, max: u64) -> Result<(u64, u64), CliEr
     Ok((parse_int(flag, a, 0, max)?, parse_int(flag, b, 0, max)?))
 }
 
-/// Turns lexopt's complaint about an unexpected argument into a message that lists the flags.
-pub fn unexpected(arg: lexopt::Arg<'_>, usage: &str) -> CliError {
-    let what = match arg {
-        lexopt::Arg::Short(c) => format!("unknown flag -{c}"),
-        lexopt::Arg::Long(l) => format!("unknown flag --{l}"),
-        lexopt::Arg::Value(v) => format!("unexpected argument {v:?}"),
-    };
-    cli_error(format!("{what}; usage: {usage}"))
-}
-
 /// Parses the command line by `command` (a clap declaration: the options, their help, defaults
 /// and allowed values, written once): the matches, or `None` after `--help` (the help printed
 /// on stdout), or a one-line error (clap's message, its lines joined, the usage and the tip of
@@ -216,8 +199,7 @@ pub fn clap_matches_from(
 const HELP_WIDTH: usize = 96;
 
 /// The help's layout for every program: what it does, the usage, the options, then notes.
-const HELP_TEMPLATE: &str =
-    "{about-with-newline}\nUsage: {usage}\n\nOptions:\n{options}{after-help}";
+const HELP_TEMPLATE: &str = "{about-with-newline}\nUsage: {usage}\n\n{all-args}{after-help}";
 
 /// A clap message on one line: its lines joined, without the `error: ` prefix and the closing
 /// pointer to `--help`.
@@ -267,23 +249,62 @@ pub fn value_parser<T: Clone + Send + Sync + 'static>(
     }
 }
 
-/// True when `flag` (without dashes) names a parameter some registered sampler declares
-/// (`strata_lab::registry::parameter_names`): the programs take `--NAME VALUE` for every one.
-pub fn is_sampler_param(flag: &str) -> bool {
-    strata_lab::registry::parameter_names().contains(&flag)
+/// The sampler parameters as options of `command`, one per name some sampler declares (from
+/// the registry: each sampler's help, range and default), under their own heading.
+pub fn with_sampler_params(mut command: clap::Command) -> clap::Command {
+    use strata_lab::registry;
+    for name in registry::parameter_names() {
+        let kind = registry::parameter_kind(name).map_or("", |k| k.name());
+        let mut help = format!("a {kind}, for the samplers that take it:");
+        for (e, p) in registry::parameters().filter(|(_, p)| p.is_named(name)) {
+            let alias = if p.name == name {
+                String::new()
+            } else {
+                format!(" [an alias of its --{}]", p.name)
+            };
+            help.push_str(&format!(
+                "\n- {}: {} ({}, default {}){alias}",
+                e.name,
+                p.help,
+                p.allowed(),
+                p.default
+            ));
+        }
+        command = command.arg(
+            clap::Arg::new(name)
+                .long(name)
+                .value_name("X")
+                .help(help)
+                .help_heading("Sampler parameters"),
+        );
+    }
+    command
 }
 
-/// Reads the value of the sampler parameter `--flag` from `parser` into `params`, parsed by the
+/// The sampler parameters given on the command line ([`with_sampler_params`]) into `params`,
+/// each parsed by its kind within the widest range a sampler declares for it.
+pub fn read_sampler_params(
+    matches: &clap::ArgMatches,
+    params: &mut strata_lab::registry::Params,
+) -> Result<(), CliError> {
+    for name in strata_lab::registry::parameter_names() {
+        if let Some(v) = matches.get_one::<String>(name) {
+            sampler_param(name, v, params)?;
+        }
+    }
+    Ok(())
+}
+
+/// Reads the value `v` of the sampler parameter `--flag` into `params`, parsed by the
 /// kind its declaration gives and within the widest range any sampler declares for it (each
 /// sampler's own range is checked when it is built).
-pub fn sampler_param(
+fn sampler_param(
     flag: &str,
-    parser: &mut lexopt::Parser,
+    v: &str,
     params: &mut strata_lab::registry::Params,
 ) -> Result<(), CliError> {
     use strata_lab::registry::{self, Bound, Kind};
     let dashed = format!("--{flag}");
-    let v = string_value(&dashed, parser.value()?)?;
     let specs: Vec<_> = registry::parameters()
         .filter(|(_, p)| p.is_named(flag))
         .map(|(_, p)| p)
@@ -304,8 +325,8 @@ pub fn sampler_param(
         .map(|p| end(&p.max))
         .fold(f64::NEG_INFINITY, f64::max);
     let value = match first.kind {
-        Kind::Whole => parse_int(&dashed, &v, lo as u64, hi as u64)? as f64,
-        _ => parse_open_float(&dashed, &v, lo, hi)?,
+        Kind::Whole => parse_int(&dashed, v, lo as u64, hi as u64)? as f64,
+        _ => parse_open_float(&dashed, v, lo, hi)?,
     };
     params.set(flag, value);
     Ok(())
@@ -344,35 +365,6 @@ pub fn sequence_help(z_only: bool, first: usize, indent: usize, width: usize) ->
         column += word.len();
     }
     out
-}
-
-/// The `--help` lines of the sampler parameters, from their declarations: a line per flag and
-/// one per sampler that takes it (its range, default and what it does).
-pub fn parameter_help() -> String {
-    use strata_lab::registry;
-    let mut s = String::new();
-    for name in registry::parameter_names() {
-        let kind = registry::parameter_kind(name).map_or("", |k| k.name());
-        let flag = format!("--{name} X");
-        s.push_str(&format!(
-            "  {flag:<17}  a {kind}, for the samplers that take it:\n"
-        ));
-        for (e, p) in registry::parameters().filter(|(_, p)| p.is_named(name)) {
-            let alias = if p.name == name {
-                String::new()
-            } else {
-                format!(" [an alias of its --{}]", p.name)
-            };
-            s.push_str(&format!(
-                "      {}: {} ({}, default {}){alias}\n",
-                e.name,
-                p.help,
-                p.allowed(),
-                p.default
-            ));
-        }
-    }
-    s
 }
 
 /// Writes `body` into the Markdown file `path` as section `name`, between the lines

@@ -72,7 +72,7 @@ fn bad_input_is_a_one_line_error() {
         (&["--sampler", "cmj", "-n", "67108865"], "67108864"),
         (&["--sampler", "cmj", "-n", "abc"], "whole number"),
         (&["--sampler", "cmj"], "-n N is required"),
-        (&["--bogus"], "unknown flag"),
+        (&["--bogus"], "unexpected argument '--bogus'"),
     ];
     for (args, needle) in cases {
         let (code, out, err) = run(args);

@@ -378,7 +378,7 @@ fn points_bounds_its_allocations_at_and_past_the_bound() {
         ),
         (
             vec!["--sampler", "random", "-n", "4", "--png", ""],
-            "empty file name",
+            "a value is required for '--png",
         ),
     ] {
         let r = run("points", &args);
@@ -548,7 +548,7 @@ fn parameters_counts_and_help_at_the_edges() {
     );
     assert_refused(&r, &["-n", "2"], "spectrum -n 1");
     let r = run("spectrum", &["--sampler", "random", "--out", ""]);
-    assert_refused(&r, &["empty directory name"], "spectrum --out ''");
+    assert_refused(&r, &["a value is required for '--out"], "spectrum --out ''");
     let r = run("conformance", &["--help"]);
     assert_eq!(r.code, 0);
     for name in strata::pixel::Sequence::NAMES {
