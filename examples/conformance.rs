@@ -222,6 +222,25 @@ fn pair_tests(args: &Args, failed: &mut bool) -> Result<(), CliError> {
     Ok(())
 }
 
+/// A sequence's line of the summary: its tests, cases, the case closest to its bound, verdict.
+fn summary_row(name: &str, report: &strata_lab::conformance::Report) -> String {
+    let closest = report
+        .rows
+        .iter()
+        .filter(|r| r.cases > 0 && r.threshold > 0.0)
+        .max_by(|a, b| (a.worst / a.threshold).total_cmp(&(b.worst / b.threshold)));
+    format!(
+        "| {name} | {} | {} | {} | {} |\n",
+        report.rows.iter().filter(|r| r.cases > 0).count(),
+        report.rows.iter().map(|r| r.cases).sum::<usize>(),
+        closest.map_or("-".into(), |r| format!(
+            "{} {}: {:.3} / {:.3}",
+            r.test, r.scope, r.worst, r.threshold
+        )),
+        if report.passed() { "pass" } else { "FAIL" }
+    )
+}
+
 fn main() -> ExitCode {
     let mut failed = false;
     let status = common::run("conformance", || {
@@ -248,21 +267,7 @@ fn main() -> ExitCode {
                 start.elapsed().as_secs_f64()
             );
             failed |= !report.passed();
-            let closest = report
-                .rows
-                .iter()
-                .filter(|r| r.cases > 0 && r.threshold > 0.0)
-                .max_by(|a, b| (a.worst / a.threshold).total_cmp(&(b.worst / b.threshold)));
-            summary.push_str(&format!(
-                "| {name} | {} | {} | {} | {} |\n",
-                report.rows.iter().filter(|r| r.cases > 0).count(),
-                report.rows.iter().map(|r| r.cases).sum::<usize>(),
-                closest.map_or("-".into(), |r| format!(
-                    "{} {}: {:.3} / {:.3}",
-                    r.test, r.scope, r.worst, r.threshold
-                )),
-                if report.passed() { "pass" } else { "FAIL" }
-            ));
+            summary.push_str(&summary_row(&name, &report));
         }
         if let Some(path) = &args.markdown {
             common::write_markdown_section(

@@ -300,37 +300,8 @@ fn main() -> ExitCode {
         let labels = file_labels(&args.files);
         for (path, label) in args.files.iter().zip(labels) {
             let sets = pointsets::read_file(path)?;
-            // a long file says what it does (not a minute in silence)
-            let work: u128 = sets
-                .iter()
-                .filter(|s| pairwise_allowed(s.len(), s.dims))
-                .map(|s| s.len() as u128 * s.len() as u128 * s.dims as u128)
-                .sum();
-            let started = std::time::Instant::now();
-            let long = work >= LONG_PAIRWISE_WORK;
-            if long {
-                eprintln!(
-                    "measure: {label}: {} set(s), pairwise sums of n^2 d = {work} terms in all ...",
-                    sets.len()
-                );
-            }
-            let rows = measure_all(&label, &sets)?;
-            if long {
-                eprintln!(
-                    "measure: {label}: measured in {:.1} s",
-                    started.elapsed().as_secs_f64()
-                );
-            }
+            let rows = measure_file(&label, &sets)?;
             let same_shape = rows.iter().all(|r| (r.n, r.d) == (rows[0].n, rows[0].d));
-            if let Some(r) = rows.iter().find(|r| !pairwise_allowed(r.n, r.d)) {
-                eprintln!(
-                    "measure: {label}: n^2 d = {} for n = {}, d = {} is above \
-                     {MAX_PAIRWISE_WORK}; the discrepancies are shown as '-'",
-                    r.n as u128 * r.n as u128 * r.d as u128,
-                    r.n,
-                    r.d
-                );
-            }
             let mut lines: Vec<(String, &Row)> = rows
                 .iter()
                 .enumerate()
@@ -342,38 +313,13 @@ fn main() -> ExitCode {
             }
             for (set, r) in lines {
                 let cells: Vec<String> = r.values.iter().map(|&v| cell(v)).collect();
-                table.push_str(&format!(
-                    "| {label} | {set} | {} | {} | {} |\n",
-                    r.n,
-                    r.d,
-                    cells.join(" | ")
-                ));
-                csv.push_str(&format!(
-                    "{label},{set},{},{},{}\n",
-                    r.n,
-                    r.d,
-                    cells.join(",")
-                ));
+                let (n, d) = (r.n, r.d);
+                let cells = (cells.join(" | "), cells.join(","));
+                table.push_str(&format!("| {label} | {set} | {n} | {d} | {} |\n", cells.0));
+                csv.push_str(&format!("{label},{set},{n},{d},{}\n", cells.1));
             }
             if let Some(dir) = &args.out {
-                let points: Option<Vec<_>> = sets.iter().map(PointSet::points_2d).collect();
-                match points {
-                    Some(points) if same_shape => {
-                        let spec = spectrum::expected_spectrum_of_sets(&points, args.resolution)?;
-                        io::write_spectrum_files(
-                            dir,
-                            &label,
-                            &spec,
-                            points.len(),
-                            &points[0],
-                            &[],
-                        )?;
-                    }
-                    _ => eprintln!(
-                        "measure: {}: no spectrum (it needs 2D sets of one size)",
-                        path.display()
-                    ),
-                }
+                write_spectrum(dir, path, &label, &sets, same_shape, args.resolution)?;
             }
         }
         common::out(&table)?;
@@ -382,4 +328,62 @@ fn main() -> ExitCode {
         }
         Ok(())
     })
+}
+
+/// The rows of a file's sets, a long file saying what it does on stderr (not a minute in
+/// silence), and a note when some sets are too large for the pairwise sums.
+fn measure_file(label: &str, sets: &[PointSet]) -> Result<Vec<Row>, CliError> {
+    let work: u128 = sets
+        .iter()
+        .filter(|s| pairwise_allowed(s.len(), s.dims))
+        .map(|s| s.len() as u128 * s.len() as u128 * s.dims as u128)
+        .sum();
+    let started = std::time::Instant::now();
+    let long = work >= LONG_PAIRWISE_WORK;
+    if long {
+        eprintln!(
+            "measure: {label}: {} set(s), pairwise sums of n^2 d = {work} terms in all ...",
+            sets.len()
+        );
+    }
+    let rows = measure_all(label, sets)?;
+    if long {
+        eprintln!(
+            "measure: {label}: measured in {:.1} s",
+            started.elapsed().as_secs_f64()
+        );
+    }
+    if let Some(r) = rows.iter().find(|r| !pairwise_allowed(r.n, r.d)) {
+        eprintln!(
+            "measure: {label}: n^2 d = {} for n = {}, d = {} is above {MAX_PAIRWISE_WORK}; the \
+             discrepancies are shown as '-'",
+            r.n as u128 * r.n as u128 * r.d as u128,
+            r.n,
+            r.d
+        );
+    }
+    Ok(rows)
+}
+
+/// `--out DIR`: the expected spectrum over a file's sets, when they are 2D and of one size.
+fn write_spectrum(
+    dir: &std::path::Path,
+    path: &std::path::Path,
+    label: &str,
+    sets: &[PointSet],
+    same_shape: bool,
+    resolution: u32,
+) -> Result<(), CliError> {
+    let points: Option<Vec<_>> = sets.iter().map(PointSet::points_2d).collect();
+    match points {
+        Some(points) if same_shape => {
+            let spec = spectrum::expected_spectrum_of_sets(&points, resolution)?;
+            io::write_spectrum_files(dir, label, &spec, points.len(), &points[0], &[])?;
+        }
+        _ => eprintln!(
+            "measure: {}: no spectrum (it needs 2D sets of one size)",
+            path.display()
+        ),
+    }
+    Ok(())
 }

@@ -183,199 +183,229 @@ fn parse() -> Result<Option<Args>, CliError> {
 fn main() -> ExitCode {
     common::run("points", || {
         let Some(args) = parse()? else { return Ok(()) };
-        let name = args.sampler.ok_or_else(|| {
-            cli_error(format!(
-                "--sampler NAME is required (see --list); usage: {USAGE}"
-            ))
-        })?;
-        let n = args.n.ok_or_else(|| {
-            cli_error(format!(
-                "-n N is required (1 to {MAX_CLI_COUNT}); usage: {USAGE}"
-            ))
-        })?;
-        // options that would be ignored are refused
-        if args.resolution.is_some() && args.pixel.is_none() {
-            return Err(cli_error(
-                "--resolution is the image of the Z-ordered sequences and needs --pixel X,Y; \
-                 allowed without --pixel: a sampler's own parameters (see --help)",
-            ));
-        }
-        if !args.header && args.format != Format::Csv {
-            return Err(cli_error(
-                "--no-header applies to --format csv only; UTK's formats have no header line",
-            ));
-        }
-        // the adapter's sequences (with --pixel) include ones that are not registered samplers
-        let entry = if args.pixel.is_some() {
-            if let Some((p, _)) = args.params.given().next() {
-                return Err(cli_error(format!(
-                    "--{} is a sampler parameter; with --pixel the path-tracer sequences take \
-                     none (allowed with --pixel: --seed, --dims, --resolution)",
-                    p
-                )));
-            }
-            None
-        } else {
-            Some(registry::find(&name)?)
-        };
-        if let Some(e) = entry {
-            // the suggestions of the count message stay within this program's limit
-            e.counts.check_within(e.name, n, MAX_CLI_COUNT)?;
-        }
-        let mut params = args.params.clone();
-        params.count = n;
-        let dims = args.dims as usize;
-        // bounded before anything is allocated: the values, and the picture's canvas
-        if n as u128 * dims as u128 > MAX_VALUES as u128 {
-            return Err(cli_error(format!(
-                "-n {n} x --dims {dims} = {} values is too many; allowed: at most {MAX_VALUES} \
-                 (2^27, 512 MB)",
-                n as u128 * dims as u128
-            )));
-        }
-        if args.png.is_some() && dims > MAX_PNG_DIMS {
-            return Err(cli_error(format!(
-                "--png draws every 2D projection of the {dims} dimensions ({} of them); \
-                 allowed: --dims at most {MAX_PNG_DIMS} with --png",
-                dims * dims
-            )));
-        }
-        if let Some(path) = &args.png
-            && path.as_os_str().is_empty()
-        {
-            return Err(cli_error("--png: an empty file name"));
-        }
-        // everything is checked (the build refuses what the sampler cannot make) before a long
-        // run says what it is doing, on stderr (stdout holds the values); relaxations and
-        // optimisations are long from a few thousand points on
-        enum Source {
-            Pixel(Box<PixelSampler>),
-            Built(Built),
-        }
-        let source = if args.pixel.is_some() {
-            let resolution = args.resolution.unwrap_or([256, 256]);
-            let sequence = Sequence::by_name(&name, resolution)?;
-            let spp = u32::try_from(n)
-                .map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
-            Source::Pixel(Box::new(PixelSampler::new(
-                sequence,
-                spp,
-                strata::Seed(args.params.seed),
-            )?))
-        } else {
-            // one build for any --dims: a 2D sampler (with its strata grids) at 2
-            let params = params.dims(args.dims as u32);
-            Source::Built(
-                entry
-                    .expect("no --pixel")
-                    .make(&params, Strictness::Strict)?,
-            )
-        };
+        let job = check(&args)?;
         let started = std::time::Instant::now();
-        let long_run = n * dims as u64 >= LONG_RUN_VALUES
-            || (entry.is_some_and(|e| e.expensive) && n >= LONG_RUN_EXPENSIVE);
-        if long_run {
-            eprintln!("points: {n} points of {name} in {dims} dimensions ...");
-        }
-        // rows of `dims` values, point-major
-        let mut values = vec![0f32; n as usize * dims];
-        let mut grids = Vec::new();
-        let mut projection_grids = Vec::new();
-        match source {
-            Source::Pixel(mut sampler) => {
-                let [px, py] = args
-                    .pixel
-                    .map(|(x, y)| [x as u32, y as u32])
-                    .expect("--pixel");
-                for (index, row) in values.chunks_exact_mut(dims).enumerate() {
-                    sampler.fill_sample([px, py], index as u64, 0, row);
-                }
-            }
-            Source::Built(Built::Two(mut sampler)) => {
-                let mut points = vec![[0.0f32; 2]; n as usize];
-                strata::Sampler::fill(&mut sampler, &mut points);
-                for (row, p) in values.chunks_exact_mut(2).zip(&points) {
-                    row[0] = p[0];
-                    row[1] = p[1];
-                }
-                grids = strata::Sampler::strata(&sampler, n);
-            }
-            Source::Built(mut sampler) => {
-                sampler.fill(&mut values);
-                // the grid of each 2D projection, row y, column x (only for the picture)
-                if args.png.is_some() {
-                    projection_grids = (0..dims * dims)
-                        .map(|k| sampler.projection_strata((k % dims) as u32, (k / dims) as u32))
-                        .collect();
-                }
-            }
-        }
-
-        if long_run {
-            eprintln!(
-                "points: made in {:.1} s; writing",
-                started.elapsed().as_secs_f64()
-            );
+        let made = make(&args, &job)?;
+        if job.long_run {
+            let s = started.elapsed().as_secs_f64();
+            eprintln!("points: made in {s:.1} s; writing");
         }
         if let Some(path) = &args.png {
-            let canvas = if dims > 2 {
-                // the matrix of all 2D projections
-                let tile = (900 / dims as u32).clamp(48, 200);
-                strata_lab::io::draw_projections(&values, dims, tile, &projection_grids)
-            } else {
-                // the points (the first dimension twice for D = 1)
-                let points: Vec<[f32; 2]> = values
-                    .chunks_exact(dims)
-                    .map(|r| [r[0], r[dims - 1]])
-                    .collect();
-                strata_lab::io::draw_points(&points, &grids, 640)
-            };
-            strata_lab::io::write_png(path, &canvas)?;
+            draw(path, &made, job.dims)?;
         }
-
-        let stdout = std::io::stdout();
-        let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
-        if args.format != Format::Csv {
-            let written =
-                pointsets::write_f32(&mut out, args.format, dims, &values).and_then(|()| {
-                    out.flush()
-                        .map_err(|e| strata_lab::Error::io("<stdout>", e))
-                });
-            return match written {
-                Err(strata_lab::Error::Io { source, .. })
-                    if source
-                        .downcast_ref::<std::io::Error>()
-                        .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe) =>
-                {
-                    Err(CliError::BrokenPipe)
-                }
-                other => other.map_err(Into::into),
-            };
-        }
-        let result = (|| -> std::io::Result<()> {
-            if args.header {
-                if dims == 2 {
-                    writeln!(out, "x,y")?;
-                } else {
-                    let names: Vec<String> = (0..dims).map(|d| format!("x{d}")).collect();
-                    writeln!(out, "{}", names.join(","))?;
-                }
-            }
-            let mut line = String::new();
-            for row in values.chunks_exact(dims) {
-                line.clear();
-                for (d, v) in row.iter().enumerate() {
-                    if d > 0 {
-                        line.push(',');
-                    }
-                    // the f32 widened: its shortest f64 form reads back exactly as f32 or f64
-                    line.push_str(&f64::from(*v).to_string());
-                }
-                writeln!(out, "{line}")?;
-            }
-            out.flush()
-        })();
-        // a closed pipe (`points ... | head`) ends quietly (status 141); a full disk says so
-        result.map_err(common::stdout_error)
+        print(&args, &made.values, job.dims)
     })
+}
+
+/// A run's checked request: what to make and how much of it.
+struct Job {
+    name: String,
+    n: u64,
+    dims: usize,
+    /// The registered sampler (`None` with `--pixel`: an adapter sequence).
+    entry: Option<&'static registry::Entry>,
+    /// Long enough to say so on stderr.
+    long_run: bool,
+}
+
+/// Every check before any work: the options required and those that would be ignored, the
+/// count the sampler takes, the values and the picture bounded before anything is allocated.
+fn check(args: &Args) -> Result<Job, CliError> {
+    let name = args.sampler.clone().ok_or_else(|| {
+        cli_error(format!(
+            "--sampler NAME is required (see --list); usage: {USAGE}"
+        ))
+    })?;
+    let n = args.n.ok_or_else(|| {
+        cli_error(format!(
+            "-n N is required (1 to {MAX_CLI_COUNT}); usage: {USAGE}"
+        ))
+    })?;
+    // options that would be ignored are refused
+    if args.resolution.is_some() && args.pixel.is_none() {
+        return Err(cli_error(
+            "--resolution is the image of the Z-ordered sequences and needs --pixel X,Y; \
+             allowed without --pixel: a sampler's own parameters (see --help)",
+        ));
+    }
+    if !args.header && args.format != Format::Csv {
+        return Err(cli_error(
+            "--no-header applies to --format csv only; UTK's formats have no header line",
+        ));
+    }
+    // the adapter's sequences (with --pixel) include ones that are not registered samplers
+    let entry = if args.pixel.is_some() {
+        if let Some((p, _)) = args.params.given().next() {
+            return Err(cli_error(format!(
+                "--{p} is a sampler parameter; with --pixel the path-tracer sequences take \
+                 none (allowed with --pixel: --seed, --dims, --resolution)"
+            )));
+        }
+        None
+    } else {
+        let e = registry::find(&name)?;
+        // the suggestions of the count message stay within this program's limit
+        e.counts.check_within(e.name, n, MAX_CLI_COUNT)?;
+        Some(e)
+    };
+    let dims = args.dims as usize;
+    if n as u128 * dims as u128 > MAX_VALUES as u128 {
+        return Err(cli_error(format!(
+            "-n {n} x --dims {dims} = {} values is too many; allowed: at most {MAX_VALUES} \
+             (2^27, 512 MB)",
+            n as u128 * dims as u128
+        )));
+    }
+    if args.png.is_some() && dims > MAX_PNG_DIMS {
+        return Err(cli_error(format!(
+            "--png draws every 2D projection of the {dims} dimensions ({} of them); \
+             allowed: --dims at most {MAX_PNG_DIMS} with --png",
+            dims * dims
+        )));
+    }
+    if let Some(path) = &args.png
+        && path.as_os_str().is_empty()
+    {
+        return Err(cli_error("--png: an empty file name"));
+    }
+    // relaxations and optimisations are long from a few thousand points on
+    let long_run = n * dims as u64 >= LONG_RUN_VALUES
+        || (entry.is_some_and(|e| e.expensive) && n >= LONG_RUN_EXPENSIVE);
+    Ok(Job {
+        name,
+        n,
+        dims,
+        entry,
+        long_run,
+    })
+}
+
+/// The values made (rows of `dims`, point-major) and the strata grids the picture draws.
+struct Made {
+    values: Vec<f32>,
+    /// The 2D sampler's grids.
+    grids: Vec<strata::StrataGrid>,
+    /// The grid of each 2D projection, row y, column x (a D-dimensional sampler, with --png).
+    projection_grids: Vec<Option<strata::StrataGrid>>,
+}
+
+/// Builds the sampler (which refuses what it cannot make), then, a long run saying so on
+/// stderr (stdout holds the values), makes the values.
+fn make(args: &Args, job: &Job) -> Result<Made, CliError> {
+    let (n, dims) = (job.n, job.dims);
+    let say = || {
+        if job.long_run {
+            let name = &job.name;
+            eprintln!("points: {n} points of {name} in {dims} dimensions ...");
+        }
+    };
+    let mut made = Made {
+        values: vec![0f32; n as usize * dims],
+        grids: Vec::new(),
+        projection_grids: Vec::new(),
+    };
+    let Some(entry) = job.entry else {
+        let resolution = args.resolution.unwrap_or([256, 256]);
+        let sequence = Sequence::by_name(&job.name, resolution)?;
+        let spp =
+            u32::try_from(n).map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
+        let seed = strata::Seed(args.params.seed);
+        let mut sampler = PixelSampler::new(sequence, spp, seed)?;
+        say();
+        let (x, y) = args.pixel.expect("--pixel");
+        for (index, row) in made.values.chunks_exact_mut(dims).enumerate() {
+            sampler.fill_sample([x as u32, y as u32], index as u64, 0, row);
+        }
+        return Ok(made);
+    };
+    // one build for any --dims: a 2D sampler (with its strata grids) at 2
+    let mut params = args.params.clone();
+    params.count = n;
+    let params = params.dims(args.dims as u32);
+    let built = entry.make(&params, Strictness::Strict)?;
+    say();
+    match built {
+        Built::Two(mut sampler) => {
+            let mut points = vec![[0.0f32; 2]; n as usize];
+            strata::Sampler::fill(&mut sampler, &mut points);
+            for (row, p) in made.values.chunks_exact_mut(2).zip(&points) {
+                row.copy_from_slice(p);
+            }
+            made.grids = strata::Sampler::strata(&sampler, n);
+        }
+        mut sampler => {
+            sampler.fill(&mut made.values);
+            if args.png.is_some() {
+                made.projection_grids = (0..dims * dims)
+                    .map(|k| sampler.projection_strata((k % dims) as u32, (k / dims) as u32))
+                    .collect();
+            }
+        }
+    }
+    Ok(made)
+}
+
+/// The picture: the points with their grids, or the matrix of all 2D projections.
+fn draw(path: &std::path::Path, made: &Made, dims: usize) -> Result<(), CliError> {
+    let values = &made.values;
+    let canvas = if dims > 2 {
+        let tile = (900 / dims as u32).clamp(48, 200);
+        strata_lab::io::draw_projections(values, dims, tile, &made.projection_grids)
+    } else {
+        // the points (the first dimension twice for D = 1)
+        let points: Vec<[f32; 2]> = values
+            .chunks_exact(dims)
+            .map(|r| [r[0], r[dims - 1]])
+            .collect();
+        strata_lab::io::draw_points(&points, &made.grids, 640)
+    };
+    strata_lab::io::write_png(path, &canvas)?;
+    Ok(())
+}
+
+/// The values on stdout, in the format asked for.
+fn print(args: &Args, values: &[f32], dims: usize) -> Result<(), CliError> {
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
+    if args.format != Format::Csv {
+        let written = pointsets::write_f32(&mut out, args.format, dims, values).and_then(|()| {
+            out.flush()
+                .map_err(|e| strata_lab::Error::io("<stdout>", e))
+        });
+        return match written {
+            Err(strata_lab::Error::Io { source, .. })
+                if source
+                    .downcast_ref::<std::io::Error>()
+                    .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe) =>
+            {
+                Err(CliError::BrokenPipe)
+            }
+            other => other.map_err(Into::into),
+        };
+    }
+    let result = (|| -> std::io::Result<()> {
+        if args.header {
+            if dims == 2 {
+                writeln!(out, "x,y")?;
+            } else {
+                let names: Vec<String> = (0..dims).map(|d| format!("x{d}")).collect();
+                writeln!(out, "{}", names.join(","))?;
+            }
+        }
+        let mut line = String::new();
+        for row in values.chunks_exact(dims) {
+            line.clear();
+            for (d, v) in row.iter().enumerate() {
+                if d > 0 {
+                    line.push(',');
+                }
+                // the f32 widened: its shortest f64 form reads back exactly as f32 or f64
+                line.push_str(&f64::from(*v).to_string());
+            }
+            writeln!(out, "{line}")?;
+        }
+        out.flush()
+    })();
+    // a closed pipe (`points ... | head`) ends quietly (status 141); a full disk says so
+    result.map_err(common::stdout_error)
 }

@@ -447,85 +447,13 @@ fn main() -> ExitCode {
         if args.table {
             return blue_noise_table(&args);
         }
-        let all = args.sampler == "all";
-        let entries: Vec<&Entry> = if all {
-            registry::entries().iter().collect()
-        } else {
-            vec![registry::find(&args.sampler)?]
-        };
-        // a parameter that no chosen sampler takes is refused, as `points` refuses it (with
-        // 'all', each sampler gets the parameters it takes)
-        for (p, _) in args.params.given() {
-            if !entries.iter().any(|e| e.takes(p)) {
-                let takers: Vec<&str> = registry::entries()
-                    .iter()
-                    .filter(|e| e.takes(p))
-                    .map(|e| e.name)
-                    .collect();
-                return Err(cli_error(format!(
-                    "--{} is not a parameter of {}; samplers that take it: {}",
-                    p,
-                    args.sampler,
-                    takers.join(", ")
-                )));
-            }
-        }
-        let n = args.n.unwrap_or(1024);
-        let mut plan = Vec::new();
-        for e in &entries {
-            let count = if all {
-                e.counts.nearest_within(n, MAX_CLI_COUNT)
-            } else {
-                e.counts.check_within(e.name, n, MAX_CLI_COUNT)?;
-                n
-            };
-            let r = args
-                .realizations
-                .unwrap_or(if e.expensive { 16 } else { 64 });
-            plan.push((*e, count, r));
-        }
-        let total: u64 = plan.iter().map(|&(_, _, r)| 2 * r as u64).sum();
-        let bar = ProgressBar::new(total);
-        bar.set_style(
-            ProgressStyle::with_template("{msg:>16} [{bar:40}] {pos}/{len} {elapsed_precise}")
-                .expect("valid template")
-                .progress_chars("=> "),
-        );
+        let plan = plan(&args)?;
         let started = Instant::now();
-        let mut outcomes = Vec::new();
-        let planned = plan.len();
-        for (k, (e, count, r)) in plan.into_iter().enumerate() {
-            bar.set_message(e.name);
-            outcomes.push(run_one(e, count, r, &args, &bar)?);
-            common::progress_line(format!(
-                "spectrum: {} done ({}/{planned}, {:.0} s)",
-                e.name,
-                k + 1,
-                started.elapsed().as_secs_f64()
-            ));
-        }
-        bar.finish_and_clear();
+        let outcomes = run_plan(plan, &args, started)?;
         if args.overview && outcomes.len() > 1 {
             io::write_png(args.out.join("overview.png"), &overview(&outcomes))?;
         }
-        let mut table = String::from(
-            "| sampler | N | sets | ms/set | low-band power | min dist | avg min dist | nu_eff | oscillations |\n|---|---|---|---|---|---|---|---|---|\n",
-        );
-        for o in &outcomes {
-            let m = &o.measures;
-            table.push_str(&format!(
-                "| {} | {} | {} | {:.3} | {:.4} | {} | {} | {} | {} |\n",
-                o.name,
-                o.count,
-                o.realizations,
-                o.ms_per_set,
-                o.low_power,
-                fmt_opt(m.global_min_distance),
-                fmt_opt(m.average_min_distance),
-                fmt_opt(m.effective_nyquist),
-                fmt_opt(m.oscillations)
-            ));
-        }
+        let table = summary_table(&outcomes);
         common::out(&table)?;
         if let Some(path) = &args.markdown {
             common::write_markdown_section(
@@ -542,12 +470,103 @@ fn main() -> ExitCode {
                 ),
             )?;
         }
-        outln!(
-            "\nwrote {} sampler(s) into {} in {:.1} s",
-            outcomes.len(),
-            args.out.display(),
-            started.elapsed().as_secs_f64()
-        )?;
+        let secs = started.elapsed().as_secs_f64();
+        let (k, out) = (outcomes.len(), args.out.display());
+        outln!("\nwrote {k} sampler(s) into {out} in {secs:.1} s")?;
         Ok(())
     })
+}
+
+/// The samplers to measure, each with its count and realizations; a parameter no chosen
+/// sampler takes is refused, as `points` refuses it (with 'all', each sampler gets the
+/// parameters it takes).
+fn plan(args: &Args) -> Result<Vec<(&'static Entry, u64, u32)>, CliError> {
+    let all = args.sampler == "all";
+    let entries: Vec<&'static Entry> = if all {
+        registry::entries().iter().collect()
+    } else {
+        vec![registry::find(&args.sampler)?]
+    };
+    for (p, _) in args.params.given() {
+        if !entries.iter().any(|e| e.takes(p)) {
+            let takers: Vec<&str> = registry::entries()
+                .iter()
+                .filter(|e| e.takes(p))
+                .map(|e| e.name)
+                .collect();
+            return Err(cli_error(format!(
+                "--{} is not a parameter of {}; samplers that take it: {}",
+                p,
+                args.sampler,
+                takers.join(", ")
+            )));
+        }
+    }
+    let n = args.n.unwrap_or(1024);
+    let mut plan = Vec::new();
+    for e in entries {
+        let count = if all {
+            e.counts.nearest_within(n, MAX_CLI_COUNT)
+        } else {
+            e.counts.check_within(e.name, n, MAX_CLI_COUNT)?;
+            n
+        };
+        let r = args
+            .realizations
+            .unwrap_or(if e.expensive { 16 } else { 64 });
+        plan.push((e, count, r));
+    }
+    Ok(plan)
+}
+
+/// Runs the plan with a progress bar and a line per sampler.
+fn run_plan(
+    plan: Vec<(&'static Entry, u64, u32)>,
+    args: &Args,
+    started: Instant,
+) -> Result<Vec<Outcome>, CliError> {
+    let total: u64 = plan.iter().map(|&(_, _, r)| 2 * r as u64).sum();
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template("{msg:>16} [{bar:40}] {pos}/{len} {elapsed_precise}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    let mut outcomes = Vec::new();
+    let planned = plan.len();
+    for (k, (e, count, r)) in plan.into_iter().enumerate() {
+        bar.set_message(e.name);
+        outcomes.push(run_one(e, count, r, args, &bar)?);
+        common::progress_line(format!(
+            "spectrum: {} done ({}/{planned}, {:.0} s)",
+            e.name,
+            k + 1,
+            started.elapsed().as_secs_f64()
+        ));
+    }
+    bar.finish_and_clear();
+    Ok(outcomes)
+}
+
+/// The table on stdout (and in `--markdown`): a row per sampler.
+fn summary_table(outcomes: &[Outcome]) -> String {
+    let mut table = String::from(
+        "| sampler | N | sets | ms/set | low-band power | min dist | avg min dist | nu_eff | oscillations |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for o in outcomes {
+        let m = &o.measures;
+        table.push_str(&format!(
+            "| {} | {} | {} | {:.3} | {:.4} | {} | {} | {} | {} |\n",
+            o.name,
+            o.count,
+            o.realizations,
+            o.ms_per_set,
+            o.low_power,
+            fmt_opt(m.global_min_distance),
+            fmt_opt(m.average_min_distance),
+            fmt_opt(m.effective_nyquist),
+            fmt_opt(m.oscillations)
+        ));
+    }
+    table
 }

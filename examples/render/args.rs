@@ -365,5 +365,16 @@ pub fn memory_estimate(a: &Args) -> u64 {
     BASE_BYTES + pixels * (BYTES_PER_PIXEL + renders * BYTES_PER_RENDER_PIXEL + frames + split)
 }
 
+/// Says on stderr the run's peak memory beside its estimate (where the system tells it).
+pub fn report_memory(a: &Args) {
+    if let Some(peak) = common::peak_memory() {
+        let estimate = memory_estimate(a) >> 20;
+        eprintln!(
+            "render: peak memory {} MiB (estimated at most {estimate} MiB)",
+            peak >> 20
+        );
+    }
+}
+
 /// The most sample counts in `--spp`.
 const MAX_COUNTS: usize = 8;

@@ -74,18 +74,9 @@ fn main() -> ExitCode {
             outln!("\n{t}")?;
         }
 
-        let frames = (args.frames > 0)
-            .then(|| {
-                frames::table(
-                    &args,
-                    &scene,
-                    &sequences,
-                    &reference,
-                    &emitters,
-                    args.frames,
-                    args.frame_tile,
-                )
-            })
+        let (f, tile) = (args.frames, args.frame_tile);
+        let frames = (f > 0)
+            .then(|| frames::table(&args, &scene, &sequences, &reference, &emitters, f, tile))
             .transpose()?;
         if let Some(t) = &frames {
             outln!("\n{t}")?;
@@ -112,13 +103,7 @@ fn main() -> ExitCode {
         }
         io::write_png(args.out.join("convergence.png"), &plot.render(720, 480))?;
         eprintln!("wrote {} renders into {}", rows.len(), args.out.display());
-        if let Some(peak) = common::peak_memory() {
-            eprintln!(
-                "render: peak memory {} MiB (estimated at most {} MiB)",
-                peak >> 20,
-                args::memory_estimate(&args) >> 20
-            );
-        }
+        args::report_memory(&args);
         Ok(())
     })
 }
