@@ -33,10 +33,11 @@ pub enum Repair {
     /// pbrt's pairing: a random permutation of the whole pixel's `0..spp` (every power-of-two
     /// prefix below `spp` loses its net).
     Permute,
-    /// A random permutation inside each dyadic shell `[2^j, 2^(j+1))` of the index (0 and 1
+    /// (Not `Padding::Shells`, whose affine maps are another algorithm.) A random permutation
+    /// inside each dyadic shell `[2^j, 2^(j+1))` of the index (0 and 1
     /// stay): every power-of-two prefix keeps its set of samples, so it stays the net it was,
     /// while two draws' samples meet at random inside each shell. Needs no sample count.
-    Shells,
+    ShellPermutations,
 }
 
 impl Method {
@@ -51,7 +52,7 @@ impl Method {
         if let Some((seq, repair)) = name.split_once('+') {
             let repair = match repair {
                 "permute" => Repair::Permute,
-                "shells" => Repair::Shells,
+                "shells" => Repair::ShellPermutations,
                 other => {
                     return Err(cli_error(format!(
                         "--samplers {name:?}: '+{other}' is not an experiment; allowed: \
@@ -193,7 +194,7 @@ impl Repaired {
         let i = self.index;
         match self.repair {
             Repair::Permute => pbrt::permutation_element(i, self.spp, hash as u32) as u64,
-            Repair::Shells => {
+            Repair::ShellPermutations => {
                 if i < 2 {
                     return i as u64;
                 }
