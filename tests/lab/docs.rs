@@ -146,6 +146,31 @@ fn programs() -> Vec<String> {
 }
 
 #[test]
+fn every_program_s_main_is_at_most_60_lines() {
+    // main reads the options and calls the steps; the steps are functions of their own (the
+    // line from `fn main` to its closing brace at the start of a line, both counted)
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut seen = 0;
+    for name in programs() {
+        let file = [dir.join(format!("{name}.rs")), dir.join(&name).join("main.rs")]
+            .into_iter()
+            .find(|p| p.is_file())
+            .unwrap();
+        let text = std::fs::read_to_string(&file).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        let start = lines
+            .iter()
+            .position(|l| l.starts_with("fn main("))
+            .unwrap_or_else(|| panic!("{name}: no fn main"));
+        let end = start + lines[start..].iter().position(|l| *l == "}").unwrap();
+        let n = end - start + 1;
+        assert!(n <= 60, "{name}: main is {n} lines (at most 60)");
+        seen += 1;
+    }
+    assert!(seen >= 9);
+}
+
+#[test]
 fn the_cli_contract_shows_each_program_s_help_as_it_prints_it() {
     // docs/cli.md's section `help-NAME` is NAME --help, run now: the options each program
     // declares, their help, defaults and allowed values (STRATA_BLESS=1 rewrites the sections)
