@@ -31,7 +31,7 @@ minutes); larger runs are refused.";
 #[command(name = "conformance", about = ABOUT, after_help = LIMITS)]
 struct Cli {
     /// the sequence, or all of them (required without --pairs; the list is added at run time)
-    #[arg(long, value_name = "NAME|all")]
+    #[arg(long, value_name = "NAME|all", value_parser = clap::builder::NonEmptyStringValueParser::new())]
     sampler: Option<String>,
     /// samples per pixel, 16 to 1048576
     #[arg(long, value_name = "N", default_value_t = Suite::default().spp,

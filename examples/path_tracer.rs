@@ -1,6 +1,8 @@
 //! The smallest complete use of the path-tracer adapter: the soft shadow of a sphere under a
 //! square area light, one `PixelSampler` per thread, written as `DIR/path_tracer.pgm`.
 //! `cargo run --release --example path_tracer [-- --out DIR]` (default `out`)
+mod common;
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -26,28 +28,32 @@ fn shade(s: &mut PixelSampler, x: u32, y: u32) -> f32 {
     }
 }
 
-const HELP: &str = "path_tracer: the smallest complete use of strata's path-tracer adapter; \
-writes DIR/path_tracer.pgm (256 x 256, 64 spp of pmj02)\n\nUsage: path_tracer [--out DIR]\n  \
---out DIR   where to write (default: out)\n  -h, --help  this text";
+/// The one option, declared once (clap makes `--help`, the usage and the errors from it).
+#[derive(clap::Parser)]
+#[command(
+    name = "path_tracer",
+    about = "path_tracer: the smallest complete use of strata's path-tracer adapter; writes \
+             DIR/path_tracer.pgm (256 x 256, 64 spp of pmj02)"
+)]
+struct Args {
+    /// where to write
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    out: PathBuf,
+}
 
 fn main() -> ExitCode {
-    let mut out = PathBuf::from("out");
-    let mut args = std::env::args_os().skip(1);
-    while let Some(a) = args.next() {
-        match a.to_str() {
-            Some("-h" | "--help") => return say(HELP),
-            Some("--out") => match args.next() {
-                Some(d) if !d.is_empty() => out = PathBuf::from(d),
-                _ => return fail("--out needs a directory"),
-            },
-            _ => {
-                return fail(&format!(
-                    "unknown argument {a:?}; usage: path_tracer [--out DIR]"
-                ));
-            }
-        }
-    }
-    match render(&out) {
+    use clap::{CommandFactory, FromArgMatches};
+    let matches = match common::clap_matches(Args::command()) {
+        Ok(Some(m)) => m,
+        Ok(None) => return ExitCode::SUCCESS, // --help
+        Err(common::CliError::Message(m)) => return fail(&m),
+        Err(common::CliError::BrokenPipe) => return ExitCode::from(141),
+    };
+    let args = match Args::from_arg_matches(&matches) {
+        Ok(a) => a,
+        Err(e) => return fail(&e.to_string()),
+    };
+    match render(&args.out) {
         Ok(msg) => say(&msg),
         Err(e) => fail(&e.to_string()),
     }

@@ -46,7 +46,7 @@ first N points of their endless sequence.";
 #[command(name = "points", about = ABOUT, after_help = NOTES)]
 struct Cli {
     /// the sampler (see --list)
-    #[arg(long, value_name = "NAME")]
+    #[arg(long, value_name = "NAME", value_parser = clap::builder::NonEmptyStringValueParser::new())]
     sampler: Option<String>,
     /// number of samples, 1 to 67108864 (2^26)
     #[arg(short = 'n', value_name = "N", value_parser = common::whole::<u64>("-n", 1, MAX_CLI_COUNT))]

@@ -36,7 +36,8 @@ const DETAILS: &str = "For each sampler NAME it writes DIR/NAME-spectrum.png (lo
 #[command(name = "spectrum", about = ABOUT, after_help = DETAILS)]
 struct Cli {
     /// one sampler, or every registered one
-    #[arg(long, value_name = "NAME|all", default_value = "all")]
+    #[arg(long, value_name = "NAME|all", default_value = "all",
+          value_parser = clap::builder::NonEmptyStringValueParser::new())]
     sampler: String,
     /// points per realization (default 1024; with 'all', each sampler uses its allowed count
     /// nearest to N)

@@ -946,3 +946,48 @@ fn the_blue_noise_table_has_a_row_per_blue_noise_sampler_and_refuses_bad_input()
     assert!(out.contains("| sampler | N | seeds | rho |"), "{out}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn every_option_of_every_program_refuses_an_empty_value_and_a_misspelling_by_name() {
+    // the options as each program's --help lists them (its one declaration): an empty value is
+    // refused naming the option, and the option misspelt (a letter more) names it as the
+    // closest one; each on one line, before any work
+    let mut checked = 0;
+    for name in crate::common::programs() {
+        let (code, help, _) = run_example(&name, &["--help"]);
+        assert_eq!(code, 0, "{name} --help");
+        let options: Vec<(String, bool)> = help
+            .lines()
+            .filter_map(|l| {
+                let l = l.trim_start().trim_start_matches("-h, ");
+                let rest = l.strip_prefix("--")?;
+                let flag: String = rest
+                    .chars()
+                    .take_while(|c| c.is_ascii_alphanumeric() || *c == '-')
+                    .collect();
+                let takes_value = rest[flag.len()..].starts_with(" <");
+                (flag != "help" && !flag.is_empty()).then_some((flag, takes_value))
+            })
+            .collect();
+        assert!(!options.is_empty(), "{name}: no options in its help");
+        for (flag, takes_value) in options {
+            let dashed = format!("--{flag}");
+            if takes_value {
+                let (code, out, err) = run_example(&name, &[&dashed, ""]);
+                assert_eq!(code, 2, "{name} {dashed} '': {out}{err}");
+                assert_eq!(err.lines().count(), 1, "{name} {dashed} '': {err}");
+                assert!(err.contains(&dashed), "{name} {dashed} '': {err}");
+            }
+            let typo = format!("{dashed}x");
+            let (code, _, err) = run_example(&name, &[&typo]);
+            assert_eq!(code, 2, "{name} {typo}");
+            assert_eq!(err.lines().count(), 1, "{name} {typo}: {err}");
+            assert!(
+                err.contains(&format!("similar argument exists: '{dashed}'")),
+                "{name} {typo}: {err}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 60, "{checked} options");
+}

@@ -142,3 +142,23 @@ fn artifact_executable(messages: &str, name: &str) -> Option<std::path::PathBuf>
         line[start..end].replace("\\\\", "\\"),
     ))
 }
+
+/// Every program under `examples/`: a file `NAME.rs` or a directory `NAME/main.rs`.
+pub fn programs() -> Vec<String> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.unwrap().path();
+            let stem = p.file_stem()?.to_str()?.to_string();
+            let program = if p.is_dir() {
+                p.join("main.rs").is_file()
+            } else {
+                p.extension().is_some_and(|x| x == "rs")
+            };
+            program.then_some(stem)
+        })
+        .collect();
+    names.sort();
+    names
+}

@@ -125,37 +125,20 @@ fn the_renderer_crate_s_built_in_mask_is_the_lab_s_void_and_cluster() {
     }
 }
 
-/// Every program under `examples/`: a file `NAME.rs` or a directory `NAME/main.rs`.
-fn programs() -> Vec<String> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let mut names: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .filter_map(|e| {
-            let p = e.unwrap().path();
-            let stem = p.file_stem()?.to_str()?.to_string();
-            let program = if p.is_dir() {
-                p.join("main.rs").is_file()
-            } else {
-                p.extension().is_some_and(|x| x == "rs")
-            };
-            program.then_some(stem)
-        })
-        .collect();
-    names.sort();
-    names
-}
-
 #[test]
 fn every_program_s_main_is_at_most_60_lines() {
     // main reads the options and calls the steps; the steps are functions of their own (the
     // line from `fn main` to its closing brace at the start of a line, both counted)
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     let mut seen = 0;
-    for name in programs() {
-        let file = [dir.join(format!("{name}.rs")), dir.join(&name).join("main.rs")]
-            .into_iter()
-            .find(|p| p.is_file())
-            .unwrap();
+    for name in crate::common::programs() {
+        let file = [
+            dir.join(format!("{name}.rs")),
+            dir.join(&name).join("main.rs"),
+        ]
+        .into_iter()
+        .find(|p| p.is_file())
+        .unwrap();
         let text = std::fs::read_to_string(&file).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         let start = lines
@@ -174,7 +157,7 @@ fn every_program_s_main_is_at_most_60_lines() {
 fn the_cli_contract_shows_each_program_s_help_as_it_prints_it() {
     // docs/cli.md's section `help-NAME` is NAME --help, run now: the options each program
     // declares, their help, defaults and allowed values (STRATA_BLESS=1 rewrites the sections)
-    let names = programs();
+    let names = crate::common::programs();
     assert!(names.len() >= 9, "{names:?}");
     for name in &names {
         let bin = crate::common::example_bin(name).unwrap_or_else(|| panic!("{name} builds"));
