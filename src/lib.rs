@@ -34,8 +34,8 @@
 //!
 //! Points lie in `[0,1)^2` and never reach 1.0; everything is seeded ([`strata::Seed`]): the
 //! same seed gives the same bits on every platform and with any number of threads, which golden
-//! digests pin; constructors and analyses return [`strata_lab::Error`] saying what was wrong and what
-//! is allowed, never a panic on user input.
+//! digests pin; constructors and analyses return [`Error`] saying what was wrong and what is
+//! allowed, never a panic on user input.
 //!
 //! ## Samplers
 //!

@@ -17,7 +17,7 @@
 //! Text lines end in LF or CR LF; a carriage return alone (classic Mac OS) is refused with the
 //! line it ends. Every coordinate must lie in `[0, 1)` and every set must hold at least one point of the
 //! same dimension; a file holds at most [`MAX_SETS`] sets (a bound on the memory of many small
-//! sets, checked before they are read). Malformed input is an [`Error::InvalidInput`] that names the line (text) or
+//! sets, checked before they are read). Malformed input is an [`strata::Error::InvalidInput`] that names the line (text) or
 //! the byte offset (binary) and what is allowed; nothing panics, and nothing is allocated
 //! beyond the size of the input (the binary reader checks the header's counts against the
 //! file length before reading).

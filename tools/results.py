@@ -51,7 +51,6 @@ LAYOUT = [
          True),
     ]),
     ("The nets of the jointly Z-ordered sequences", [
-        (["nets-zjoint-8"], EX + ["nets", "--", "--markdown", "{md}"], False),
         (["nets-zquad"], EX + ["nets", "--", "--sequence", "zquad", "--markdown", "{md}"], False),
     ]),
     ("In a path tracer", [
@@ -76,6 +75,7 @@ LAYOUT = [
 
 # Studies kept out of the file (their latest runs are in git's history), rerun by --extras.
 EXTRAS = [
+    (["nets-zjoint-8"], EX + ["nets", "--", "--markdown", "{md}"], False),
     (["render-cornell-4,16,64,256"],
      EX + ["render", "--", "--scene", "cornell", "--seeds", "16", "--spp", "4,16,64,256",
            "--samplers", "sobol,pmj02,zsobol,pbrt-padded,pbrt-zsobol", "--out", "{out}",

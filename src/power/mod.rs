@@ -95,7 +95,7 @@
 //!
 //! # Errors
 //!
-//! [`Error::InvalidInput`], each message saying what is allowed: no sites, more than
+//! [`strata::Error::InvalidInput`], each message saying what is allowed: no sites, more than
 //! [`MAX_SITES`], a coordinate outside `[0, 1)` (sites must lie on the torus) or non-finite,
 //! a nonzero coordinate below [`MIN_MAGNITUDE`], a weight non-finite, beyond [`MAX_WEIGHT`] or
 //! nonzero below [`MIN_MAGNITUDE`], a weight count different from the site count, and two

@@ -141,7 +141,7 @@ impl Bnot {
     ///
     /// # Errors
     ///
-    /// [`Error::InvalidCount`] or [`Error::InvalidParameter`], saying what is allowed.
+    /// [`strata::Error::InvalidCount`] or [`strata::Error::InvalidParameter`], saying what is allowed.
     pub fn new(count: u64, iterations: u32) -> Result<Self> {
         super::check_count(ENTRY.name, count, MAX_BNOT_COUNT)?;
         ITERATIONS.check(ENTRY.name, iterations as f64)?;
@@ -169,7 +169,7 @@ impl Bnot {
     ///
     /// # Errors
     ///
-    /// [`Error::InvalidInput`] for a start of the wrong length, a coordinate outside `[0, 1)`
+    /// [`strata::Error::InvalidInput`] for a start of the wrong length, a coordinate outside `[0, 1)`
     /// (or non-finite, or nonzero below `2^-200`), or two coincident points (nearly
     /// coincident points are fine); [`Error::Unreachable`] as for [`optimize`](Self::optimize).
     pub fn relax(&self, start: &[[f64; 2]]) -> Result<BnotResult> {
