@@ -479,15 +479,19 @@ fn measure_bounds_what_it_reads_and_computes() {
 fn path_tracer_takes_help_and_out_and_refuses_the_rest() {
     let r = run("path_tracer", &["--help"]);
     assert_eq!(r.code, 0);
-    assert!(r.out.contains("--out DIR"), "{}", r.out);
+    assert!(r.out.contains("--out <DIR>"), "{}", r.out);
     let r = run("path_tracer", &["--spp", "4"]);
     assert_refused(
         &r,
-        &["unknown argument", "--spp", "usage"],
+        &["unexpected argument", "--spp", "Usage"],
         "path_tracer --spp",
     );
     let r = run("path_tracer", &["--out"]);
-    assert_refused(&r, &["--out needs a directory"], "path_tracer --out");
+    assert_refused(
+        &r,
+        &["a value is required for '--out <DIR>'"],
+        "path_tracer --out",
+    );
     let dir = scratch("path-tracer");
     let file = dir.join("a-file");
     std::fs::write(&file, "x").unwrap();
