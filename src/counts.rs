@@ -28,27 +28,26 @@ pub enum CountRule {
 }
 
 impl CountRule {
-    /// The renderer crate's rule, for every rule but `OaPower`.
-    fn strata(self) -> Option<Rule> {
+    /// The renderer crate's rule (`Ok`), or the strength `t` of `OaPower(t)` (`Err`).
+    fn strata(self) -> std::result::Result<Rule, u32> {
         match self {
-            CountRule::Any => Some(Rule::Any),
-            CountRule::Square => Some(Rule::Square),
-            CountRule::Fibonacci => Some(Rule::Fibonacci),
-            CountRule::PowerOfTwo => Some(Rule::PowerOfTwo),
-            CountRule::OaPower(_) => None,
+            CountRule::Any => Ok(Rule::Any),
+            CountRule::Square => Ok(Rule::Square),
+            CountRule::Fibonacci => Ok(Rule::Fibonacci),
+            CountRule::PowerOfTwo => Ok(Rule::PowerOfTwo),
+            CountRule::OaPower(t) => Err(t),
         }
     }
 
     /// Whether `n` is allowed.
     pub fn allows(&self, n: u64) -> bool {
-        match (self.strata(), *self) {
-            (Some(rule), _) => rule.allows(n),
-            (None, CountRule::OaPower(t)) => {
+        match self.strata() {
+            Ok(rule) => rule.allows(n),
+            Err(t) => {
                 (1..=MAX_OA_STRENGTH).contains(&t)
                     && (4..=MAX_FIXED_COUNT).contains(&n)
                     && oa_root(n, t).is_some()
             }
-            (None, _) => unreachable!("every rule but OaPower is the renderer crate's"),
         }
     }
 
@@ -62,13 +61,12 @@ impl CountRule {
     /// largest count): counts above `max` (clamped to `1..=`[`MAX_FIXED_COUNT`]) are refused,
     /// and the counts the message suggests are all at most `max`.
     pub fn check_within(&self, sampler: &'static str, count: u64, max: u64) -> Result<u32> {
-        match (self.strata(), *self) {
-            (Some(rule), _) => Ok(rule.check_within(sampler, count, max)?),
-            (None, CountRule::OaPower(t)) => {
+        match self.strata() {
+            Ok(rule) => Ok(rule.check_within(sampler, count, max)?),
+            Err(t) => {
                 let q = check_oa_count(sampler, count, t, max.clamp(1, MAX_FIXED_COUNT))?;
                 Ok(q.pow(t))
             }
-            (None, _) => unreachable!("every rule but OaPower is the renderer crate's"),
         }
     }
 
@@ -87,10 +85,9 @@ impl CountRule {
     /// is allowed. When none is (`OaPower(t)` with a `max` below its smallest count, `4` or
     /// `2^t`), the smallest allowed count, which is above `max`.
     pub fn nearest_within(&self, n: u64, max: u64) -> u64 {
-        let t = match (self.strata(), *self) {
-            (Some(rule), _) => return rule.nearest_within(n, max),
-            (None, CountRule::OaPower(t)) => t,
-            (None, _) => unreachable!("every rule but OaPower is the renderer crate's"),
+        let t = match self.strata() {
+            Ok(rule) => return rule.nearest_within(n, max),
+            Err(t) => t,
         };
         if !(1..=MAX_OA_STRENGTH).contains(&t) {
             return 1;
@@ -118,10 +115,9 @@ impl CountRule {
     /// [`MAX_FIXED_COUNT`], which [`check`](CountRule::check) refuses), one at a time
     /// (`.take(k)` what you need).
     pub fn counts_between(&self, min: u64, max: u64) -> Box<dyn Iterator<Item = u64>> {
-        let t = match (self.strata(), *self) {
-            (Some(rule), _) => return rule.counts_between(min, max),
-            (None, CountRule::OaPower(t)) => t,
-            (None, _) => unreachable!("every rule but OaPower is the renderer crate's"),
+        let t = match self.strata() {
+            Ok(rule) => return rule.counts_between(min, max),
+            Err(t) => t,
         };
         let (min, max) = (min.max(4), max.min(MAX_FIXED_COUNT));
         if min > max || !(1..=MAX_OA_STRENGTH).contains(&t) {
@@ -138,10 +134,9 @@ impl CountRule {
 
 impl fmt::Display for CountRule {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match (self.strata(), self) {
-            (Some(rule), _) => rule.fmt(f),
-            (None, CountRule::OaPower(t)) => write!(f, "q^{t}, q prime (power)"),
-            (None, _) => unreachable!("every rule but OaPower is the renderer crate's"),
+        match self.strata() {
+            Ok(rule) => rule.fmt(f),
+            Err(t) => write!(f, "q^{t}, q prime (power)"),
         }
     }
 }
@@ -303,7 +298,7 @@ mod tests {
             (CountRule::PowerOfTwo, Rule::PowerOfTwo),
         ];
         for (lab, rule) in pairs {
-            assert_eq!(lab.strata(), Some(rule));
+            assert_eq!(lab.strata(), Ok(rule));
             assert_eq!(lab.to_string(), rule.to_string());
             for n in [0u64, 1, 2, 10, 16, 21, 1000, 1 << 31, u64::MAX] {
                 assert_eq!(lab.allows(n), rule.allows(n), "{rule} {n}");
