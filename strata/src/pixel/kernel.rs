@@ -30,7 +30,7 @@ use crate::morton::morton;
 use crate::sampler::Seed;
 use crate::samplers::lattice;
 use crate::scramble::{
-    Lanes, Pair, X4, owen_scramble_base4_rev, owen_scramble_lanes, shuffle_lanes,
+    Lanes, Pair, X2, X4, join, owen_scramble_base4_rev, owen_scramble_lanes, shuffle_lanes,
 };
 
 /// The four 32-bit words every draw of an image is keyed by, expanded from the [`Seed`] once
@@ -256,6 +256,20 @@ pub(crate) fn shuffled(k: &DrawKeys, index_rev: u32) -> u32 {
 pub(crate) fn digital<P: Pair>(table: &PairTables, v: [u32; 2], index_rev: u32) -> P {
     let p = P::new(table.point_rev(index_rev));
     owen_scramble_lanes(p, P::new(v)).reverse_bits()
+}
+
+/// Two draws at once: the points `a` and `b` (bit-reversed, as the tables give them), each
+/// coordinate Owen-scrambled under its draw's value keys `va`, `vb`, as four values in
+/// `[0, 1)` (the same bits as [`digital`] on each). Two lanes at a time: on the SSE2 baseline
+/// a two-lane multiply is one `pmuludq`, a four-lane one two of them and four shuffles, and
+/// with SSE4.1 enabled (its one-instruction `pmulld`) four lanes measured no faster.
+#[inline(always)]
+pub(crate) fn scrambled_pair(a: [u32; 2], va: [u32; 2], b: [u32; 2], vb: [u32; 2]) -> [f32; 4] {
+    let (a, b) = (
+        owen_scramble_lanes(X2::new(a), X2::new(va)),
+        owen_scramble_lanes(X2::new(b), X2::new(vb)),
+    );
+    join(a, b).reverse_bits().unit_f32()
 }
 
 /// The joint sequences: dimensions `o` and `o + 1` (`o` the draw's offset in its group) of the

@@ -185,7 +185,7 @@ use sequence::{Points, SamplesPerPixel};
 use crate::error::{Error, Result};
 use crate::prelude::*;
 use crate::sampler::Seed;
-use crate::scramble::{Lanes, X2, join, owen_scramble_lanes};
+use crate::scramble::{X2, join};
 use kernel::{PixelKeys, ZPixel};
 use padding::Shell;
 
@@ -938,12 +938,7 @@ impl PixelSampler {
             self.at::<P>(c, dim, dim, None),
             self.at::<P>(c, d2, d2, None),
         );
-        let (pa, pb) = (X2::new(t.point_rev(ia)), X2::new(t.point_rev(ib)));
-        let (pa, pb) = (
-            owen_scramble_lanes(pa, X2::new(va)),
-            owen_scramble_lanes(pb, X2::new(vb)),
-        );
-        join(pa, pb).reverse_bits().unit_f32()
+        kernel::scrambled_pair(t.point_rev(ia), va, t.point_rev(ib), vb)
     }
 
     /// [`two`](Self::two) for a Z-ordered digital sequence under the padding `P`, inside the
@@ -954,12 +949,7 @@ impl PixelSampler {
         let (za, zb) = (self.z_base_of_group(dim), self.z_base_of_group(d2));
         let c = &self.current;
         let ((ia, va), (ib, vb)) = (self.at::<P>(c, dim, dim, za), self.at::<P>(c, d2, d2, zb));
-        let (pa, pb) = (X2::new(t.point_rev(ia)), X2::new(t.point_rev(ib)));
-        let (pa, pb) = (
-            owen_scramble_lanes(pa, X2::new(va)),
-            owen_scramble_lanes(pb, X2::new(vb)),
-        );
-        join(pa, pb).reverse_bits().unit_f32()
+        kernel::scrambled_pair(t.point_rev(ia), va, t.point_rev(ib), vb)
     }
 
     /// [`two`](Self::two) for a joint sequence under the padding `P`.
@@ -988,15 +978,12 @@ impl PixelSampler {
         };
         let (oa, ob) = ((dim - ga) as usize, (d2 - gb) as usize);
         let lookup = crate::digital::lookup;
-        let (pa, pb) = (
-            X2::new([lookup(&tables[oa], ia), lookup(&tables[oa + 1], ia)]),
-            X2::new([lookup(&tables[ob], ib), lookup(&tables[ob + 1], ib)]),
-        );
-        let (pa, pb) = (
-            owen_scramble_lanes(pa, X2::new(va)),
-            owen_scramble_lanes(pb, X2::new(vb)),
-        );
-        join(pa, pb).reverse_bits().unit_f32()
+        kernel::scrambled_pair(
+            [lookup(&tables[oa], ia), lookup(&tables[oa + 1], ia)],
+            va,
+            [lookup(&tables[ob], ib), lookup(&tables[ob + 1], ib)],
+            vb,
+        )
     }
 
     /// The 2D draw at `dim` of sample `c` (`z` the place of its group, reversed).
@@ -1101,12 +1088,7 @@ impl PixelSampler {
                     self.at::<P>(c, dim, dim, z[0]),
                     self.at::<P>(c, d2, d2, z[1]),
                 );
-                let (pa, pb) = (X2::new(t.point_rev(ia)), X2::new(t.point_rev(ib)));
-                let (pa, pb) = (
-                    owen_scramble_lanes(pa, X2::new(va)),
-                    owen_scramble_lanes(pb, X2::new(vb)),
-                );
-                join(pa, pb).reverse_bits().unit_f32()
+                kernel::scrambled_pair(t.point_rev(ia), va, t.point_rev(ib), vb)
             }
             Points::Lattice => {
                 let ((ia, va), (ib, vb)) = (
@@ -1133,15 +1115,12 @@ impl PixelSampler {
                 };
                 let (oa, ob) = ((dim - ga) as usize, (d2 - gb) as usize);
                 let lookup = crate::digital::lookup;
-                let (pa, pb) = (
-                    X2::new([lookup(&tables[oa], ia), lookup(&tables[oa + 1], ia)]),
-                    X2::new([lookup(&tables[ob], ib), lookup(&tables[ob + 1], ib)]),
-                );
-                let (pa, pb) = (
-                    owen_scramble_lanes(pa, X2::new(va)),
-                    owen_scramble_lanes(pb, X2::new(vb)),
-                );
-                join(pa, pb).reverse_bits().unit_f32()
+                kernel::scrambled_pair(
+                    [lookup(&tables[oa], ia), lookup(&tables[oa + 1], ia)],
+                    va,
+                    [lookup(&tables[ob], ib), lookup(&tables[ob + 1], ib)],
+                    vb,
+                )
             }
             Points::Jittered | Points::Halton => {
                 let [x, y] = self.one_with::<P>(c, dim, z[0]);
