@@ -25,7 +25,9 @@ fn generate(c: &mut Criterion) {
             if !entry.counts.allows(n) {
                 continue;
             }
-            let mut sampler = entry.build(&Params::new(n).seed(1)).expect("valid count");
+            let mut sampler = entry
+                .build(&Params::new(n).seed(strata::Seed(1)))
+                .expect("valid count");
             group.bench_function(BenchmarkId::from_parameter(entry.name), |b| {
                 // Each iteration generates one set of n (a new block for fixed-count samplers).
                 b.iter(|| {

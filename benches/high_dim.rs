@@ -63,7 +63,7 @@ fn high_dim(c: &mut Criterion) {
             .filter(|e| e.has_dimensions())
             .map(|e| e.name)
         {
-            let mut s = registry::build_nd(name, &Params::new(n).seed(1), d).unwrap();
+            let mut s = registry::build_nd(name, &Params::new(n).seed(strata::Seed(1)), d).unwrap();
             group.bench_function(BenchmarkId::from_parameter(name), |b| {
                 b.iter(|| {
                     s.fill(&mut buf);

@@ -185,7 +185,7 @@ fn pixel(c: &mut Criterion) {
             let mut acc = 0.0f32;
             for i in 0..4096u32 {
                 for d in 0..32 {
-                    acc += sobol::owen_scrambled(i, d, (i >> 4) as u64).unwrap_or(0.0);
+                    acc += sobol::owen_scrambled(i, d, Seed((i >> 4) as u64)).unwrap_or(0.0);
                 }
             }
             black_box(acc)

@@ -37,7 +37,8 @@ fn pmj(c: &mut Criterion) {
             group.bench_function(BenchmarkId::from_parameter(name), |b| {
                 b.iter(|| {
                     seed += 1;
-                    let mut s = registry::build(name, &Params::new(n).seed(seed)).unwrap();
+                    let mut s =
+                        registry::build(name, &Params::new(n).seed(strata::Seed(seed))).unwrap();
                     s.fill(&mut buf);
                     black_box(&buf);
                 })
@@ -69,7 +70,8 @@ fn growth(c: &mut Criterion) {
             group.bench_function(BenchmarkId::from_parameter(name), |b| {
                 b.iter(|| {
                     seed += 1;
-                    let mut s = registry::build(name, &Params::new(n).seed(seed)).unwrap();
+                    let mut s =
+                        registry::build(name, &Params::new(n).seed(strata::Seed(seed))).unwrap();
                     s.fill(&mut buf);
                     black_box(&buf);
                 })

@@ -12,7 +12,7 @@ use strata_lab::registry::{self, Params};
 use strata_lab::spectrum::{periodogram, periodogram_direct};
 
 fn points(n: u64) -> Vec<[f32; 2]> {
-    let mut s = registry::build("jittered", &Params::new(n).seed(1)).unwrap();
+    let mut s = registry::build("jittered", &Params::new(n).seed(strata::Seed(1))).unwrap();
     let mut v = vec![[0.0f32; 2]; n as usize];
     s.fill(&mut v);
     v

@@ -163,7 +163,7 @@ fn pair_tests(args: &Args, failed: &mut bool) -> Result<(), CliError> {
         let mut tails = [0usize; 3];
         for &seed in &seeds {
             let report = PairStudy {
-                seed,
+                seed: strata::Seed(seed),
                 ..study.clone()
             }
             .run(source.as_ref())?;

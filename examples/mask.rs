@@ -77,10 +77,10 @@ fn main() -> ExitCode {
             strata_lab::io::check_writable(png)?;
         }
         let start = Instant::now();
-        let table = rust_table(args.side, args.seed)?;
+        let table = rust_table(args.side, strata::Seed(args.seed))?;
         strata_lab::io::write_text(&args.out, &table)?;
         if let Some(png) = &args.png {
-            let ranks = void_and_cluster(args.side, args.seed)?;
+            let ranks = void_and_cluster(args.side, strata::Seed(args.seed))?;
             let n = (args.side * args.side) as f32;
             let mut canvas = Canvas::new(args.side, args.side, Rgb([0, 0, 0]));
             for (i, &r) in ranks.iter().enumerate() {

@@ -165,7 +165,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         }
         return Ok(None);
     }
-    let mut params = Params::new(1).seed(c.seed);
+    let mut params = Params::new(1).seed(strata::Seed(c.seed));
     common::read_sampler_params(&matches, &mut params)?;
     Ok(Some(Args {
         sampler: c.sampler,
@@ -309,7 +309,7 @@ fn make(args: &Args, job: &Job) -> Result<Made, CliError> {
         let sequence = Sequence::by_name(&job.name, resolution)?;
         let spp =
             u32::try_from(n).map_err(|_| cli_error("-n must fit the samples per pixel (u32)"))?;
-        let seed = strata::Seed(args.params.seed);
+        let seed = args.params.seed;
         let mut sampler = PixelSampler::new(sequence, spp, seed)?;
         say();
         let (x, y) = args.pixel.expect("--pixel");

@@ -182,7 +182,7 @@ fn run_one(
     let mut params = args.params.kept_for(entry);
     params.count = count;
     let generate = |r: u32| -> Result<Vec<[f32; 2]>, strata_lab::Error> {
-        let mut s = entry.build(&params.clone().seed(args.seed + r as u64))?;
+        let mut s = entry.build(&params.clone().seed(strata::Seed(args.seed + r as u64)))?;
         let mut v = vec![[0.0f32; 2]; count as usize];
         s.fill(&mut v);
         Ok(v)
@@ -212,7 +212,9 @@ fn run_one(
     bar.inc(realizations as u64);
 
     let name = entry.name;
-    let grids = entry.build(&params.clone().seed(args.seed))?.strata(count);
+    let grids = entry
+        .build(&params.clone().seed(strata::Seed(args.seed)))?
+        .strata(count);
     io::write_spectrum_files(
         &args.out,
         name,
@@ -276,12 +278,12 @@ fn table_row(
 ) -> Result<Result<TableRow, f64>, CliError> {
     // one-time tables (Sobol' directions, shared sequences) are built before the timing
     let mut warm = Params::new(entry.counts.nearest(4));
-    warm.seed = args.seed;
+    warm.seed = strata::Seed(args.seed);
     entry.build(&warm)?.next_sample();
     let mut sets = Vec::with_capacity(seeds as usize);
     let mut ms = Vec::with_capacity(seeds as usize);
     for r in 0..seeds {
-        let params = Params::new(count).seed(args.seed + r as u64);
+        let params = Params::new(count).seed(strata::Seed(args.seed + r as u64));
         let start = Instant::now();
         let mut s = entry.build(&params)?;
         let mut v = vec![[0.0f32; 2]; count as usize];

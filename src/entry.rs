@@ -539,8 +539,9 @@ impl Entry {
 /// the optional parameters its entry declares ([`ParameterSpec`]), by name.
 ///
 /// ```
+/// use strata::Seed;
 /// use strata_lab::registry::{self, Params};
-/// let p = Params::new(256).seed(3).with("radius", 0.7);
+/// let p = Params::new(256).seed(Seed(3)).with("radius", 0.7);
 /// assert_eq!(p.get("radius"), Some(0.7));
 /// let s = registry::build("poisson", &p)?; // strict: poisson takes a radius
 /// assert!(registry::build("jittered", &p).is_err()); // jittered takes none
@@ -554,8 +555,8 @@ impl Entry {
 pub struct Params {
     /// Samples per set for fixed-count samplers; the intended count for progressive ones.
     pub count: u64,
-    /// Seed of all randomness (default 1, as in the example programs).
-    pub seed: u64,
+    /// Seed of all randomness (default [`Seed::default()`]).
+    pub seed: Seed,
     /// Coordinates per point (default 2); samplers with D dimensions read it, the others
     /// accept only 2.
     pub dims: u32,
@@ -564,18 +565,18 @@ pub struct Params {
 }
 
 impl Params {
-    /// `count` samples, seed 1, 2 dimensions, no optional parameters.
+    /// `count` samples, the default seed, 2 dimensions, no optional parameters.
     pub fn new(count: u64) -> Self {
         Params {
             count,
-            seed: 1,
+            seed: Seed::default(),
             dims: 2,
             values: Vec::new(),
         }
     }
 
     /// The same with another seed.
-    pub fn seed(mut self, seed: u64) -> Self {
+    pub fn seed(mut self, seed: Seed) -> Self {
         self.seed = seed;
         self
     }
@@ -622,10 +623,5 @@ impl Params {
         let mut p = self.clone();
         p.values.retain(|(n, _)| entry.takes(n));
         p
-    }
-
-    /// The seed, as the samplers take it.
-    pub fn sampler_seed(&self) -> Seed {
-        Seed(self.seed)
     }
 }

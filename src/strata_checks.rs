@@ -41,8 +41,9 @@ const SIBLING_ALPHA: f64 = 1e-6;
 
 #[test]
 fn sibling_digits_are_scrambled_independently() {
-    let p =
-        sibling_independence_p(|i, dim, s| scrambled_radical_inverse(i, dim as u32, s).unwrap());
+    let p = sibling_independence_p(|i, dim, s| {
+        scrambled_radical_inverse(i, dim as u32, strata::Seed(s)).unwrap()
+    });
     assert!(p > SIBLING_ALPHA, "worst p {p:e}");
 }
 

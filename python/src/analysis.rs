@@ -120,7 +120,11 @@ fn sampler_spectrum<'py>(
     let s = py
         .detach(|| {
             spectrum::expected_spectrum(realizations, resolution, |r| {
-                let mut s = entry.build(&params.clone().seed(seed.wrapping_add(r as u64)))?;
+                let mut s = entry.build(
+                    &params
+                        .clone()
+                        .seed(strata::Seed(seed.wrapping_add(r as u64))),
+                )?;
                 let mut v = vec![[0.0f32; 2]; n];
                 s.fill(&mut v);
                 Ok(v)

@@ -116,7 +116,7 @@ impl PySampler {
         let args = (
             self.name,
             self.count,
-            self.params.seed,
+            self.params.seed.0,
             self.dims,
             self.drawn(),
             parameters,
@@ -228,7 +228,7 @@ pub(crate) fn params(
     seed: u64,
     parameters: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Params> {
-    let mut p = Params::new(count).seed(seed);
+    let mut p = Params::new(count).seed(strata::Seed(seed));
     for (key, value) in parameters.into_iter().flat_map(|d| d.iter()) {
         let name: String = key.extract()?;
         if value.is_none() {

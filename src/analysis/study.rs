@@ -286,7 +286,7 @@ pub fn check(config: &Config) -> Result<()> {
 
 /// One realization: the points (flat, `dims` per point) and the time it took.
 fn realization(entry: &Entry, n: u64, seed: u64, dims: u32) -> Result<Vec<f32>> {
-    let params = Params::new(n).seed(seed);
+    let params = Params::new(n).seed(strata::Seed(seed));
     Ok(if dims == 2 {
         let mut s = entry.build(&params)?;
         let mut pts = vec![[0.0; 2]; n as usize];

@@ -67,8 +67,8 @@
 //!     ..Suite::default()
 //! };
 //! // the renderer's sampler behind a closure (pixel, index, dimension, seed) -> value
-//! let report = suite.run(&|pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
-//!     let s = PixelSampler::new(Sequence::sobol(), 256, Seed(seed)).unwrap();
+//! let report = suite.run(&|pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
+//!     let s = PixelSampler::new(Sequence::sobol(), 256, seed).unwrap();
 //!     s.sample_2d(pixel, index, dim & !1)[(dim & 1) as usize]
 //! })?;
 //! assert!(report.passed(), "{report}");
@@ -95,11 +95,11 @@ use strata::pixel::{Padding, PixelSampler, Sequence};
 pub trait Source: Sync {
     /// Dimension `dim` of sample `index` of `pixel`, under `seed`, in `[0, 1)`. Dimensions
     /// `2k` and `2k + 1` are the `k`-th 2D draw.
-    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: u64) -> f32;
+    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: Seed) -> f32;
 
     /// Writes samples `0..spp`, dimensions `0..dims` of `pixel` under `seed` into `out`,
     /// sample-major (`out[i * dims + d]`). The default calls [`value`](Source::value).
-    fn fill(&self, pixel: [u32; 2], spp: u32, dims: u32, seed: u64, out: &mut [f32]) {
+    fn fill(&self, pixel: [u32; 2], spp: u32, dims: u32, seed: Seed, out: &mut [f32]) {
         for (i, row) in out
             .chunks_exact_mut(dims as usize)
             .take(spp as usize)
@@ -119,8 +119,8 @@ pub trait Source: Sync {
     }
 }
 
-impl<F: Fn([u32; 2], u64, u32, u64) -> f32 + Sync> Source for F {
-    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: u64) -> f32 {
+impl<F: Fn([u32; 2], u64, u32, Seed) -> f32 + Sync> Source for F {
+    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: Seed) -> f32 {
         self(pixel, index, dim, seed)
     }
 }
@@ -149,11 +149,11 @@ impl SequenceSource {
         self
     }
 
-    fn seeded(&self, seed: u64) -> PixelSampler {
+    fn seeded(&self, seed: Seed) -> PixelSampler {
         PixelSampler::new(
             self.sampler.sequence().clone(),
             self.sampler.samples_per_pixel(),
-            Seed(seed),
+            seed,
         )
         .expect("checked in new")
         .with_padding(self.sampler.padding())
@@ -161,11 +161,11 @@ impl SequenceSource {
 }
 
 impl Source for SequenceSource {
-    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: u64) -> f32 {
+    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: Seed) -> f32 {
         self.seeded(seed).sample_2d(pixel, index, dim & !1)[(dim & 1) as usize]
     }
 
-    fn fill(&self, pixel: [u32; 2], spp: u32, dims: u32, seed: u64, out: &mut [f32]) {
+    fn fill(&self, pixel: [u32; 2], spp: u32, dims: u32, seed: Seed, out: &mut [f32]) {
         let mut s = self.seeded(seed);
         for (i, row) in out
             .chunks_exact_mut(dims as usize)
@@ -601,7 +601,7 @@ impl Suite {
         let (n, dims) = (self.spp as usize, self.dimensions as usize);
         let values: Vec<Vec<f32>> = parallel_map(instances, |&(seed, pixel)| {
             let mut v = vec![0.0f32; n * dims];
-            source.fill(pixel, self.spp, self.dimensions, seed, &mut v);
+            source.fill(pixel, self.spp, self.dimensions, Seed(seed), &mut v);
             v
         });
         if let Some((k, bad)) = values

@@ -23,6 +23,7 @@ use std::fmt;
 
 use super::{Source, parallel_map};
 use crate::{Error, Result};
+use strata::Seed;
 use strata::hash::mix64;
 use strata::pixel::DrawKeys;
 use strata::scramble::owen_scramble_rev;
@@ -38,7 +39,7 @@ pub struct PairStudy {
     /// Samples per draw, 1024 to 65536 (the grid is `31 x 31` from 3844 on, coarser below).
     pub samples: u32,
     /// The seed.
-    pub seed: u64,
+    pub seed: Seed,
 }
 
 impl Default for PairStudy {
@@ -48,7 +49,7 @@ impl Default for PairStudy {
             pixels: 390,
             draws: 64,
             samples: 4096,
-            seed: 1,
+            seed: Seed(1),
         }
     }
 }
@@ -242,17 +243,15 @@ impl Shuffle {
 impl Source for Shuffle {
     /// Dimension `2k` is the first coordinate of draw `k`: van der Corput at the shuffled
     /// index, Owen-scrambled; odd dimensions are 0.
-    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: u64) -> f32 {
+    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: Seed) -> f32 {
         if dim % 2 == 1 {
             return 0.0;
         }
-        self.draw(&DrawKeys::of(pixel, dim, strata::Seed(seed)), index as u32)
+        self.draw(&DrawKeys::of(pixel, dim, seed), index as u32)
     }
 
-    fn fill(&self, pixel: [u32; 2], spp: u32, dims: u32, seed: u64, out: &mut [f32]) {
-        let draws: Vec<DrawKeys> = (0..dims)
-            .map(|d| DrawKeys::of(pixel, d, strata::Seed(seed)))
-            .collect();
+    fn fill(&self, pixel: [u32; 2], spp: u32, dims: u32, seed: Seed, out: &mut [f32]) {
+        let draws: Vec<DrawKeys> = (0..dims).map(|d| DrawKeys::of(pixel, d, seed)).collect();
         for (i, row) in out
             .chunks_exact_mut(dims as usize)
             .take(spp as usize)

@@ -26,8 +26,8 @@ pub(crate) const RANDOM: Entry = Entry {
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
-            2 => Built::two(Random::new(p.sampler_seed())),
-            d => Built::nd(RandomNd::new(d, p.sampler_seed())?),
+            2 => Built::two(Random::new(p.seed)),
+            d => Built::nd(RandomNd::new(d, p.seed)?),
         })
     },
     ..Entry::DEFAULT
@@ -59,7 +59,7 @@ pub(crate) const JITTERED: Entry = Entry {
         smooth: Some(-2.0),
         higher: None,
     },
-    build: |p| Ok(Built::two(Jittered::new(p.count, p.sampler_seed())?)),
+    build: |p| Ok(Built::two(Jittered::new(p.count, p.seed)?)),
     ..Entry::DEFAULT
 };
 
@@ -71,7 +71,7 @@ pub(crate) const NROOKS: Entry = Entry {
     family: Family::Classic,
     counts: CountRule::Any,
     promise: "one point per row and column",
-    build: |p| Ok(Built::two(NRooks::new(p.count, p.sampler_seed())?)),
+    build: |p| Ok(Built::two(NRooks::new(p.count, p.seed)?)),
     ..Entry::DEFAULT
 };
 
@@ -86,8 +86,8 @@ pub(crate) const LATIN: Entry = Entry {
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
-            2 => Built::two(LatinHypercube::new(p.count, 2, p.sampler_seed())?),
-            d => Built::nd(LatinHypercube::new(p.count, d, p.sampler_seed())?),
+            2 => Built::two(LatinHypercube::new(p.count, 2, p.seed)?),
+            d => Built::nd(LatinHypercube::new(p.count, d, p.seed)?),
         })
     },
     ..Entry::DEFAULT
@@ -101,7 +101,7 @@ pub(crate) const MULTIJITTERED: Entry = Entry {
     family: Family::Classic,
     counts: CountRule::Square,
     promise: "jittered on `n x n` and N-rooks",
-    build: |p| Ok(Built::two(MultiJittered::new(p.count, p.sampler_seed())?)),
+    build: |p| Ok(Built::two(MultiJittered::new(p.count, p.seed)?)),
     ..Entry::DEFAULT
 };
 
@@ -113,7 +113,7 @@ pub(crate) const CMJ: Entry = Entry {
     family: Family::Classic,
     counts: CountRule::Any,
     promise: "multi-jittered on `m x n`, correlated shuffles",
-    build: |p| Ok(Built::two(Cmj::new(p.count, p.sampler_seed())?)),
+    build: |p| Ok(Built::two(Cmj::new(p.count, p.seed)?)),
     ..Entry::DEFAULT
 };
 
@@ -127,7 +127,7 @@ pub(crate) const UNCORRELATED: Entry = Entry {
     promise: "every pair `(2k, 2k+1)` jittered on `s x s`",
     any_dims: true,
     build: |p| {
-        let s = UncorrelatedJitter::new(p.count, p.dims, p.sampler_seed())?;
+        let s = UncorrelatedJitter::new(p.count, p.dims, p.seed)?;
         Ok(match p.dims {
             2 => Built::two(s),
             _ => Built::nd(s),
@@ -147,8 +147,8 @@ pub(crate) const HALTON: Entry = Entry {
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
-            2 => Built::two(Halton::new(p.sampler_seed())),
-            d => Built::nd(HaltonNd::new(d, p.sampler_seed())?),
+            2 => Built::two(Halton::new(p.seed)),
+            d => Built::nd(HaltonNd::new(d, p.seed)?),
         })
     },
     ..Entry::DEFAULT
@@ -166,8 +166,8 @@ pub(crate) const LATTICE: Entry = Entry {
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
-            2 => Built::two(Lattice::new(p.sampler_seed())),
-            d => Built::nd(LatticeNd::new(d, p.sampler_seed())?),
+            2 => Built::two(Lattice::new(p.seed)),
+            d => Built::nd(LatticeNd::new(d, p.seed)?),
         })
     },
     ..Entry::DEFAULT
@@ -181,7 +181,7 @@ pub(crate) const FIBONACCI: Entry = Entry {
     family: Family::Qmc,
     counts: CountRule::Fibonacci,
     promise: "a rank-1 lattice: 1D strata in x and y",
-    build: |p| Ok(Built::two(Fibonacci::new(p.count, p.sampler_seed())?)),
+    build: |p| Ok(Built::two(Fibonacci::new(p.count, p.seed)?)),
     ..Entry::DEFAULT
 };
 
@@ -198,8 +198,8 @@ pub(crate) const SOBOL: Entry = Entry {
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
-            2 => Built::two(Sobol::new(p.sampler_seed())),
-            d => Built::nd(SobolNd::new(d, p.sampler_seed())?),
+            2 => Built::two(Sobol::new(p.seed)),
+            d => Built::nd(SobolNd::new(d, p.seed)?),
         })
     },
     ..Entry::DEFAULT
@@ -220,8 +220,8 @@ pub(crate) const SOBOL12: Entry = Entry {
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
-            2 => Built::two(Sobol::one_two(p.sampler_seed())),
-            d => Built::nd(SobolNd::one_two(d, p.sampler_seed())?),
+            2 => Built::two(Sobol::one_two(p.seed)),
+            d => Built::nd(SobolNd::one_two(d, p.seed)?),
         })
     },
     ..Entry::DEFAULT
@@ -241,8 +241,8 @@ pub(crate) const FAURE4: Entry = Entry {
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
-            2 => Built::two(Sobol::faure4(p.sampler_seed())),
-            d => Built::nd(SobolNd::faure4(d, p.sampler_seed())?),
+            2 => Built::two(Sobol::faure4(p.seed)),
+            d => Built::nd(SobolNd::faure4(d, p.seed)?),
         })
     },
     ..Entry::DEFAULT
@@ -258,6 +258,6 @@ pub(crate) const PMJ02_STOCHASTIC: Entry = Entry {
     counts: CountRule::Any,
     promise: "as `pmj02`, O(1) per sample, stratified classes",
     rates: Rates::NETS,
-    build: |p| Ok(Built::two(Pmj02Stochastic::new(p.sampler_seed()))),
+    build: |p| Ok(Built::two(Pmj02Stochastic::new(p.seed))),
     ..Entry::DEFAULT
 };

@@ -53,7 +53,7 @@ pub(crate) const ENTRY: Entry = Entry {
     )),
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
-        Ok(Built::two(BestCandidate::new(k, p.sampler_seed())?))
+        Ok(Built::two(BestCandidate::new(k, p.seed)?))
     },
     ..Entry::DEFAULT
 };

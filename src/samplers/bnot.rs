@@ -101,10 +101,7 @@ pub(crate) const ENTRY: Entry = Entry {
     )),
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
-        Ok(Built::two(BnotSets::new(
-            Bnot::new(p.count, k)?,
-            p.sampler_seed(),
-        )?))
+        Ok(Built::two(BnotSets::new(Bnot::new(p.count, k)?, p.seed)?))
     },
     ..Entry::DEFAULT
 };

@@ -78,7 +78,7 @@ pub(crate) const ENTRY: Entry = Entry {
         let (k, c) = (ITERATIONS.read_whole(p), CAPACITY.read_whole(p));
         Ok(Built::two(CcvtSets::new(
             Ccvt::with_capacity(p.count, k, c)?,
-            p.sampler_seed(),
+            p.seed,
         )?))
     },
     ..Entry::DEFAULT

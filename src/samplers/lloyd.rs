@@ -69,10 +69,7 @@ pub(crate) const ENTRY: Entry = Entry {
     )),
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
-        Ok(Built::two(LloydSets::new(
-            Lloyd::new(p.count, k)?,
-            p.sampler_seed(),
-        )?))
+        Ok(Built::two(LloydSets::new(Lloyd::new(p.count, k)?, p.seed)?))
     },
     ..Entry::DEFAULT
 };

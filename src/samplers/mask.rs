@@ -18,6 +18,7 @@
 
 use std::fmt::Write as _;
 
+use strata::Seed;
 use strata::pixel::frames::{BlueNoiseMask, MAX_MASK_SIDE};
 
 use crate::{Error, Result};
@@ -106,7 +107,7 @@ impl Fill {
 /// [`MAX_MASK_SIDE`]) for `seed`: the rank of each pixel, row-major, a permutation of
 /// `0..side^2` that [`BlueNoiseMask::new`] takes. `O(side^4)` time at worst, about 0.1 s at 256
 /// on one core; `O(side^2)` memory.
-pub fn void_and_cluster(side: u32, seed: u64) -> Result<Vec<u16>> {
+pub fn void_and_cluster(side: u32, seed: Seed) -> Result<Vec<u16>> {
     if !side.is_power_of_two() || !(4..=MAX_MASK_SIDE).contains(&side) {
         return Err(Error::parameter(
             "void_and_cluster",
@@ -119,7 +120,7 @@ pub fn void_and_cluster(side: u32, seed: u64) -> Result<Vec<u16>> {
     // a tiny hashed energy per pixel breaks the ties of the empty start
     let jitter: Vec<f32> = (0..n as u32)
         .map(|i| {
-            let h = strata::hash::hash_u64(seed, i as u64);
+            let h = strata::hash::hash_u64(seed.0, i as u64);
             (h >> 40) as f32 * (1e-6 / (1u64 << 24) as f32)
         })
         .collect();
@@ -159,19 +160,21 @@ pub fn void_and_cluster(side: u32, seed: u64) -> Result<Vec<u16>> {
 /// The Rust source of a mask's table as the renderer's crate includes it
 /// (`strata/src/pixel/frames/blue_noise_64.rs` for the built-in): a `const` array of the ranks,
 /// row-major, 16 to a line, under a header that names the program and options that wrote it.
-pub fn rust_table(side: u32, seed: u64) -> Result<String> {
+pub fn rust_table(side: u32, seed: Seed) -> Result<String> {
     let ranks = void_and_cluster(side, seed)?;
     // the table must be one the renderer's crate accepts
     BlueNoiseMask::new(side, &ranks)?;
     let mut s = format!(
         "// A {side} x {side} blue-noise dither mask: void and cluster (Ulichney 1993) as\n\
-         // `strata_lab::samplers::mask::void_and_cluster({side}, {seed:#x})`, the rank of each\n\
-         // pixel, row-major. Written by the lab's `mask` program (`cargo run --release\n\
-         // --example mask -- --side {side} --seed {seed}`); the lab's tests check it against\n\
+         // `strata_lab::samplers::mask::void_and_cluster({side}, Seed({:#x}))`, the rank\n\
+         // of each pixel, row-major. Written by the lab's `mask` program (`cargo run --release\n\
+         // --example mask -- --side {side} --seed {}`); the lab's tests check it against\n\
          // that function. Do not edit.\n\n\
          /// The ranks of the built-in mask, row-major.\n\
          #[rustfmt::skip]\n\
          pub(crate) const RANKS: [u16; {}] = [\n",
+        seed.0,
+        seed.0,
         side * side
     );
     for line in ranks.chunks(16) {
@@ -192,12 +195,15 @@ mod tests {
     #[test]
     fn the_mask_is_a_permutation_of_its_ranks() {
         for side in [4u32, 8, 32] {
-            let m = void_and_cluster(side, 7).unwrap();
+            let m = void_and_cluster(side, strata::Seed(7)).unwrap();
             assert!(BlueNoiseMask::new(side, &m).is_ok());
         }
-        assert!(void_and_cluster(12, 1).is_err());
-        assert!(void_and_cluster(512, 1).is_err());
-        assert_ne!(void_and_cluster(16, 1), void_and_cluster(16, 2));
+        assert!(void_and_cluster(12, strata::Seed(1)).is_err());
+        assert!(void_and_cluster(512, strata::Seed(1)).is_err());
+        assert_ne!(
+            void_and_cluster(16, strata::Seed(1)),
+            void_and_cluster(16, strata::Seed(2))
+        );
     }
 
     /// The mean periodogram of the pixels of rank below `k` over the frequencies
@@ -257,7 +263,7 @@ mod tests {
         // bump radius, fixed by the side, gave 0.24-0.49 at sides 16-64 and 1.3-28 at 128-256.)
         for side in [4u32, 8, 16, 32, 64, 128, 256] {
             let n = side * side;
-            let m = void_and_cluster(side, 11).unwrap();
+            let m = void_and_cluster(side, strata::Seed(11)).unwrap();
             let rank = |x: u32, y: u32| m[(y * side + x) as usize] as u32;
             let key = |i: u32| strata::hash::hash_u64(5, i as u64);
             let mut order: Vec<u32> = (0..n).collect();

@@ -80,7 +80,7 @@ pub(crate) const ENTRY: Entry = Entry {
         let k = ENTRY.parameters[0].read_whole(p);
         Ok(Built::two(Net02BnSets::new(
             Net02Bn::new(p.count, k)?,
-            p.sampler_seed(),
+            p.seed,
         )?))
     },
     ..Entry::DEFAULT
@@ -133,7 +133,8 @@ impl Net02Bn {
         let seed = stream_seed(key, streams::NET02BN);
         let points: Vec<[f64; 2]> = (0..n as u32)
             .map(|i| {
-                let c = |d| f64::from(sobol::owen_scrambled(i, d, seed).unwrap_or(0.0));
+                let c =
+                    |d| f64::from(sobol::owen_scrambled(i, d, strata::Seed(seed)).unwrap_or(0.0));
                 [c(0), c(1)]
             })
             .collect();

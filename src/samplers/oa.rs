@@ -68,8 +68,8 @@ pub(crate) const BOSE: Entry = Entry {
     any_dims: true,
     build: |p| {
         Ok(match p.dims {
-            2 => Built::two(Bose::new(p.count, 2, p.sampler_seed())?),
-            d => Built::nd(Bose::new(p.count, d, p.sampler_seed())?),
+            2 => Built::two(Bose::new(p.count, 2, p.seed)?),
+            d => Built::nd(Bose::new(p.count, d, p.seed)?),
         })
     },
     ..Entry::DEFAULT
@@ -97,7 +97,7 @@ pub(crate) const BUSH: Entry = Entry {
 /// The Bush array the registry builds: strength from the parameters (default 3).
 fn bush(p: &Params, dims: u32) -> Result<Fixed<Bush>> {
     let strength = STRENGTH.read_whole(p);
-    Bush::new(p.count, strength, dims, p.sampler_seed())
+    Bush::new(p.count, strength, dims, p.seed)
 }
 
 /// `--strength`: the strength of a Bush array.

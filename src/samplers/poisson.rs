@@ -79,7 +79,7 @@ pub(crate) const POISSON: Entry = Entry {
         let rho = DART_RADIUS.read(p);
         Ok(Built::two(PoissonDisk::new(
             DartThrowing::new(p.count, rho)?,
-            p.sampler_seed(),
+            p.seed,
         )?))
     },
     ..Entry::DEFAULT
@@ -99,7 +99,7 @@ pub(crate) const BRIDSON: Entry = Entry {
     build: |p| {
         let rho = BRIDSON_RADIUS.read(p);
         let bridson = Bridson::new(p.count, rho)?.with_attempts(ATTEMPTS.read_whole(p));
-        Ok(Built::two(BridsonDisk::new(bridson, p.sampler_seed())?))
+        Ok(Built::two(BridsonDisk::new(bridson, p.seed)?))
     },
     ..Entry::DEFAULT
 };
@@ -511,7 +511,7 @@ mod tests {
             s.fill(&mut v);
             v
         };
-        let base = Params::new(n as u64).seed(4);
+        let base = Params::new(n as u64).seed(strata::Seed(4));
         assert_eq!(take(&base), take(&base.clone().with("attempts", 30.0)));
         let few = take(&base.clone().with("attempts", 1.0));
         assert_ne!(few, take(&base));

@@ -7,7 +7,7 @@ use strata_lab::samplers::{Bridson, Ccvt, DartThrowing, SetGenerator};
 use strata_lab::spectrum::relative_radius_max;
 
 fn set(name: &str, n: u64, seed: u64, rho: Option<f64>) -> Vec<[f32; 2]> {
-    let mut p = Params::new(n).seed(seed);
+    let mut p = Params::new(n).seed(strata::Seed(seed));
     if let Some(v) = rho {
         p.set("radius", v);
     }
@@ -56,7 +56,7 @@ fn poisson_and_bridson_keep_the_radius_and_the_count() {
 
 #[test]
 fn every_block_is_its_own_poisson_set() {
-    let mut p = Params::new(300).seed(9);
+    let mut p = Params::new(300).seed(strata::Seed(9));
     p.set("radius", 0.7);
     let mut s = registry::build("poisson", &p).unwrap();
     let a = crate::common::take(s.as_mut(), 300);
@@ -279,7 +279,7 @@ fn spacing(
     let r = relative_radius_max(n as usize);
     let mut sum = [0.0; 2];
     for seed in seeds {
-        let mut p = Params::new(n).seed(seed);
+        let mut p = Params::new(n).seed(strata::Seed(seed));
         if let Some(v) = iterations {
             p.set("iterations", v as f64);
         }

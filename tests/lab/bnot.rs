@@ -759,7 +759,7 @@ fn final_weights_give_equal_areas_and_a_consistent_diagram() {
 #[test]
 fn deterministic_by_seed_and_successive_sets_differ() {
     let take = |seed: u64| {
-        let mut s = registry::build("bnot", &Params::new(128).seed(seed)).unwrap();
+        let mut s = registry::build("bnot", &Params::new(128).seed(strata::Seed(seed))).unwrap();
         (0..256).map(|_| s.next_sample()).collect::<Vec<_>>()
     };
     let a = take(5);
@@ -825,7 +825,7 @@ fn tiny_sets() {
             assert_eq!(d.len(), n as usize);
             assert!(d.areas().iter().all(|a| (a * n as f64 - 1.0).abs() <= 1e-6));
         }
-        let mut s = registry::build("bnot", &Params::new(n).seed(9)).unwrap();
+        let mut s = registry::build("bnot", &Params::new(n).seed(strata::Seed(9))).unwrap();
         for _ in 0..3 * n {
             let p = s.next_sample();
             assert!(p[0].is_finite() && p[1].is_finite());
@@ -916,7 +916,7 @@ fn targets(n: u64) {
     assert!(nn >= 0.88, "N {n}: mean nearest-neighbour distance {nn}");
     let sets: Vec<Vec<_>> = (0..4)
         .map(|seed| {
-            let mut s = registry::build("bnot", &Params::new(n).seed(seed)).unwrap();
+            let mut s = registry::build("bnot", &Params::new(n).seed(strata::Seed(seed))).unwrap();
             (0..n).map(|_| s.next_sample()).collect()
         })
         .collect();

@@ -28,7 +28,7 @@ fn csv_round_trips_to_the_library_values() {
         assert_eq!(code, 0, "{err}");
         let mut lines = out.lines();
         assert_eq!(lines.next(), Some("x,y"));
-        let mut s = registry::build(name, &Params::new(n).seed(42)).unwrap();
+        let mut s = registry::build(name, &Params::new(n).seed(strata::Seed(42))).unwrap();
         let mut rows = 0;
         for line in lines {
             let (x, y) = line.split_once(',').unwrap();
@@ -118,7 +118,7 @@ fn dims_and_pixel_print_the_library_values() {
     assert_eq!(code, 0, "{err}");
     let mut lines = out.lines();
     assert_eq!(lines.next(), Some("x0,x1,x2,x3,x4"));
-    let mut s = registry::build_nd("sobol", &Params::new(8).seed(3), 5).unwrap();
+    let mut s = registry::build_nd("sobol", &Params::new(8).seed(strata::Seed(3)), 5).unwrap();
     let mut want = vec![0f32; 5];
     let mut rows = 0;
     for line in lines {
@@ -647,7 +647,7 @@ fn points_writes_every_format_and_measure_reads_them_back() {
     use strata_lab::pointsets;
     let dir = std::env::temp_dir().join(format!("strata-measure-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let mut s = registry::build("sobol", &Params::new(64).seed(5)).unwrap();
+    let mut s = registry::build("sobol", &Params::new(64).seed(strata::Seed(5))).unwrap();
     let want: Vec<f64> = (0..64)
         .flat_map(|_| {
             let p = s.next_sample();

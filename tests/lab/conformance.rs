@@ -1,10 +1,10 @@
 //! The conformance suite passes every adapter sequence, and fails every deliberately broken
 //! sequence on the row that names its fault: a test that cannot fail proves nothing.
 
-use strata::StrataGrid;
 use strata::hash::{GOLDEN_GAMMA, hash_u64, hash32, mix64, stream_seed};
 use strata::pixel::{PixelSampler, Sequence};
 use strata::samplers::{Pmj02Stochastic, halton};
+use strata::{Seed, StrataGrid};
 use strata_lab::conformance::{PairStudy, Report, SequenceSource, Shuffle, Source, Suite};
 
 fn assert_passes(report: &Report, what: &str) {
@@ -115,8 +115,8 @@ fn small() -> Suite {
 }
 
 /// The key of a draw, as the adapter derives it.
-fn stream(seed: u64, pixel: [u32; 2], dim: u32) -> u64 {
-    let key = stream_seed(seed, (pixel[0] as u64) << 32 | pixel[1] as u64);
+fn stream(seed: Seed, pixel: [u32; 2], dim: u32) -> u64 {
+    let key = stream_seed(seed.0, (pixel[0] as u64) << 32 | pixel[1] as u64);
     mix64(key ^ (dim as u64).wrapping_mul(GOLDEN_GAMMA))
 }
 
@@ -131,7 +131,7 @@ fn the_former_pmj02_padding_fails_across_draws() {
     let mut s = Pmj02Stochastic::new(strata::Seed(0x706d_6a30_3200));
     s.reserve(1 << 16);
     let table = s.generated().to_vec();
-    let source = move |pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
+    let source = move |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
         let st = stream(seed, pixel, dim & !1);
         let p = table[(index as u32 ^ (st as u32 & 0xffff)) as usize];
         let shift = mix64(st);
@@ -153,8 +153,13 @@ fn the_former_pmj02_padding_fails_across_draws() {
 fn the_former_halton_padding_fails_across_draws() {
     // Before the fix: every draw the radical inverses of the same index in bases 2 and 3,
     // digit-scrambled per draw: the digits tie every draw to every other.
-    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
-        halton::scrambled_radical_inverse(index, dim & 1, stream(seed, pixel, dim & !1)).unwrap()
+    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
+        halton::scrambled_radical_inverse(
+            index,
+            dim & 1,
+            strata::Seed(stream(seed, pixel, dim & !1)),
+        )
+        .unwrap()
     };
     let r = small().run(&source).unwrap();
     assert_fails(&r, "chi-square", "across draws", "former Halton");
@@ -163,7 +168,7 @@ fn the_former_halton_padding_fails_across_draws() {
 #[test]
 fn draws_that_share_their_values_fail() {
     // padding forgotten: every draw reads the same stream
-    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
+    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
         let h = hash_u64(stream(seed, pixel, 0), index);
         unit((h >> (32 * (dim & 1))) as u32)
     };
@@ -176,7 +181,7 @@ fn draws_that_share_their_values_fail() {
 fn correlations_of_opposite_sign_in_different_pixels_do_not_cancel() {
     // The old test's blind spot: dimension 2 copies dimension 0 in some pixels and mirrors it
     // in others. A correlation averaged over pixels is about 0; every pixel is broken.
-    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
+    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
         let draw = |d: u32| {
             let h = hash_u64(stream(seed, pixel, d & !1), index);
             unit((h >> (32 * (d & 1))) as u32)
@@ -200,7 +205,7 @@ fn correlations_of_opposite_sign_in_different_pixels_do_not_cancel() {
 #[test]
 fn a_weak_correlation_in_one_pair_of_draws_is_caught() {
     // One draw in ten of dimension 4 repeats dimension 1: a correlation of 0.1, in one pair.
-    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
+    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
         let draw = |d: u32| {
             let h = hash_u64(stream(seed, pixel, d & !1), index);
             unit((h >> (32 * (d & 1))) as u32)
@@ -229,15 +234,15 @@ fn a_weak_correlation_in_one_pair_of_draws_is_caught() {
 
 #[test]
 fn pixels_and_seeds_that_share_their_values_fail() {
-    let pixel_blind = |_pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
+    let pixel_blind = |_pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
         unit(hash_u64(stream(seed, [0, 0], dim), index) as u32)
     };
     let r = small().run(&pixel_blind).unwrap();
     assert_fails(&r, "chi-square", "across pixels", "pixel-blind");
     assert!(r.row("chi-square", "across seeds").unwrap().passed());
 
-    let seed_blind = |pixel: [u32; 2], index: u64, dim: u32, _seed: u64| {
-        unit(hash_u64(stream(0, pixel, dim), index) as u32)
+    let seed_blind = |pixel: [u32; 2], index: u64, dim: u32, _seed: Seed| {
+        unit(hash_u64(stream(Seed(0), pixel, dim), index) as u32)
     };
     let r = small().run(&seed_blind).unwrap();
     assert_fails(&r, "chi-square", "across seeds", "seed-blind");
@@ -247,7 +252,7 @@ fn pixels_and_seeds_that_share_their_values_fail() {
 #[test]
 fn a_biased_sequence_fails_the_mean_tests() {
     // values pulled towards 0 by 5% at most: a bias, not a correlation
-    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
+    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
         let u = unit(hash_u64(stream(seed, pixel, dim), index) as u32);
         u * (1.0 - 0.05 * u)
     };
@@ -268,7 +273,7 @@ fn a_biased_sequence_fails_the_mean_tests() {
 struct FalsePromise;
 
 impl Source for FalsePromise {
-    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: u64) -> f32 {
+    fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: Seed) -> f32 {
         unit(hash_u64(stream(seed, pixel, dim), index) as u32)
     }
 
@@ -306,14 +311,14 @@ fn a_renderers_own_closure_can_be_checked() {
         ..Suite::default()
     };
     let r = suite
-        .run(&|pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
-            samplers[seed as usize - 1].sample_2d(pixel, index, dim & !1)[(dim & 1) as usize]
+        .run(&|pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
+            samplers[seed.0 as usize - 1].sample_2d(pixel, index, dim & !1)[(dim & 1) as usize]
         })
         .unwrap();
     assert_passes(&r, "closure over pmj02");
     // values outside [0, 1) are refused, not tested
     let e = suite
-        .run(&|_: [u32; 2], _: u64, _: u32, _: u64| 1.0f32)
+        .run(&|_: [u32; 2], _: u64, _: u32, _: Seed| 1.0f32)
         .unwrap_err();
     assert!(e.to_string().contains("outside [0, 1)"), "{e}");
 }
@@ -322,7 +327,7 @@ fn a_renderers_own_closure_can_be_checked() {
 fn independent_values_pass_at_small_counts() {
     // Pearson's statistic on 31 x 31 cells is far from its chi-square law with a few points
     // per cell; the grid shrinks with the count. This case failed at 1e-40 on 31 x 31.
-    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
+    let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
         unit(hash_u64(stream(seed, pixel, dim), index) as u32)
     };
     let suite = Suite {
@@ -387,9 +392,9 @@ fn the_pair_test_passes_every_sequence_and_fails_one_plain_round() {
     // independent values keyed by XOR-ing the index with the draw's key (the first version of
     // the 32-bit `random`, which failed at each of 8 seeds): two draws whose keys differ by
     // less than the sample count read each other's hash inputs in another order
-    let xor_keyed = |pixel: [u32; 2], index: u64, dim: u32, seed: u64| {
+    let xor_keyed = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
         // the image's key words, as the shader receives them
-        let k = strata::PixelSampler::new(Sequence::random(), 1, strata::Seed(seed))
+        let k = strata::PixelSampler::new(Sequence::random(), 1, seed)
             .unwrap()
             .gpu_parameters()
             .unwrap()

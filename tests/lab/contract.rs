@@ -17,7 +17,9 @@ fn every_sampler_stays_in_the_unit_square() {
                 continue;
             }
             for seed in [0, 1, u64::MAX] {
-                let mut s = entry.build(&Params::new(n).seed(seed)).unwrap();
+                let mut s = entry
+                    .build(&Params::new(n).seed(strata::Seed(seed)))
+                    .unwrap();
                 for p in take(s.as_mut(), 3 * n as usize) {
                     assert!(
                         (0.0..1.0).contains(&p[0]) && (0.0..1.0).contains(&p[1]),
@@ -41,12 +43,12 @@ fn same_seed_same_bits_other_seed_other_bits() {
                 .flat_map(|p| [p[0].to_bits(), p[1].to_bits()])
                 .collect::<Vec<u32>>()
         };
-        assert_eq!(run(5), run(5), "{}", entry.name);
+        assert_eq!(run(strata::Seed(5)), run(strata::Seed(5)), "{}", entry.name);
         if entry.name == "regular" {
             // Deterministic by definition: the seed is ignored.
-            assert_eq!(run(5), run(6));
+            assert_eq!(run(strata::Seed(5)), run(strata::Seed(6)));
         } else {
-            let (a, b) = (run(5), run(6));
+            let (a, b) = (run(strata::Seed(5)), run(strata::Seed(6)));
             let same = a.iter().zip(&b).filter(|(x, y)| x == y).count();
             assert!(
                 same < a.len() / 10,
@@ -196,7 +198,7 @@ fn skip_lands_where_drawing_would_or_moves_nothing() {
         .filter(|e| e.progressive && !e.expensive)
     {
         for k in [0u64, 1, 7, 1000, 4099] {
-            let params = Params::new(64).seed(5);
+            let params = Params::new(64).seed(strata::Seed(5));
             let mut s = entry.build(&params).unwrap();
             let mut drawn = entry.build(&params).unwrap();
             take(drawn.as_mut(), k as usize);

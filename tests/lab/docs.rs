@@ -104,7 +104,7 @@ fn the_renderer_crate_s_built_in_mask_is_the_lab_s_void_and_cluster() {
     use strata_lab::samplers::mask::{BUILTIN_SEED, BUILTIN_SIDE, rust_table, void_and_cluster};
     // the table's file as the `mask` program writes it (`STRATA_BLESS=1` or the program)
     let file = "strata/src/pixel/frames/blue_noise_64.rs";
-    let table = rust_table(BUILTIN_SIDE, BUILTIN_SEED).unwrap();
+    let table = rust_table(BUILTIN_SIDE, strata::Seed(BUILTIN_SEED)).unwrap();
     if std::env::var_os("STRATA_BLESS").is_some() {
         std::fs::write(Path::new(env!("CARGO_MANIFEST_DIR")).join(file), &table).unwrap();
     }
@@ -116,7 +116,7 @@ fn the_renderer_crate_s_built_in_mask_is_the_lab_s_void_and_cluster() {
     // and the values the renderer's crate reads from it
     let (mask, ranks) = (
         BlueNoiseMask::builtin(),
-        void_and_cluster(BUILTIN_SIDE, BUILTIN_SEED).unwrap(),
+        void_and_cluster(BUILTIN_SIDE, strata::Seed(BUILTIN_SEED)).unwrap(),
     );
     assert_eq!(mask.side(), BUILTIN_SIDE);
     for (i, &r) in ranks.iter().enumerate() {

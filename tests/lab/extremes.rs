@@ -68,8 +68,10 @@ fn two_to_the_24_and_beyond_stay_nets() {
 fn seeds_at_the_extremes_work_and_differ() {
     for entry in registry::entries() {
         let n = entry.counts.nearest(if entry.expensive { 16 } else { 256 });
-        let mut a = entry.build(&Params::new(n).seed(0)).unwrap();
-        let mut b = entry.build(&Params::new(n).seed(u64::MAX)).unwrap();
+        let mut a = entry.build(&Params::new(n).seed(strata::Seed(0))).unwrap();
+        let mut b = entry
+            .build(&Params::new(n).seed(strata::Seed(u64::MAX)))
+            .unwrap();
         let (pa, pb): (Vec<[f32; 2]>, Vec<[f32; 2]>) = (
             (0..n).map(|_| a.next_sample()).collect(),
             (0..n).map(|_| b.next_sample()).collect(),
@@ -224,7 +226,7 @@ fn no_sampler_ever_returns_one() {
     for entry in registry::entries() {
         let n = entry.counts.nearest(9);
         let blocks = if entry.expensive { 2 } else { 200 };
-        let mut s = entry.build(&Params::new(n).seed(77)).unwrap();
+        let mut s = entry.build(&Params::new(n).seed(strata::Seed(77))).unwrap();
         for _ in 0..n * blocks {
             let p = s.next_sample();
             assert!(

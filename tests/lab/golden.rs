@@ -36,7 +36,7 @@ fn sampler_digests() -> Vec<(String, u64)> {
     let work = |e: &registry::Entry| {
         let mut out = Vec::new();
         let n = e.counts.nearest(VALUES / 2);
-        let mut s = registry::build(e.name, &Params::new(n).seed(1))
+        let mut s = registry::build(e.name, &Params::new(n).seed(strata::Seed(1)))
             .unwrap_or_else(|err| panic!("{}: {err}", e.name));
         let mut d = Digest::default();
         for _ in 0..n {
@@ -46,14 +46,15 @@ fn sampler_digests() -> Vec<(String, u64)> {
         if e.has_dimensions() {
             let n = e.counts.nearest(VALUES / 5);
             // five dimensions, or four for a sampler that has no more (`faure4`)
-            let (dims, built) = match registry::build_nd(e.name, &Params::new(n).seed(1), 5) {
-                Ok(s) => (5, s),
-                Err(_) => (
-                    4,
-                    registry::build_nd(e.name, &Params::new(n).seed(1), 4)
-                        .unwrap_or_else(|err| panic!("{} --dims 4: {err}", e.name)),
-                ),
-            };
+            let (dims, built) =
+                match registry::build_nd(e.name, &Params::new(n).seed(strata::Seed(1)), 5) {
+                    Ok(s) => (5, s),
+                    Err(_) => (
+                        4,
+                        registry::build_nd(e.name, &Params::new(n).seed(strata::Seed(1)), 4)
+                            .unwrap_or_else(|err| panic!("{} --dims 4: {err}", e.name)),
+                    ),
+                };
             let mut s = built;
             let mut d = Digest::default();
             let mut p = vec![0f32; dims];
@@ -64,7 +65,9 @@ fn sampler_digests() -> Vec<(String, u64)> {
             out.push((format!("{} --dims {dims}", e.name), d.0));
             // the bulk path (SIMD lanes in Sobol': 8 with AVX2, 4 with SSE2, and the tail)
             let dims = 13;
-            if let Ok(mut s) = registry::build_nd(e.name, &Params::new(n).seed(1), dims) {
+            if let Ok(mut s) =
+                registry::build_nd(e.name, &Params::new(n).seed(strata::Seed(1)), dims)
+            {
                 let mut v = vec![0f32; n as usize * dims as usize];
                 s.fill(&mut v);
                 let mut d = Digest::default();
@@ -92,7 +95,8 @@ fn mask_digests() -> Vec<(String, u64)> {
     [4u32, 16, 64]
         .map(|side| {
             let mut d = Digest::default();
-            let ranks = strata_lab::samplers::mask::void_and_cluster(side, 1).unwrap();
+            let ranks =
+                strata_lab::samplers::mask::void_and_cluster(side, strata::Seed(1)).unwrap();
             ranks.iter().for_each(|&r| d.push(r as u32));
             (format!("mask void_and_cluster {side}"), d.0)
         })

@@ -219,8 +219,16 @@ fn registry_nd_samplers_are_reproducible() {
             let mut s = registry::build_nd(name, &Params::new(n).seed(seed), 4).unwrap();
             points(s.as_mut(), n as usize)
         };
-        assert_eq!(run(4), run(4), "{name}: same seed, same bits");
-        assert_ne!(run(4), run(5), "{name}: another seed, other points");
+        assert_eq!(
+            run(strata::Seed(4)),
+            run(strata::Seed(4)),
+            "{name}: same seed, same bits"
+        );
+        assert_ne!(
+            run(strata::Seed(4)),
+            run(strata::Seed(5)),
+            "{name}: another seed, other points"
+        );
     }
 }
 
@@ -231,7 +239,8 @@ fn projection_strata_hold_equal_counts_per_cell() {
     for e in registry::entries().iter().filter(|e| e.has_dimensions()) {
         let n = e.counts.nearest(49);
         let dims = 4;
-        let Ok(mut s) = registry::build_nd(e.name, &Params::new(n).seed(8), dims) else {
+        let Ok(mut s) = registry::build_nd(e.name, &Params::new(n).seed(strata::Seed(8)), dims)
+        else {
             continue;
         };
         let mut v = vec![0f32; n as usize * dims as usize];

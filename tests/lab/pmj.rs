@@ -282,7 +282,7 @@ fn pmj02bn_is_bluer_than_pmj02_at_every_checked_prefix() {
 #[test]
 fn sequences_are_progressive_and_reproducible() {
     for name in ["pmj", "pmjbn", "pmj02", "pmj02bn", "pmj02-stochastic"] {
-        let p = strata_lab::registry::Params::new(100).seed(5);
+        let p = strata_lab::registry::Params::new(100).seed(strata::Seed(5));
         let mut a = strata_lab::registry::build(name, &p).unwrap();
         let mut b = strata_lab::registry::build(name, &p).unwrap();
         assert!(a.progression().is_progressive());

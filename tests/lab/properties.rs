@@ -96,7 +96,7 @@ proptest! {
         // (a progressive one takes any count and optimises its longest prefix for a huge one:
         // minutes in a test build, so its huge counts are tested in tests/extremes.rs)
         let n = if entry.expensive && n > 300 && (n < 1 << 40 || entry.progressive) { n % 300 } else { n };
-        let mut p = Params::new(n).seed(seed);
+        let mut p = Params::new(n).seed(strata::Seed(seed));
         if set_params[0] { p.set("radius", radius); }
         if set_params[1] { p.set("iterations", (iterations.min(if entry.expensive { 20 } else { u32::MAX })) as f64); }
         if set_params[2] { p.set("strength", (strength) as f64); }

@@ -8,7 +8,7 @@ use strata_lab::registry::{self, Params};
 use strata_lab::spectrum::{self, Spectrum, expected_spectrum, periodogram, periodogram_direct};
 
 fn set(name: &str, n: u64, seed: u64) -> Vec<[f32; 2]> {
-    let mut s = registry::build(name, &Params::new(n).seed(seed)).unwrap();
+    let mut s = registry::build(name, &Params::new(n).seed(strata::Seed(seed))).unwrap();
     take(s.as_mut(), n as usize)
 }
 

@@ -128,7 +128,8 @@ fn fixed_count_blocks_are_independent_sets() {
 fn fill_equals_repeated_next_sample_across_block_edges() {
     for entry in strata_lab::registry::entries() {
         let name = entry.name;
-        let params = strata_lab::registry::Params::new(entry.counts.nearest(9)).seed(4);
+        let params =
+            strata_lab::registry::Params::new(entry.counts.nearest(9)).seed(strata::Seed(4));
         let mut a = strata_lab::registry::build(name, &params).unwrap();
         let mut b = strata_lab::registry::build(name, &params).unwrap();
         let bulk = take(a.as_mut(), 31);
@@ -146,7 +147,7 @@ fn strata_grids_declared_by_samplers_hold() {
                 continue;
             }
             let mut s = entry
-                .build(&strata_lab::registry::Params::new(n).seed(2))
+                .build(&strata_lab::registry::Params::new(n).seed(strata::Seed(2)))
                 .unwrap();
             let grids = s.strata(n);
             let pts = take(s.as_mut(), n as usize);

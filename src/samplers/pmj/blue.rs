@@ -102,7 +102,7 @@ pub(crate) const ENTRY: Entry = Entry {
     )),
     build: |p| {
         let k = ENTRY.parameters[0].read_whole(p);
-        Ok(Built::two(Pmj02Bn::new(p.count, k, p.sampler_seed())?))
+        Ok(Built::two(Pmj02Bn::new(p.count, k, p.seed)?))
     },
     ..Entry::DEFAULT
 };

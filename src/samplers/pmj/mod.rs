@@ -76,7 +76,7 @@ pub(crate) const PMJ: Entry = Entry {
     progressive: true,
     counts: CountRule::Any,
     promise: "1D strata and squarest grid at every `2^m` prefix",
-    build: |p| Ok(Built::two(Pmj::new(p.sampler_seed()))),
+    build: |p| Ok(Built::two(Pmj::new(p.seed))),
     ..Entry::DEFAULT
 };
 
@@ -95,7 +95,7 @@ pub(crate) const PMJBN: Entry = Entry {
     )),
     build: |p| {
         let k = CANDIDATES.read_whole(p);
-        Ok(Built::two(Pmj::pmjbn(k, p.sampler_seed())?))
+        Ok(Built::two(Pmj::pmjbn(k, p.seed)?))
     },
     ..Entry::DEFAULT
 };
@@ -110,7 +110,7 @@ pub(crate) const PMJ02: Entry = Entry {
     counts: CountRule::Any,
     promise: "(0,m,2)-net at every `2^m` prefix and aligned block",
     rates: Rates::NETS,
-    build: |p| Ok(Built::two(Pmj::pmj02(p.sampler_seed()))),
+    build: |p| Ok(Built::two(Pmj::pmj02(p.seed))),
     ..Entry::DEFAULT
 };
 

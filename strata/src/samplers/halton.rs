@@ -177,12 +177,13 @@ const PAIRS_3: [[u8; 9]; 1296] = {
 /// resolution), the other bases read as many digits as reach the resolution.
 ///
 /// ```
+/// use strata::Seed;
 /// use strata::samplers::halton::{MAX_DIMENSIONS, scrambled_radical_inverse};
-/// assert!(scrambled_radical_inverse(7, 2, 1).is_some());
-/// assert_eq!(scrambled_radical_inverse(7, MAX_DIMENSIONS, 1), None);
+/// assert!(scrambled_radical_inverse(7, 2, Seed(1)).is_some());
+/// assert_eq!(scrambled_radical_inverse(7, MAX_DIMENSIONS, Seed(1)), None);
 /// ```
-pub fn scrambled_radical_inverse(index: u64, dim: u32, seed: u64) -> Option<f32> {
-    (dim < MAX_DIMENSIONS).then(|| radical_inverse_at(index, dim as usize, seed))
+pub fn scrambled_radical_inverse(index: u64, dim: u32, seed: Seed) -> Option<f32> {
+    (dim < MAX_DIMENSIONS).then(|| radical_inverse_at(index, dim as usize, seed.0))
 }
 
 /// [`scrambled_radical_inverse`] at a dimension below [`MAX_DIMENSIONS`].
@@ -580,7 +581,7 @@ mod tests {
             for &d in &dims {
                 assert_eq!(
                     out[d],
-                    scrambled_radical_inverse(i, d as u32, 5).unwrap(),
+                    scrambled_radical_inverse(i, d as u32, crate::Seed(5)).unwrap(),
                     "dim {d} index {i}"
                 );
             }

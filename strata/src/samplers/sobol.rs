@@ -216,14 +216,14 @@ pub fn projection_t_value(sampler: &str, dims: &[u32], m: u32, base: u32) -> Res
 /// let mut s = SobolNd::new(2, Seed(4))?;
 /// let mut p = [0f32; 2];
 /// s.next_point(&mut p);
-/// assert_eq!(sobol::owen_scrambled(0, 1, 4), Some(p[1]));
+/// assert_eq!(sobol::owen_scrambled(0, 1, Seed(4)), Some(p[1]));
 /// # Ok::<(), strata::Error>(())
 /// ```
-pub fn owen_scrambled(index: u32, dim: u32, seed: u64) -> Option<f32> {
+pub fn owen_scrambled(index: u32, dim: u32, seed: Seed) -> Option<f32> {
     if dim >= MAX_DIMENSIONS {
         return None;
     }
-    let s = Scramble::new(seed);
+    let s = Scramble::new(seed.0);
     let v_rev = Matrices::Sobol.point_rev(dim, s.index_rev(index));
     Some(unit_f32_from_u32(
         owen_scramble_lanes(v_rev, s.dim_seed(dim)).reverse_bits(),

@@ -283,7 +283,7 @@ fn function_digests() -> Vec<(String, u64)> {
     let mut d = Digest::default();
     for dim in [0u32, 1, 2, 10, 100, 999] {
         for i in (0..256u64).chain([u32::MAX as u64, u64::MAX]) {
-            d.floats(&[halton::scrambled_radical_inverse(i, dim, 1).unwrap()]);
+            d.floats(&[halton::scrambled_radical_inverse(i, dim, strata::Seed(1)).unwrap()]);
         }
     }
     out.push(("fn halton::scrambled_radical_inverse".to_string(), d.0));

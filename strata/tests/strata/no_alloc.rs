@@ -74,13 +74,17 @@ fn the_render_loop_allocates_nothing() {
 #[test]
 fn the_stateless_core_allocates_nothing() {
     // (the tables are built at compile time, or when a sampler is made)
-    black_box(sobol::owen_scrambled(0, 5, 1));
+    black_box(sobol::owen_scrambled(0, 5, strata::Seed(1)));
     let zsobol = PixelSampler::new(Sequence::zsobol(64, 64).unwrap(), 16, Seed(2)).unwrap();
     let n = allocations(|| {
         for i in 0..4096u32 {
             for dim in 0..8 {
-                black_box(sobol::owen_scrambled(i, dim, 7));
-                black_box(halton::scrambled_radical_inverse(i as u64, dim, 7));
+                black_box(sobol::owen_scrambled(i, dim, strata::Seed(7)));
+                black_box(halton::scrambled_radical_inverse(
+                    i as u64,
+                    dim,
+                    strata::Seed(7),
+                ));
                 black_box(zsobol.sample_2d([i % 64, i / 64 % 64], i as u64 % 16, dim));
             }
             black_box(Pmj02Stochastic::point(i, Seed(7)));
