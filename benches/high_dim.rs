@@ -21,7 +21,7 @@ use strata_lab::registry::{self, Params};
 fn halton_before(dim: usize, index: u64, seed: u64) -> f32 {
     const HALTON_DIGITS: u64 = 0x4a17; // the stream id of the Halton digits
     let base = PRIMES[dim] as u64;
-    let key = stream_seed(seed, HALTON_DIGITS + dim as u64);
+    let key = stream_seed(HALTON_DIGITS + dim as u64, seed);
     if base == 2 {
         let bits = (index as u32).reverse_bits();
         return unit_f32_from_u32(owen_scramble(bits, hash32(key as u32, (key >> 32) as u32)));

@@ -103,7 +103,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         .collect();
     let seeds_given = c.seeds.is_some();
     if let Some(k) = c.seeds {
-        suite.seeds = (1..=k).collect();
+        suite.seeds = (1..=k).map(strata::Seed).collect();
     }
     suite.false_alarm = c.false_alarm;
     let (markdown, pairs) = (c.markdown, c.pairs);
@@ -125,7 +125,7 @@ fn parse() -> Result<Option<Args>, CliError> {
         }
     };
     if pairs && !seeds_given {
-        suite.seeds = vec![1];
+        suite.seeds = vec![strata::Seed(1)];
     }
     if let Some(m) = &markdown {
         let section = if pairs { "pair-test" } else { "conformance" };
@@ -142,7 +142,7 @@ fn parse() -> Result<Option<Args>, CliError> {
 
 /// The pair test of every reference shuffle and sequence, over seeds `1..=K`.
 fn pair_tests(args: &Args, failed: &mut bool) -> Result<(), CliError> {
-    let seeds: Vec<u64> = args.suite.seeds.clone();
+    let seeds: Vec<u64> = args.suite.seeds.iter().map(|s| s.0).collect();
     let study = PairStudy::default();
     let mut candidates: Vec<(String, Box<dyn Source>)> = Shuffle::ALL
         .iter()

@@ -34,7 +34,7 @@ struct Args {
           value_parser = common::value_parser(side))]
     side: u32,
     /// the seed that breaks the fill's ties (the default is the built-in's)
-    #[arg(long, value_name = "S", default_value_t = BUILTIN_SEED,
+    #[arg(long, value_name = "S", default_value_t = BUILTIN_SEED.0,
           value_parser = common::whole::<u64>("--seed", 0, u64::MAX))]
     seed: u64,
     /// the Rust table (the default is the built-in's, from the repository's root)

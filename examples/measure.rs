@@ -23,7 +23,7 @@ const MAX_PAIRWISE_WORK: u128 = 1 << 33;
 const LONG_PAIRWISE_WORK: u128 = 1 << 28;
 
 /// Whether the O(n^2 d) sums of a set of `n` points in `d` dimensions are within the bound.
-fn pairwise_allowed(n: usize, d: usize) -> bool {
+fn pairwise_allowed(n: usize, d: u32) -> bool {
     (n as u128) * (n as u128) * (d as u128) <= MAX_PAIRWISE_WORK
 }
 
@@ -107,7 +107,7 @@ fn parse() -> Result<Option<Args>, CliError> {
 #[derive(Clone, Default)]
 struct Row {
     n: usize,
-    d: usize,
+    d: u32,
     values: [Option<f64>; COLUMNS.len()],
 }
 

@@ -350,7 +350,7 @@ fn draw(path: &std::path::Path, made: &Made, dims: usize) -> Result<(), CliError
     let values = &made.values;
     let canvas = if dims > 2 {
         let tile = (900 / dims as u32).clamp(48, 200);
-        strata_lab::io::draw_projections(values, dims, tile, &made.projection_grids)
+        strata_lab::io::draw_projections(values, dims as u32, tile, &made.projection_grids)
     } else {
         // the points (the first dimension twice for D = 1)
         let points: Vec<[f32; 2]> = values
@@ -368,10 +368,11 @@ fn print(args: &Args, values: &[f32], dims: usize) -> Result<(), CliError> {
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
     if args.format != Format::Csv {
-        let written = pointsets::write_f32(&mut out, args.format, dims, values).and_then(|()| {
-            out.flush()
-                .map_err(|e| strata_lab::Error::io("<stdout>", e))
-        });
+        let written =
+            pointsets::write_f32(values, dims as u32, args.format, &mut out).and_then(|()| {
+                out.flush()
+                    .map_err(|e| strata_lab::Error::io("<stdout>", e))
+            });
         return match written {
             Err(strata_lab::Error::Io { source, .. })
                 if source

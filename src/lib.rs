@@ -9,9 +9,9 @@
 //! convergence studies.
 //!
 //! ```
-//! use strata::Sampler;
+//! use strata::{Sampler, Seed};
 //! use strata_lab::registry::{self, Params};
-//! let mut s = registry::build("pmj02bn", &Params::new(64).seed(3))?;
+//! let mut s = registry::build("pmj02bn", &Params::new(64).seed(Seed(3)))?;
 //! let mut points = vec![[0.0f32; 2]; 64];
 //! s.fill(&mut points);
 //! let spectrum = strata_lab::spectrum::periodogram(&points, 16)?;

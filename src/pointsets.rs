@@ -55,7 +55,7 @@ pub const UTK_HEADER_BYTES: usize = 20;
 #[derive(Clone, Debug, PartialEq)]
 pub struct PointSet {
     /// Coordinates per point (at least 1).
-    pub dims: usize,
+    pub dims: u32,
     /// The coordinates, point-major (`coords[i * dims + k]` is coordinate `k` of point `i`).
     pub coords: Vec<f64>,
 }
@@ -63,8 +63,9 @@ pub struct PointSet {
 impl PointSet {
     /// A set from point-major coordinates; checks the shape and that every coordinate is in
     /// `[0, 1)`.
-    pub fn new(dims: usize, coords: Vec<f64>) -> Result<Self> {
-        if dims == 0 || coords.is_empty() || !coords.len().is_multiple_of(dims) {
+    pub fn new(coords: Vec<f64>, dims: u32) -> Result<Self> {
+        let width = dims as usize;
+        if dims == 0 || coords.is_empty() || !coords.len().is_multiple_of(width) {
             return Err(Error::input(
                 CONTEXT,
                 format!(
@@ -79,8 +80,8 @@ impl PointSet {
                 CONTEXT,
                 format!(
                     "point {}, coordinate {}: {v} is outside [0, 1)",
-                    i / dims,
-                    i % dims
+                    i / width,
+                    i % width
                 ),
             ));
         }
@@ -100,7 +101,7 @@ impl PointSet {
 
     /// The number of points.
     pub fn len(&self) -> usize {
-        self.coords.len() / self.dims.max(1)
+        self.coords.len() / self.width().max(1)
     }
 
     /// True when the set has no points (never for a set built by [`PointSet::new`] or read).
@@ -110,7 +111,12 @@ impl PointSet {
 
     /// Point `i`'s coordinates.
     pub fn point(&self, i: usize) -> &[f64] {
-        &self.coords[i * self.dims..(i + 1) * self.dims]
+        &self.coords[i * self.width()..(i + 1) * self.width()]
+    }
+
+    /// [`dims`](Self::dims) as an index width.
+    fn width(&self) -> usize {
+        self.dims as usize
     }
 
     /// The points as [`Point2`] (rounded to `f32` toward zero, so they stay below 1), for a 2D
@@ -293,7 +299,11 @@ fn collect_sets<'a>(
     let mut current: Option<(usize, usize, Vec<f64>)> = None; // (dims, first line, coords)
     let finish = |sets: &mut Vec<PointSet>, current: &mut Option<(usize, usize, Vec<f64>)>| {
         if let Some((dims, _, coords)) = current.take() {
-            sets.push(PointSet { dims, coords });
+            // the row's field count was checked to fit a `u32` where the set started
+            sets.push(PointSet {
+                dims: dims as u32,
+                coords,
+            });
         }
     };
     for (line, row) in rows {
@@ -306,6 +316,16 @@ fn collect_sets<'a>(
                 "line {line} starts set {}",
                 sets.len() + 1
             )));
+        }
+        if current.is_none() && u32::try_from(fields.len()).is_err() {
+            return Err(Error::input(
+                CONTEXT,
+                format!(
+                    "line {line}: {} values per point; at most {} dimensions",
+                    fields.len(),
+                    u32::MAX
+                ),
+            ));
         }
         let (dims, first, coords) = current.get_or_insert((fields.len(), line, Vec::new()));
         if fields.len() != *dims {
@@ -493,7 +513,7 @@ pub fn parse_utk_bin(bytes: &[u8]) -> Result<Vec<PointSet>> {
         coords.push(v);
         if coords.len() == per_set {
             out.push(PointSet {
-                dims,
+                dims: dims as u32, // read from the header's 32 bits
                 coords: std::mem::replace(&mut coords, Vec::with_capacity(per_set)),
             });
         }
@@ -506,11 +526,11 @@ fn common_shape(sets: &[PointSet]) -> Result<(usize, usize)> {
     let Some(first) = sets.first() else {
         return Err(Error::input(CONTEXT, "nothing to write: no set"));
     };
-    let shape = (first.len(), first.dims);
+    let shape = (first.len(), first.width());
     if let Some((i, s)) = sets
         .iter()
         .enumerate()
-        .find(|(_, s)| (s.len(), s.dims) != shape)
+        .find(|(_, s)| (s.len(), s.width()) != shape)
     {
         return Err(Error::input(
             CONTEXT,
@@ -544,7 +564,7 @@ pub fn write(out: &mut impl Write, format: Format, sets: &[PointSet]) -> Result<
     if format == Format::UtkBin {
         common_shape(sets)?;
     }
-    let views: Vec<(usize, &[f64])> = sets.iter().map(|s| (s.dims, &s.coords[..])).collect();
+    let views: Vec<(usize, &[f64])> = sets.iter().map(|s| (s.width(), &s.coords[..])).collect();
     write_values(out, format, &views)
 }
 
@@ -553,8 +573,8 @@ pub fn write(out: &mut impl Write, format: Format, sets: &[PointSet]) -> Result<
 /// (the `f32` widened, so that a reader parsing `f64`, this module's or numpy's, gets the
 /// generated value exactly: the shortest `f32` form can read back as an `f64` just beside it,
 /// across a dyadic cell edge); UTK binary stores `f32` (data type 4).
-pub fn write_f32(out: &mut impl Write, format: Format, dims: usize, values: &[f32]) -> Result<()> {
-    if dims == 0 || values.is_empty() || !values.len().is_multiple_of(dims) {
+pub fn write_f32(values: &[f32], dims: u32, format: Format, out: &mut impl Write) -> Result<()> {
+    if dims == 0 || values.is_empty() || !values.len().is_multiple_of(dims as usize) {
         return Err(Error::input(
             CONTEXT,
             format!(
@@ -564,10 +584,10 @@ pub fn write_f32(out: &mut impl Write, format: Format, dims: usize, values: &[f3
         ));
     }
     if format == Format::UtkBin {
-        return write_values(out, format, &[(dims, values)]);
+        return write_values(out, format, &[(dims as usize, values)]);
     }
     let wide: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
-    write_values(out, format, &[(dims, &wide[..])])
+    write_values(out, format, &[(dims as usize, &wide[..])])
 }
 
 /// The writers' common part: sets as (dims, point-major values) of any number type.
@@ -669,8 +689,8 @@ mod tests {
 
     fn sets() -> Vec<PointSet> {
         vec![
-            PointSet::new(2, vec![0.1, 0.2, 0.6, 0.7, 0.3, 0.9]).unwrap(),
-            PointSet::new(2, vec![0.25, 0.5, 0.75, 0.0, 0.5, 0.999_999_999]).unwrap(),
+            PointSet::new(vec![0.1, 0.2, 0.6, 0.7, 0.3, 0.9], 2).unwrap(),
+            PointSet::new(vec![0.25, 0.5, 0.75, 0.0, 0.5, 0.999_999_999], 2).unwrap(),
         ]
     }
 
@@ -784,7 +804,7 @@ mod tests {
             "{m}"
         );
         // each UTK set takes its dimension from its first line
-        let dims: Vec<usize> = parse_utk_text("0.1 0.2\n#\n0.1 0.2 0.3\n")
+        let dims: Vec<u32> = parse_utk_text("0.1 0.2\n#\n0.1 0.2 0.3\n")
             .unwrap()
             .iter()
             .map(|s| s.dims)
@@ -834,13 +854,13 @@ mod tests {
         let values = [0.1f32, 0.7, 0.333_333_34, 0.999_999_94];
         for format in [Format::Csv, Format::UtkText, Format::UtkBin] {
             let mut out = Vec::new();
-            write_f32(&mut out, format, 2, &values).unwrap();
+            write_f32(&values, 2, format, &mut out).unwrap();
             let back = parse(&out).unwrap();
             let got: Vec<f32> = back[0].coords.iter().map(|&v| v as f32).collect();
             assert_eq!(got, values, "{format:?}");
         }
         let mut out = Vec::new();
-        write_f32(&mut out, Format::UtkBin, 2, &values).unwrap();
+        write_f32(&values, 2, Format::UtkBin, &mut out).unwrap();
         assert_eq!(out[4], 4);
         assert_eq!(out.len(), 20 + 4 * 4);
     }
@@ -849,13 +869,13 @@ mod tests {
     fn writers_refuse_what_their_format_cannot_hold() {
         let mut s = sets();
         assert!(write(&mut Vec::new(), Format::Csv, &s).is_err());
-        s[1] = PointSet::new(3, vec![0.5; 3]).unwrap();
+        s[1] = PointSet::new(vec![0.5; 3], 3).unwrap();
         let m = write(&mut Vec::new(), Format::UtkBin, &s)
             .unwrap_err()
             .to_string();
         assert!(m.contains("one shape"), "{m}");
         assert!(write(&mut Vec::new(), Format::UtkBin, &[]).is_err());
-        assert!(PointSet::new(2, vec![0.5; 3]).is_err());
-        assert!(PointSet::new(2, vec![0.5, 1.0]).is_err());
+        assert!(PointSet::new(vec![0.5; 3], 2).is_err());
+        assert!(PointSet::new(vec![0.5, 1.0], 2).is_err());
     }
 }

@@ -1,5 +1,5 @@
 //! The lab's random numbers: the streams each construction draws from a block key, named once
-//! (`stream_seed(key, stream)`: distinct streams of one key are independent, and a
+//! (`stream_seed(stream, key)`: distinct streams of one key are independent, and a
 //! construction's values change if its stream does, so the numbers are pinned by the golden
 //! digests), PCG32 seeded from two of them, and the two draws the constructions share.
 
@@ -39,7 +39,7 @@ pub(crate) mod streams {
 
 /// PCG32 seeded from two streams of `key` (state and increment).
 pub(crate) fn pcg(key: u64, streams: [u64; 2]) -> Pcg32 {
-    Pcg32::new(stream_seed(key, streams[0]), stream_seed(key, streams[1]))
+    Pcg32::new(stream_seed(streams[0], key), stream_seed(streams[1], key))
 }
 
 /// A uniform `f64` in `[0, 1)` from the generator.

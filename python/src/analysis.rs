@@ -236,16 +236,26 @@ enum AnyPoints<'py> {
 }
 
 /// Runs `f` on the coordinates of `points` (a slice of either float type) and its dimension.
+/// The number of columns of a point array as the library's dimension count.
+fn dims_of(columns: usize, what: &str) -> PyResult<u32> {
+    u32::try_from(columns).map_err(|_| {
+        value_error(format!(
+            "{what}: points have {columns} columns; at most {} dimensions",
+            u32::MAX
+        ))
+    })
+}
+
 macro_rules! with_points {
     ($points:expr, $what:expr, |$s:ident, $d:ident| $body:expr) => {
         match &$points {
             AnyPoints::F32(a) => {
-                let $d = a.shape()[1];
+                let $d = dims_of(a.shape()[1], $what)?;
                 let $s = input_slice(a, &format!("{}: points", $what))?;
                 $body
             }
             AnyPoints::F64(a) => {
-                let $d = a.shape()[1];
+                let $d = dims_of(a.shape()[1], $what)?;
                 let $s = input_slice(a, &format!("{}: points", $what))?;
                 $body
             }
@@ -396,7 +406,8 @@ fn estimate(py: Python<'_>, integrand: &str, points: PyReadonlyArray2<'_, f32>) 
             s[i]
         )));
     }
-    Ok(py.detach(|| f.estimate(s, d)))
+    let dims = dims_of(d, "estimate")?;
+    Ok(py.detach(|| f.estimate(s, dims)))
 }
 
 /// The statistics of the estimates of `integrand` over seeds, in the seeds' order: `(mean,

@@ -41,7 +41,7 @@ pub const MAX_EXACT_STAR: usize = 1 << 14;
 fn check<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result<usize> {
     if dims == 0 || points.is_empty() || !points.len().is_multiple_of(dims) {
         return Err(Error::input(
-            "discrepancy",
+            "analysis::discrepancy",
             format!(
                 "{} values do not make points of {dims} dimensions; at least one point is needed",
                 points.len()
@@ -92,7 +92,8 @@ fn kernel_sums(
 
 /// Warnock's formula for the L2-star discrepancy of `points` (point-major, `dims` per point):
 /// `D^2 = 3^-D - (2^(1-D) / N) sum_i prod_k (1 - x_ik^2) + N^-2 sum_ij prod_k (1 - max(x_ik, x_jk))`.
-pub fn l2_star<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result<f64> {
+pub fn l2_star<T: Copy + Into<f64>>(points: &[T], dims: u32) -> Result<f64> {
+    let dims = dims as usize;
     let n = check(points, dims)? as f64;
     let (s1, s2) = kernel_sums(
         &rows(points, dims),
@@ -104,7 +105,8 @@ pub fn l2_star<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result<f64> {
 }
 
 /// Hickernell's wrap-around L2 discrepancy, squared (scipy's `WD`; see the module docs).
-pub fn wrap_around_squared<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result<f64> {
+pub fn wrap_around_squared<T: Copy + Into<f64>>(points: &[T], dims: u32) -> Result<f64> {
+    let dims = dims as usize;
     let n = check(points, dims)? as f64;
     let (_, s2) = kernel_sums(
         &rows(points, dims),
@@ -118,12 +120,13 @@ pub fn wrap_around_squared<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Re
 }
 
 /// Hickernell's wrap-around L2 discrepancy (the root of [`wrap_around_squared`]).
-pub fn wrap_around<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result<f64> {
+pub fn wrap_around<T: Copy + Into<f64>>(points: &[T], dims: u32) -> Result<f64> {
     Ok(wrap_around_squared(points, dims)?.max(0.0).sqrt())
 }
 
 /// Hickernell's centered L2 discrepancy, squared (scipy's `CD`; see the module docs).
-pub fn centered_squared<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result<f64> {
+pub fn centered_squared<T: Copy + Into<f64>>(points: &[T], dims: u32) -> Result<f64> {
+    let dims = dims as usize;
     let n = check(points, dims)? as f64;
     let (s1, s2) = kernel_sums(
         &rows(points, dims),
@@ -138,7 +141,8 @@ pub fn centered_squared<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Resul
 
 /// The mixture discrepancy of Zhou, Fang and Ning (2013), squared (scipy's `MD`; see the
 /// module docs).
-pub fn mixture_squared<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result<f64> {
+pub fn mixture_squared<T: Copy + Into<f64>>(points: &[T], dims: u32) -> Result<f64> {
+    let dims = dims as usize;
     let n = check(points, dims)? as f64;
     let (s1, s2) = kernel_sums(
         &rows(points, dims),
@@ -267,7 +271,7 @@ mod tests {
     /// printed with 17 digits: an independent implementation of the same definitions (the
     /// digits are kept as printed, hence the allowed excess precision).
     #[allow(clippy::excessive_precision)]
-    const SCIPY: [(&[f64], usize, [f64; 4]); 3] = [
+    const SCIPY: [(&[f64], u32, [f64; 4]); 3] = [
         (
             &[0.1, 0.2, 0.6, 0.7, 0.3, 0.9],
             2,

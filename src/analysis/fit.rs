@@ -54,7 +54,7 @@ pub fn bootstrap_interval(series: &[(f64, &[f64])], key: u64) -> Option<(f64, f6
     let mut picks = vec![0usize; k];
     for b in 0..BOOTSTRAP as u64 {
         for (j, p) in picks.iter_mut().enumerate() {
-            let r = strata::hash::hash_u64(key, b * k as u64 + j as u64);
+            let r = strata::hash::hash_u64(b * k as u64 + j as u64, key);
             *p = ((u128::from(r) * k as u128) >> 64) as usize;
         }
         let pts: Vec<(f64, f64)> = series

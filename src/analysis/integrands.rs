@@ -113,7 +113,8 @@ impl Integrand {
     /// The Monte Carlo estimate over a set of points of `dims` coordinates each (`dims >=
     /// dimensions()`; `points.len()` a multiple of `dims`): the mean of the values, summed in
     /// the points' order (the estimate of one seed in a convergence study).
-    pub fn estimate(&self, points: &[f32], dims: usize) -> f64 {
+    pub fn estimate(&self, points: &[f32], dims: u32) -> f64 {
+        let dims = dims as usize;
         let n = points.len() / dims;
         points.chunks_exact(dims).map(|p| self.eval(p)).sum::<f64>() / n as f64
     }

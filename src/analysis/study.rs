@@ -456,10 +456,7 @@ fn study_count(
         None
     };
     for &f in integrands {
-        let estimates: Vec<f64> = sets
-            .par_iter()
-            .map(|v| f.estimate(v, dims as usize))
-            .collect();
+        let estimates: Vec<f64> = sets.par_iter().map(|v| f.estimate(v, dims)).collect();
         let predicted = match (&spectrum, f.dimensions()) {
             (Some((res, spec)), 2) => {
                 let power = match acc.powers.iter().find(|p| p.0 == f && p.1 == *res) {
@@ -555,7 +552,7 @@ fn fit_slopes(config: &Config, acc: &Measured) -> Vec<Slope> {
                 integrand: f,
                 slope: fit_slope(&pts),
                 expected: entry.rates.on(f),
-                interval: bootstrap_interval(&series, strata::hash::hash_u64(f as u64, 0x5107)),
+                interval: bootstrap_interval(&series, strata::hash::hash_u64(0x5107, f as u64)),
             });
         }
     }

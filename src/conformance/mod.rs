@@ -63,7 +63,7 @@
 //!     spp: 256,
 //!     dimensions: 6,
 //!     pixels: vec![[0, 0], [1, 0], [7, 3]],
-//!     seeds: vec![1, 2, 3, 4],
+//!     seeds: [1, 2, 3, 4].map(Seed).to_vec(),
 //!     ..Suite::default()
 //! };
 //! // the renderer's sampler behind a closure (pixel, index, dimension, seed) -> value
@@ -191,7 +191,7 @@ pub struct Suite {
     /// The pixels tested (at least one; every pair of them is tested for independence).
     pub pixels: Vec<[u32; 2]>,
     /// The seeds (at least one; the tests over seeds need two or more).
-    pub seeds: Vec<u64>,
+    pub seeds: Vec<Seed>,
     /// The family-wise false-alarm rate, in `(0, 0.5]`.
     pub false_alarm: f64,
 }
@@ -213,7 +213,7 @@ impl Default for Suite {
                 [1919, 1079],
                 [123_456, 654_321],
             ],
-            seeds: (1..=16).collect(),
+            seeds: (1..=16).map(Seed).collect(),
             false_alarm: 1e-6,
         }
     }
@@ -568,7 +568,7 @@ impl Suite {
     /// in the order of the report's rows.
     pub fn run(&self, source: &(impl Source + ?Sized)) -> Result<Report> {
         self.check()?;
-        let instances: Vec<(u64, [u32; 2])> = self
+        let instances: Vec<(Seed, [u32; 2])> = self
             .seeds
             .iter()
             .flat_map(|&s| self.pixels.iter().map(move |&p| (s, p)))
@@ -596,12 +596,12 @@ impl Suite {
     fn draw(
         &self,
         source: &(impl Source + ?Sized),
-        instances: &[(u64, [u32; 2])],
+        instances: &[(Seed, [u32; 2])],
     ) -> Result<Vec<Vec<f32>>> {
         let (n, dims) = (self.spp as usize, self.dimensions as usize);
         let values: Vec<Vec<f32>> = parallel_map(instances, |&(seed, pixel)| {
             let mut v = vec![0.0f32; n * dims];
-            source.fill(pixel, self.spp, self.dimensions, Seed(seed), &mut v);
+            source.fill(pixel, self.spp, self.dimensions, seed, &mut v);
             v
         });
         if let Some((k, bad)) = values
@@ -612,7 +612,7 @@ impl Suite {
             let (seed, pixel) = instances[k];
             return Err(Error::input(
                 "Suite::run",
-                format!("seed {seed} pixel {pixel:?} gave {bad}, outside [0, 1)"),
+                format!("seed {} pixel {pixel:?} gave {bad}, outside [0, 1)", seed.0),
             ));
         }
         Ok(values)
@@ -759,7 +759,7 @@ fn points_off(v: &[f32], dims: usize, draw: usize, m: usize, g: &StrataGrid) -> 
 /// their moments, the pairs of dimensions, the chi-square grid.
 struct Run<'a> {
     suite: &'a Suite,
-    instances: &'a [(u64, [u32; 2])],
+    instances: &'a [(Seed, [u32; 2])],
     /// Per instance, `n x dims` values, sample-major.
     values: &'a [Vec<f32>],
     n: usize,
@@ -778,7 +778,7 @@ struct Run<'a> {
 type InstanceStats = (Vec<f64>, Vec<f64>);
 
 impl<'a> Run<'a> {
-    fn new(suite: &'a Suite, instances: &'a [(u64, [u32; 2])], values: &'a [Vec<f32>]) -> Self {
+    fn new(suite: &'a Suite, instances: &'a [(Seed, [u32; 2])], values: &'a [Vec<f32>]) -> Self {
         let (n, dims) = (suite.spp as usize, suite.dimensions as usize);
         let side = grid_side(n);
         let functions = functions();
@@ -808,7 +808,7 @@ impl<'a> Run<'a> {
     /// Instance `k` as the report names it.
     fn name(&self, k: usize) -> String {
         let (seed, pixel) = self.instances[k];
-        format!("seed {seed} pixel {},{}", pixel[0], pixel[1])
+        format!("seed {} pixel {},{}", seed.0, pixel[0], pixel[1])
     }
 
     /// The case of a chi-square statistic, upper tail.
@@ -1125,7 +1125,7 @@ mod tests {
             },
             Suite {
                 spp: 1 << 20,
-                seeds: (0..64).collect(),
+                seeds: (0..64).map(Seed).collect(),
                 ..ok.clone()
             },
         ] {

@@ -26,7 +26,7 @@ fn find(text: &str, name: &str) -> Result<Option<(usize, usize)>> {
         let first = found.next();
         if found.next().is_some() {
             return Err(Error::input(
-                "markdown",
+                "io::markdown",
                 format!("the marker {marker} appears more than once"),
             ));
         }
@@ -36,7 +36,7 @@ fn find(text: &str, name: &str) -> Result<Option<(usize, usize)>> {
         (Some(a), Some(b)) if b > a => Ok(Some((a, b + end.len()))),
         (None, None) => Ok(None),
         _ => Err(Error::input(
-            "markdown",
+            "io::markdown",
             format!(
                 "the markers of section '{name}' are out of order or one is missing ({begin} \
                  must come before {end})"
@@ -65,7 +65,7 @@ pub fn splice_section(text: &str, name: &str, block: &str) -> Result<String> {
     let (begin, end) = markers(name);
     if !block.starts_with(&begin) || !block.ends_with(&end) {
         return Err(Error::input(
-            "markdown",
+            "io::markdown",
             format!("a section block starts with {begin} and ends with {end}"),
         ));
     }

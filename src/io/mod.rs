@@ -573,12 +573,13 @@ fn draw_grid(canvas: &mut Canvas, grid: &StrataGrid, colour: Rgb) {
 /// slice draws none).
 pub fn draw_projections(
     values: &[f32],
-    dims: usize,
+    dims: u32,
     tile: u32,
     strata: &[Option<StrataGrid>],
 ) -> Canvas {
     let gap = 4u32;
-    let side = dims as u32 * (tile + gap) + gap;
+    let side = dims * (tile + gap) + gap;
+    let dims = dims as usize;
     let mut canvas = Canvas::new(side, side, Rgb::grey(235));
     let n = values.len() / dims.max(1);
     let radius = (tile as f32 / (n.max(1) as f32).sqrt() * 0.16).clamp(0.7, 3.0);

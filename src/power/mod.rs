@@ -439,7 +439,7 @@ impl PowerDiagram {
 // Validation.
 
 /// The context named in this module's errors.
-const CONTEXT: &str = "power diagram";
+const CONTEXT: &str = "power";
 
 fn valid_coordinate(x: f64) -> bool {
     (0.0..1.0).contains(&x) && (x == 0.0 || x >= MIN_MAGNITUDE)

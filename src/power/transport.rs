@@ -32,7 +32,7 @@ use super::{MIN_MAGNITUDE, PowerDiagram};
 use crate::{Error, Result};
 
 /// The context named in this module's errors.
-const CONTEXT: &str = "transport";
+const CONTEXT: &str = "power::transport";
 
 /// Options of [`TransportSolver::solve`].
 #[derive(Clone, Copy, Debug, PartialEq)]

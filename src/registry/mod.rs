@@ -9,7 +9,7 @@
 //!
 //! ```
 //! use strata_lab::registry::{self, Params};
-//! let mut s = registry::build("cmj", &Params::new(100).seed(7)).unwrap();
+//! let mut s = registry::build("cmj", &Params::new(100).seed(strata::Seed(7))).unwrap();
 //! let p = s.next_sample();
 //! assert!(p[0] < 1.0 && p[1] < 1.0);
 //!

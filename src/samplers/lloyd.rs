@@ -280,7 +280,7 @@ pub fn relax_until(
                 }
                 None => {
                     // a duplicate: nudge it by up to 1e-3 r_max in a hashed direction
-                    let h = hash_u64(JITTER_STREAM, (it as u64) << 32 | i as u64);
+                    let h = hash_u64((it as u64) << 32 | i as u64, JITTER_STREAM);
                     let (dx, dy) = (
                         unit_f64_from_u32(h as u32) - 0.5,
                         unit_f64_from_u32((h >> 32) as u32) - 0.5,
@@ -327,12 +327,12 @@ impl Lloyd {
 
 /// `count` uniform random points for key `key` (the start of the relaxations).
 pub(crate) fn random_start(count: usize, key: u64) -> Vec<[f64; 2]> {
-    let k = stream_seed(key, crate::rng::streams::LLOYD_START);
+    let k = stream_seed(crate::rng::streams::LLOYD_START, key);
     (0..count as u64)
         .map(|i| {
             [
-                unit_f64_from_u64(hash_u64(k, 2 * i)),
-                unit_f64_from_u64(hash_u64(k, 2 * i + 1)),
+                unit_f64_from_u64(hash_u64(2 * i, k)),
+                unit_f64_from_u64(hash_u64(2 * i + 1, k)),
             ]
         })
         .collect()

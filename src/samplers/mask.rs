@@ -25,7 +25,7 @@ use crate::{Error, Result};
 
 /// The seed of the renderer crate's built-in mask ([`BlueNoiseMask::builtin`]), side
 /// [`BUILTIN_SIDE`].
-pub const BUILTIN_SEED: u64 = 0x6d61_736b;
+pub const BUILTIN_SEED: Seed = Seed(0x6d61_736b);
 
 /// The side of the renderer crate's built-in mask.
 pub const BUILTIN_SIDE: u32 = 64;
@@ -110,7 +110,7 @@ impl Fill {
 pub fn void_and_cluster(side: u32, seed: Seed) -> Result<Vec<u16>> {
     if !side.is_power_of_two() || !(4..=MAX_MASK_SIDE).contains(&side) {
         return Err(Error::parameter(
-            "void_and_cluster",
+            "mask::void_and_cluster",
             "side",
             side,
             format!("a power of two from 4 to {MAX_MASK_SIDE}"),
@@ -120,7 +120,7 @@ pub fn void_and_cluster(side: u32, seed: Seed) -> Result<Vec<u16>> {
     // a tiny hashed energy per pixel breaks the ties of the empty start
     let jitter: Vec<f32> = (0..n as u32)
         .map(|i| {
-            let h = strata::hash::hash_u64(seed.0, i as u64);
+            let h = strata::hash::hash_u64(i as u64, seed.0);
             (h >> 40) as f32 * (1e-6 / (1u64 << 24) as f32)
         })
         .collect();
@@ -265,7 +265,7 @@ mod tests {
             let n = side * side;
             let m = void_and_cluster(side, strata::Seed(11)).unwrap();
             let rank = |x: u32, y: u32| m[(y * side + x) as usize] as u32;
-            let key = |i: u32| strata::hash::hash_u64(5, i as u64);
+            let key = |i: u32| strata::hash::hash_u64(i as u64, 5);
             let mut order: Vec<u32> = (0..n).collect();
             order.sort_by_key(|&i| key(i));
             let mut random = vec![0u32; n as usize];

@@ -130,7 +130,7 @@ impl Net02Bn {
     pub fn optimize(&self, key: u64) -> Optimized {
         let m = self.log2;
         let n = 1usize << m;
-        let seed = stream_seed(key, streams::NET02BN);
+        let seed = stream_seed(streams::NET02BN, key);
         let points: Vec<[f64; 2]> = (0..n as u32)
             .map(|i| {
                 let c =
@@ -152,7 +152,7 @@ impl Net02Bn {
             for sweep in 0..self.sweeps {
                 shuffle(
                     &mut boxes,
-                    stream_seed(key, streams::NET02BN_SWEEPS + u64::from(sweep)),
+                    stream_seed(streams::NET02BN_SWEEPS + u64::from(sweep), key),
                 );
                 let kept = boxes.iter().filter(|&&b| state.try_swap(b)).count() as u32;
                 out.sweeps += 1;
@@ -171,7 +171,7 @@ impl Net02Bn {
 /// Fisher-Yates with a counter-based hash.
 fn shuffle(v: &mut [u32], key: u64) {
     for i in (1..v.len()).rev() {
-        let j = ((u128::from(hash_u64(key, i as u64)) * (i as u128 + 1)) >> 64) as usize;
+        let j = ((u128::from(hash_u64(i as u64, key)) * (i as u128 + 1)) >> 64) as usize;
         v.swap(i, j);
     }
 }

@@ -229,7 +229,7 @@ impl Field {
 /// Per-block, per-dimension permutation keys: the stratum key and the sub-stratum key.
 fn dim_keys(key: u64, dims: u32) -> impl Iterator<Item = (u32, u32)> {
     (0..dims as u64).map(move |j| {
-        let k = stream_seed(key, j);
+        let k = stream_seed(j, key);
         (key32(k), key32(k ^ SUBSTRATA_STREAM))
     })
 }
@@ -330,7 +330,7 @@ impl Blocks for Bose {
             // partner column: 1 for column 0, else 0
             let partner = self.symbol(if j == 0 { 1 } else { 0 }, a0, a1);
             let sub = Permutation::with_divider(&self.q, hash32(stratum, *kb)).apply(partner);
-            let jitter = hash_u64(self.key, (i as u64) << 16 | j as u64) as u32;
+            let jitter = hash_u64((i as u64) << 16 | j as u64, self.key) as u32;
             *o = self.strata.place(stratum * q + sub, jitter);
         }
     }
@@ -437,7 +437,7 @@ impl Blocks for Bush {
             let (perm, sub_perm) = &self.keys[j as usize];
             let stratum = perm.apply(phi);
             let sub = sub_perm.apply(high);
-            let jitter = hash_u64(self.key, (i as u64) << 16 | j as u64) as u32;
+            let jitter = hash_u64((i as u64) << 16 | j as u64, self.key) as u32;
             *o = self.strata.place(stratum * sub_count + sub, jitter);
         }
     }

@@ -209,7 +209,7 @@ impl<'a> KdTree<'a> {
 pub fn point_set_measures(sets: &[Vec<Point2>]) -> Result<PointSetMeasures> {
     let Some(first) = sets.first() else {
         return Err(Error::input(
-            "point_set_measures",
+            "spectrum::point_set_measures",
             "no point set given; at least one is needed",
         ));
     };
@@ -218,7 +218,7 @@ pub fn point_set_measures(sets: &[Vec<Point2>]) -> Result<PointSetMeasures> {
         check_points(s)?;
         if s.len() != n {
             return Err(Error::input(
-                "point_set_measures",
+                "spectrum::point_set_measures",
                 format!(
                     "set {i} has {} points, set 0 has {n}; all must have the same count",
                     s.len()

@@ -6,8 +6,8 @@
 //! * [`mix64`] is a bijective 64-bit finalizer (Stafford's "Mix13" variant of the SplitMix64
 //!   output function): every input bit affects every output bit with probability close to 1/2.
 //! * [`stream_seed`] derives the seed of an independent stream (a block of a fixed-count sampler,
-//!   a pixel, a dimension) from a parent seed and a stream number.
-//! * [`hash_u64`] hashes a (key, index) pair to 64 uniform bits, used where a sampler needs random
+//!   a pixel, a dimension) from a stream number and a parent seed.
+//! * [`hash_u64`] hashes an (index, key) pair to 64 uniform bits, used where a sampler needs random
 //!   numbers addressed by index rather than drawn in order.
 //! * [`permute`] / [`Permutation`] is Kensler's `permute(i, l, p)` from "Correlated Multi-Jittered
 //!   Sampling" (Pixar Technical Memo 13-01, 2013): a pseudo-random bijection on `[0, l)` for *any*
@@ -78,28 +78,29 @@ pub const fn mix64(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// The seed of stream number `stream` derived from `seed`.
+/// The seed of stream number `stream` of the 64-bit `key` (a seed, or a key derived from one).
 ///
-/// Distinct `(seed, stream)` pairs give unrelated outputs; the function is used to give each block
-/// of a fixed-count sampler, each pixel and each dimension its own independent randomness.
+/// Distinct `(stream, key)` pairs give unrelated outputs; the function is used to give each block
+/// of a fixed-count sampler, each pixel and each dimension its own independent randomness. The
+/// arguments follow the crate's order: what is drawn (the stream), then the key.
 ///
 /// ```
 /// use strata::hash::stream_seed;
-/// assert_ne!(stream_seed(1, 0), stream_seed(1, 1));
-/// assert_ne!(stream_seed(1, 0), stream_seed(2, 0));
+/// assert_ne!(stream_seed(0, 1), stream_seed(1, 1));
+/// assert_ne!(stream_seed(0, 1), stream_seed(0, 2));
 /// ```
 #[inline]
-pub const fn stream_seed(seed: u64, stream: u64) -> u64 {
-    mix64(mix64(seed ^ 0x5851_f42d_4c95_7f2d).wrapping_add(stream.wrapping_mul(GOLDEN_GAMMA)))
+pub const fn stream_seed(stream: u64, key: u64) -> u64 {
+    mix64(mix64(key ^ 0x5851_f42d_4c95_7f2d).wrapping_add(stream.wrapping_mul(GOLDEN_GAMMA)))
 }
 
-/// 64 uniform bits addressed by `(key, index)`: a counter-based generator.
+/// 64 uniform bits addressed by `(index, key)`: a counter-based generator.
 ///
 /// This is wyrand (Wang Yi's generator, which passes PractRand and BigCrush) evaluated at state
 /// `key + index * increment`: one 64 x 64 -> 128-bit multiply, folded. `key` should itself be well
 /// mixed (for example from [`stream_seed`]).
 #[inline]
-pub const fn hash_u64(key: u64, index: u64) -> u64 {
+pub const fn hash_u64(index: u64, key: u64) -> u64 {
     const INCREMENT: u64 = 0xa076_1d64_78bd_642f;
     const XOR: u64 = 0xe703_7ed1_a0b4_28db;
     let s = key.wrapping_add(index.wrapping_add(1).wrapping_mul(INCREMENT));

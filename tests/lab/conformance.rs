@@ -82,7 +82,7 @@ fn pmj02_past_its_table_and_halton_at_non_powers_of_two_pass() {
         spp: 1 << 17,
         dimensions: 4,
         pixels: vec![[5, 9], [6, 9]],
-        seeds: vec![3, 4],
+        seeds: vec![Seed(3), Seed(4)],
         ..Suite::default()
     };
     assert_passes(
@@ -109,14 +109,14 @@ fn small() -> Suite {
         spp: 1024,
         dimensions: 6,
         pixels: vec![[0, 0], [1, 0], [0, 1], [17, 4], [300, 200], [7, 7]],
-        seeds: (1..=8).collect(),
+        seeds: (1..=8).map(Seed).collect(),
         ..Suite::default()
     }
 }
 
 /// The key of a draw, as the adapter derives it.
 fn stream(seed: Seed, pixel: [u32; 2], dim: u32) -> u64 {
-    let key = stream_seed(seed.0, (pixel[0] as u64) << 32 | pixel[1] as u64);
+    let key = stream_seed((pixel[0] as u64) << 32 | pixel[1] as u64, seed.0);
     mix64(key ^ (dim as u64).wrapping_mul(GOLDEN_GAMMA))
 }
 
@@ -169,7 +169,7 @@ fn the_former_halton_padding_fails_across_draws() {
 fn draws_that_share_their_values_fail() {
     // padding forgotten: every draw reads the same stream
     let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
-        let h = hash_u64(stream(seed, pixel, 0), index);
+        let h = hash_u64(index, stream(seed, pixel, 0));
         unit((h >> (32 * (dim & 1))) as u32)
     };
     let r = small().run(&source).unwrap();
@@ -183,7 +183,7 @@ fn correlations_of_opposite_sign_in_different_pixels_do_not_cancel() {
     // in others. A correlation averaged over pixels is about 0; every pixel is broken.
     let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
         let draw = |d: u32| {
-            let h = hash_u64(stream(seed, pixel, d & !1), index);
+            let h = hash_u64(index, stream(seed, pixel, d & !1));
             unit((h >> (32 * (d & 1))) as u32)
         };
         match dim {
@@ -207,10 +207,10 @@ fn a_weak_correlation_in_one_pair_of_draws_is_caught() {
     // One draw in ten of dimension 4 repeats dimension 1: a correlation of 0.1, in one pair.
     let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
         let draw = |d: u32| {
-            let h = hash_u64(stream(seed, pixel, d & !1), index);
+            let h = hash_u64(index, stream(seed, pixel, d & !1));
             unit((h >> (32 * (d & 1))) as u32)
         };
-        if dim == 4 && hash_u64(stream(seed, pixel, 99), index).is_multiple_of(10) {
+        if dim == 4 && hash_u64(index, stream(seed, pixel, 99)).is_multiple_of(10) {
             draw(1)
         } else {
             draw(dim)
@@ -235,14 +235,14 @@ fn a_weak_correlation_in_one_pair_of_draws_is_caught() {
 #[test]
 fn pixels_and_seeds_that_share_their_values_fail() {
     let pixel_blind = |_pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
-        unit(hash_u64(stream(seed, [0, 0], dim), index) as u32)
+        unit(hash_u64(index, stream(seed, [0, 0], dim)) as u32)
     };
     let r = small().run(&pixel_blind).unwrap();
     assert_fails(&r, "chi-square", "across pixels", "pixel-blind");
     assert!(r.row("chi-square", "across seeds").unwrap().passed());
 
     let seed_blind = |pixel: [u32; 2], index: u64, dim: u32, _seed: Seed| {
-        unit(hash_u64(stream(Seed(0), pixel, dim), index) as u32)
+        unit(hash_u64(index, stream(Seed(0), pixel, dim)) as u32)
     };
     let r = small().run(&seed_blind).unwrap();
     assert_fails(&r, "chi-square", "across seeds", "seed-blind");
@@ -253,12 +253,12 @@ fn pixels_and_seeds_that_share_their_values_fail() {
 fn a_biased_sequence_fails_the_mean_tests() {
     // values pulled towards 0 by 5% at most: a bias, not a correlation
     let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
-        let u = unit(hash_u64(stream(seed, pixel, dim), index) as u32);
+        let u = unit(hash_u64(index, stream(seed, pixel, dim)) as u32);
         u * (1.0 - 0.05 * u)
     };
     let suite = Suite {
         spp: 4096,
-        seeds: (1..=16).collect(),
+        seeds: (1..=16).map(Seed).collect(),
         ..small()
     };
     let r = suite.run(&source).unwrap();
@@ -274,7 +274,7 @@ struct FalsePromise;
 
 impl Source for FalsePromise {
     fn value(&self, pixel: [u32; 2], index: u64, dim: u32, seed: Seed) -> f32 {
-        unit(hash_u64(stream(seed, pixel, dim), index) as u32)
+        unit(hash_u64(index, stream(seed, pixel, dim)) as u32)
     }
 
     fn promised_strata(&self, n: u64) -> Vec<StrataGrid> {
@@ -307,7 +307,7 @@ fn a_renderers_own_closure_can_be_checked() {
         spp: 256,
         dimensions: 6,
         pixels: vec![[0, 0], [1, 1], [9, 2]],
-        seeds: (1..=4).collect(),
+        seeds: (1..=4).map(Seed).collect(),
         ..Suite::default()
     };
     let r = suite
@@ -328,13 +328,13 @@ fn independent_values_pass_at_small_counts() {
     // Pearson's statistic on 31 x 31 cells is far from its chi-square law with a few points
     // per cell; the grid shrinks with the count. This case failed at 1e-40 on 31 x 31.
     let source = |pixel: [u32; 2], index: u64, dim: u32, seed: Seed| {
-        unit(hash_u64(stream(seed, pixel, dim), index) as u32)
+        unit(hash_u64(index, stream(seed, pixel, dim)) as u32)
     };
     let suite = Suite {
         spp: 16,
         dimensions: 14,
         pixels: vec![[3274, 2305]],
-        seeds: vec![1044],
+        seeds: vec![Seed(1044)],
         ..Suite::default()
     };
     let r = suite.run(&source).unwrap();

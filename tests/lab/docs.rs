@@ -104,7 +104,7 @@ fn the_renderer_crate_s_built_in_mask_is_the_lab_s_void_and_cluster() {
     use strata_lab::samplers::mask::{BUILTIN_SEED, BUILTIN_SIDE, rust_table, void_and_cluster};
     // the table's file as the `mask` program writes it (`STRATA_BLESS=1` or the program)
     let file = "strata/src/pixel/frames/blue_noise_64.rs";
-    let table = rust_table(BUILTIN_SIDE, strata::Seed(BUILTIN_SEED)).unwrap();
+    let table = rust_table(BUILTIN_SIDE, BUILTIN_SEED).unwrap();
     if std::env::var_os("STRATA_BLESS").is_some() {
         std::fs::write(Path::new(env!("CARGO_MANIFEST_DIR")).join(file), &table).unwrap();
     }
@@ -116,7 +116,7 @@ fn the_renderer_crate_s_built_in_mask_is_the_lab_s_void_and_cluster() {
     // and the values the renderer's crate reads from it
     let (mask, ranks) = (
         BlueNoiseMask::builtin(),
-        void_and_cluster(BUILTIN_SIDE, strata::Seed(BUILTIN_SEED)).unwrap(),
+        void_and_cluster(BUILTIN_SIDE, BUILTIN_SEED).unwrap(),
     );
     assert_eq!(mask.side(), BUILTIN_SIDE);
     for (i, &r) in ranks.iter().enumerate() {
@@ -436,6 +436,62 @@ fn no_source_cites_an_issue_number() {
         cited.is_empty(),
         "issue numbers cited:\n{}",
         cited.join("\n")
+    );
+}
+
+#[test]
+fn every_error_context_written_in_the_code_is_a_rust_path() {
+    // an error names where it happened in one form: the path of what was called
+    // (`Sequence::by_name`, `spectrum::point_set_measures`, `pointsets`), which is also how a
+    // sampler's name reads; paths and names built at run time are not literals
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut stack: Vec<_> = ["strata/src", "src"].iter().map(|d| root.join(d)).collect();
+    let is_path = |c: &str| {
+        !c.is_empty()
+            && c.split("::").all(|part| {
+                part.starts_with(|ch: char| ch.is_ascii_alphabetic())
+                    && part
+                        .chars()
+                        .all(|ch| ch.is_ascii_alphanumeric() || ch == '_')
+            })
+    };
+    let (mut contexts, mut bad) = (0, Vec::new());
+    while let Some(p) = stack.pop() {
+        if p.is_dir() {
+            stack.extend(std::fs::read_dir(&p).unwrap().map(|e| e.unwrap().path()));
+            continue;
+        }
+        if p.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&p).unwrap();
+        let mut literals: Vec<String> = Vec::new();
+        for call in ["Error::input(", "Error::parameter(", "Error::count("] {
+            for (i, _) in text.match_indices(call) {
+                let arg = text[i + call.len()..].trim_start();
+                if let Some(rest) = arg.strip_prefix('"') {
+                    literals.push(rest[..rest.find('"').unwrap()].to_string());
+                }
+            }
+        }
+        if let Some(line) = text
+            .lines()
+            .find(|l| l.starts_with("const CONTEXT: &str = "))
+        {
+            literals.push(line.split('"').nth(1).unwrap().to_string());
+        }
+        for c in literals {
+            contexts += 1;
+            if !is_path(&c) {
+                bad.push(format!("{}: {c:?}", p.display()));
+            }
+        }
+    }
+    assert!(contexts > 30, "{contexts} contexts");
+    assert!(
+        bad.is_empty(),
+        "contexts that are not a path:\n{}",
+        bad.join("\n")
     );
 }
 

@@ -16,7 +16,7 @@ fn some_sets() -> impl Strategy<Value = Vec<PointSet>> {
         prop::collection::vec(prop::collection::vec(0.0f64..1.0, dims * n), k).prop_map(
             move |sets| {
                 sets.into_iter()
-                    .map(|c| PointSet::new(dims, c).unwrap())
+                    .map(|c| PointSet::new(c, dims as u32).unwrap())
                     .collect::<Vec<_>>()
             },
         )

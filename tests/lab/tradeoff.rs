@@ -205,7 +205,7 @@ fn bootstrap_intervals_cover_the_true_slope_95_percent_of_the_time() {
                 let mut sum = 0.0;
                 let mut k = 0;
                 for i in 0..1024u64 {
-                    let h = strata::hash::hash_u64(d * 1_000_003 + seed, i);
+                    let h = strata::hash::hash_u64(i, d * 1_000_003 + seed);
                     sum += (h >> 11) as f64 / (1u64 << 53) as f64;
                     if Some(&(i as usize + 1)) == counts.get(k) {
                         per_count[k].push(sum / (i + 1) as f64);

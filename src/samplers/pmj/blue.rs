@@ -122,7 +122,7 @@ struct Flags {
 impl Flags {
     /// Random flags (each a hash of the key, the depth and the node), stored to `depth`.
     fn random(key: u64, depth: u32) -> Self {
-        let keys = streams::PMJBN.map(|s| stream_seed(key, s));
+        let keys = streams::PMJBN.map(|s| stream_seed(s, key));
         let len = (1usize << depth).div_ceil(64);
         let mut bits = [vec![0u64; len], vec![0u64; len]];
         for (ax, b) in bits.iter_mut().enumerate() {
@@ -135,12 +135,12 @@ impl Flags {
                 }
             }
         }
-        let deep = streams::PMJBN_DEEP.map(|s| stream_seed(key, s) as u32);
+        let deep = streams::PMJBN_DEEP.map(|s| stream_seed(s, key) as u32);
         Flags { depth, bits, deep }
     }
 
     fn hashed(key: u64, l: u32, node: u32) -> bool {
-        hash_u64(key, (u64::from(l) << 32) | u64::from(node)) & 1 == 1
+        hash_u64((u64::from(l) << 32) | u64::from(node), key) & 1 == 1
     }
 
     fn flip(&mut self, ax: usize, l: u32, node: u32) {

@@ -75,7 +75,7 @@ impl Construction {
         Construction {
             variant,
             rng: crate::rng::pcg(key, streams::PMJ),
-            candidate_key: stream_seed(key, streams::PMJ_CANDIDATES),
+            candidate_key: stream_seed(streams::PMJ_CANDIDATES, key),
             intervals: ElementaryIntervals::default(),
             strata: Strata1D::default(),
             grid: (variant.candidates() > 1).then(|| TorusGrid::new(1)),
@@ -310,14 +310,14 @@ impl Construction {
                 (s << (32 - m)) | (r >> m)
             }
         };
-        let r1 = hash_u64(self.candidate_key, slot + 1);
+        let r1 = hash_u64(slot + 1, self.candidate_key);
         if let (Variant::Pmj02 { .. }, [sx], [sy]) =
             (self.variant, self.xs.as_slice(), self.ys.as_slice())
         {
             // pmj02's usual case: one valid stratum pair, only the jitter varies
             return [jitter(*sx, r1 as u32), jitter(*sy, (r1 >> 32) as u32)];
         }
-        let r0 = hash_u64(self.candidate_key, slot);
+        let r0 = hash_u64(slot, self.candidate_key);
         let below = |r: u32, len: usize| ((r as u64 * len as u64) >> 32) as usize;
         let (sx, sy) = match self.variant {
             Variant::Pmj02 { .. } => (

@@ -46,8 +46,8 @@ impl Key {
     /// The key of `seed`.
     pub(crate) fn new(seed: Seed) -> Key {
         let (a, b) = (
-            stream_seed(seed.0, KEY_STREAM),
-            stream_seed(seed.0, KEY_STREAM + 1),
+            stream_seed(KEY_STREAM, seed.0),
+            stream_seed(KEY_STREAM + 1, seed.0),
         );
         Key([a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32])
     }
@@ -65,8 +65,8 @@ impl Key {
         }
         let k = self.0;
         let (a, b) = (
-            stream_seed(k[0] as u64 | (k[1] as u64) << 32, e as u64),
-            stream_seed(k[2] as u64 | (k[3] as u64) << 32, e as u64),
+            stream_seed(e as u64, k[0] as u64 | (k[1] as u64) << 32),
+            stream_seed(e as u64, k[2] as u64 | (k[3] as u64) << 32),
         );
         Key([a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32])
     }

@@ -1134,6 +1134,6 @@ impl PixelSampler {
     #[inline]
     fn low_bits(&self) -> u64 {
         let k = DrawKeys::new(&self.current.own, self.dim);
-        crate::hash::hash_u64(!k.stream(), self.current.index as u64)
+        crate::hash::hash_u64(self.current.index as u64, !k.stream())
     }
 }

@@ -245,9 +245,9 @@ pub(crate) struct Row {
     suffix: &'static str,
     /// The sequence for an image of `resolution` (the Z-ordered ones) and the suffix after
     /// `name-` (`None` without one; never `Some` for a row whose `suffix` is empty).
-    make: fn([u32; 2], Option<&str>) -> Result<Sequence>,
+    build: fn([u32; 2], Option<&str>) -> Result<Sequence>,
     /// The constructor, as the docs write it.
-    build: &'static str,
+    constructor: &'static str,
     pub(crate) spp: SppUse,
     /// The sample count nearest above `n` (at least 1) at which the sequence is best
     /// stratified, below `2^32`.
@@ -405,7 +405,7 @@ impl Sequence {
              |---|---|---|---|---|---|\n",
         );
         for row in ROWS {
-            let sequence = (row.make)([16, 16], None).expect("every row builds by its name");
+            let sequence = (row.build)([16, 16], None).expect("every row builds by its name");
             let gpu = if sequence.runs_on_gpu() {
                 "yes"
             } else {
@@ -418,7 +418,7 @@ impl Sequence {
             };
             t.push_str(&format!(
                 "| {name} | {} | {} | {} | {gpu} | {} |\n",
-                row.build,
+                row.constructor,
                 row.spp.words(),
                 row.promise,
                 row.source
@@ -432,7 +432,7 @@ impl Sequence {
     /// it).
     pub fn by_name(name: &str, resolution: [u32; 2]) -> Result<Self> {
         if let Some(row) = ROWS.iter().find(|r| r.name == name) {
-            return (row.make)(resolution, None);
+            return (row.build)(resolution, None);
         }
         if let Some(row) = ROWS.iter().find(|r| {
             name.len() > r.name.len() + 1
@@ -446,7 +446,7 @@ impl Sequence {
                     format!("'{name}': {} takes no suffix", row.name),
                 ));
             }
-            return (row.make)(resolution, Some(suffix));
+            return (row.build)(resolution, Some(suffix));
         }
         Err(Error::input(
             "Sequence::by_name",
@@ -618,7 +618,7 @@ mod tests {
     fn every_name_builds_its_row_and_only_the_documented_suffixes() {
         for row in ROWS {
             let s = Sequence::by_name(row.name, [16, 16]).unwrap();
-            assert_eq!((s.name(), s.row.build), (row.name, row.build));
+            assert_eq!((s.name(), s.row.constructor), (row.name, row.constructor));
             // a suffix only where the row takes one
             assert_eq!(
                 Sequence::by_name(&format!("{}-2", row.name), [16, 16]).is_ok(),

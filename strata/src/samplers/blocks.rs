@@ -5,7 +5,7 @@
 //! key, and point `i` of the current block. [`Fixed`] owns the position in the stream (which
 //! block, which sample) once for all of them and is the [`Sampler`] (the first two
 //! coordinates) and the [`SamplerNd`] (all of them); block `b` is keyed by
-//! `stream_seed(seed, b)`. Constructions computed point by point (jittered, multi-jittered,
+//! `stream_seed(b, seed)`. Constructions computed point by point (jittered, multi-jittered,
 //! orthogonal arrays) answer [`Blocks::point`] on demand; those that build a whole set at once
 //! (Poisson disk, relaxation, in the lab) keep the set of the current block.
 
@@ -36,7 +36,7 @@ impl BlockCursor {
 
     /// The key of the current block.
     fn block_key(&self) -> u64 {
-        stream_seed(self.seed, self.block)
+        stream_seed(self.block, self.seed)
     }
 
     /// The key of the current block if the next sample is its first (the block must then be
@@ -118,7 +118,7 @@ pub trait Blocks: Clone + Send {
 }
 
 /// A fixed-count sampler: the stream of sets of its construction `B`, block after block (block
-/// `b` keyed by `stream_seed(seed, b)`), as a [`Sampler`] and a [`SamplerNd`]. It dereferences
+/// `b` keyed by `stream_seed(b, seed)`), as a [`Sampler`] and a [`SamplerNd`]. It dereferences
 /// to the construction (`Jittered::new(16, seed)?.count()`).
 #[derive(Clone, Debug)]
 pub struct Fixed<B: Blocks> {

@@ -199,7 +199,7 @@ pub(crate) fn radical_inverse_at(index: u64, dim: usize, seed: u64) -> f32 {
 /// The key of dimension `dim`'s scramble.
 #[inline]
 fn dimension_key(seed: u64, dim: usize) -> u64 {
-    stream_seed(seed, Stream::HaltonDigits.id() + dim as u64)
+    stream_seed(Stream::HaltonDigits.id() + dim as u64, seed)
 }
 
 /// Base 2: the bit-level Owen scramble of the reversed index.

@@ -66,7 +66,7 @@ impl Blocks for Jittered {
     #[inline]
     fn point(&self, i: u32) -> Point2 {
         let (row, col) = self.side.div_rem(i);
-        let h = hash_u64(self.key, i as u64);
+        let h = hash_u64(i as u64, self.key);
         self.strata.place2([col, row], [h as u32, (h >> 32) as u32])
     }
 

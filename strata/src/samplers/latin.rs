@@ -79,7 +79,7 @@ impl Blocks for NRooks {
 
     #[inline]
     fn point(&self, i: u32) -> Point2 {
-        let h = hash_u64(self.key, i as u64);
+        let h = hash_u64(i as u64, self.key);
         self.strata.place2(
             [self.px.apply(i), self.py.apply(i)],
             [h as u32, (h >> 32) as u32],
@@ -164,7 +164,7 @@ impl Blocks for LatinHypercube {
 
     fn point_into(&self, i: u32, out: &mut [f32]) {
         for (d, (o, perm)) in out.iter_mut().zip(&self.perms).enumerate() {
-            let h = hash_u64(self.key, (i as u64) << 16 | d as u64);
+            let h = hash_u64((i as u64) << 16 | d as u64, self.key);
             *o = self.strata.place(perm.apply(i), h as u32);
         }
     }

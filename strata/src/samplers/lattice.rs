@@ -60,7 +60,7 @@ pub(crate) fn point_lanes<P: Pair>(r: u32, shift: P) -> P {
 /// The toroidal shift of dimension `d` for a key (32-bit fixed point).
 #[inline]
 fn shift(key: u64, d: u32) -> u32 {
-    (hash_u64(key, d as u64) >> 32) as u32
+    (hash_u64(d as u64, key) >> 32) as u32
 }
 
 /// The extensible rank-1 lattice in 2D (dimensions 0-1 of [`LatticeNd`]), progressive.
@@ -229,7 +229,7 @@ impl Blocks for Fibonacci {
     }
 
     fn begin_block(&mut self, key: u64) {
-        self.shift = [stream_seed(key, 0) >> 32, stream_seed(key, 1) >> 32];
+        self.shift = [stream_seed(0, key) >> 32, stream_seed(1, key) >> 32];
     }
 
     #[inline]

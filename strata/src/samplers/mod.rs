@@ -6,7 +6,7 @@
 //! (`strata-lab`), which also lists every sampler by name.
 //!
 //! Fixed-count samplers share one piece of machinery, [`Fixed`] over their [`Blocks`]: it walks
-//! through blocks of `N` samples and gives each block its own key, `stream_seed(seed, block)`;
+//! through blocks of `N` samples and gives each block its own key, `stream_seed(block, seed)`;
 //! every point is a function of (block key, index in block), computed on demand with hashing
 //! and [`Permutation`]s (no tables, no allocation, O(1) per point). Progressive samplers share
 //! another, [`Epochs`]: when a sequence of `2^32` points is exhausted, a new, independent one
@@ -67,6 +67,6 @@ pub(crate) fn check_dims(sampler: &'static str, dims: u32, max: u32, note: &str)
 pub(crate) fn block_permutations(out: &mut Vec<Permutation>, len: u32, key: u64, k: u32) {
     out.clear();
     out.extend(
-        (0..k as u64).map(|d| Permutation::new(len, key32(stream_seed(key, d))).expect("len >= 1")),
+        (0..k as u64).map(|d| Permutation::new(len, key32(stream_seed(d, key))).expect("len >= 1")),
     );
 }

@@ -133,7 +133,7 @@ impl Blocks for MultiJittered {
             sub_y,
             n,
             n,
-            hash_u64(self.key, i as u64),
+            hash_u64(i as u64, self.key),
         )
     }
 
@@ -218,7 +218,7 @@ impl Cmj {
                 sub_y[0],
                 m,
                 n,
-                hash_u64(self.key, i as u64),
+                hash_u64(i as u64, self.key),
             ),
             multi_jittered_point(
                 &self.fine,
@@ -228,7 +228,7 @@ impl Cmj {
                 sub_y[1],
                 m,
                 n,
-                hash_u64(self.key, i as u64 + 1),
+                hash_u64(i as u64 + 1, self.key),
             ),
         ]
     }
@@ -265,7 +265,7 @@ impl Blocks for Cmj {
             sub_y,
             m,
             n,
-            hash_u64(self.key, i as u64),
+            hash_u64(i as u64, self.key),
         )
     }
 

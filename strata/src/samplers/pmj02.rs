@@ -67,7 +67,7 @@ impl Pmj02Stochastic {
     /// The random bits of sample `index` (x in the low half, y in the high half).
     #[inline]
     fn random(key: u64, index: u32) -> u64 {
-        hash_u64(key, index as u64)
+        hash_u64(index as u64, key)
     }
 
     /// Generates up to `count` samples (`<= 2^32`), a whole power-of-two pass at a time.
@@ -133,7 +133,7 @@ impl Pmj02Stochastic {
 
     /// [`point`](Pmj02Stochastic::point) as 32-bit fixed point.
     pub fn point_u32(index: u32, seed: Seed) -> [u32; 2] {
-        let key = stream_seed(seed.0, 0);
+        let key = stream_seed(0, seed.0);
         [
             Self::coordinate_at(key, index, 0),
             Self::coordinate_at(key, index, 1),

@@ -4,7 +4,7 @@
 //! sequences, whose indices are 32-bit; less for best candidate, whose cost grows with its
 //! length). [`Sampler::next_sample`](crate::Sampler::next_sample) never ends, so when a sequence
 //! is exhausted the sampler starts a new epoch: a fresh, independent sequence keyed by
-//! `stream_seed(seed, epoch)`. Every progressive sampler counts its samples with an [`Epochs`].
+//! `stream_seed(epoch, seed)`. Every progressive sampler counts its samples with an [`Epochs`].
 
 use crate::hash::stream_seed;
 use crate::sampler::Seed;
@@ -36,7 +36,7 @@ impl Epochs {
 
     /// The key of epoch `epoch`.
     pub fn key(&self, epoch: u64) -> u64 {
-        stream_seed(self.seed, epoch)
+        stream_seed(epoch, self.seed)
     }
 
     /// The index (inside its sequence) of the next sample, and the key of the new epoch when
@@ -93,8 +93,8 @@ mod tests {
         let mut e = Epochs::new(3, Seed(5));
         let got: Vec<_> = (0..7).map(|_| e.advance()).collect();
         assert_eq!(got[..3], [(0, None), (1, None), (2, None)]);
-        assert_eq!(got[3], (0, Some(stream_seed(5, 1))));
-        assert_eq!(got[6], (0, Some(stream_seed(5, 2))));
+        assert_eq!(got[3], (0, Some(stream_seed(1, 5))));
+        assert_eq!(got[6], (0, Some(stream_seed(2, 5))));
         // skipping equals taking, across epochs
         for n in 0..25u64 {
             let (mut a, mut b) = (Epochs::new(3, Seed(5)), Epochs::new(3, Seed(5)));
@@ -114,7 +114,7 @@ mod tests {
         let mut e = Epochs::new(10, Seed(5));
         assert_eq!(e.take(4), (0, 4, None));
         assert_eq!(e.take(100), (4, 6, None));
-        assert_eq!(e.take(100), (0, 10, Some(stream_seed(5, 1))));
+        assert_eq!(e.take(100), (0, 10, Some(stream_seed(1, 5))));
     }
 
     #[test]
@@ -123,7 +123,7 @@ mod tests {
         // by zero in skip)
         let mut e = Epochs::new(0, Seed(5));
         assert_eq!(e.advance(), (0, None));
-        assert_eq!(e.advance(), (0, Some(stream_seed(5, 1))));
+        assert_eq!(e.advance(), (0, Some(stream_seed(1, 5))));
         assert_eq!(e.skip(3), Some(4));
     }
 }

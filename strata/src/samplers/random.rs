@@ -18,7 +18,7 @@ const NAME: &str = "random";
 
 /// The generator of a seed.
 fn pcg(seed: Seed) -> Pcg32 {
-    Pcg32::new(stream_seed(seed.0, 0), stream_seed(seed.0, 1))
+    Pcg32::new(stream_seed(0, seed.0), stream_seed(1, seed.0))
 }
 
 /// Independent uniform points in `[0,1)^2` (progressive: every prefix is an i.i.d. sample).

@@ -105,7 +105,7 @@ impl Blocks for UncorrelatedJitter {
         let groups = out.len().min(self.dims as usize).div_ceil(2);
         for (g, perm) in self.perms.iter().enumerate().take(groups) {
             let cell = perm.apply(i);
-            let h = hash_u64(self.key, (i as u64) << 16 | g as u64);
+            let h = hash_u64((i as u64) << 16 | g as u64, self.key);
             let d = 2 * g;
             if d + 1 < self.dims as usize {
                 let (row, col) = self.side.div_rem(cell);

@@ -1,6 +1,6 @@
 // A 64 x 64 blue-noise dither mask: void and cluster (Ulichney 1993) as
-// `strata_lab::samplers::mask::void_and_cluster(64, 0x6d61736b)`, the rank of each
-// pixel, row-major. Written by the lab's `mask` program (`cargo run --release
+// `strata_lab::samplers::mask::void_and_cluster(64, Seed(0x6d61736b))`, the rank
+// of each pixel, row-major. Written by the lab's `mask` program (`cargo run --release
 // --example mask -- --side 64 --seed 1835103083`); the lab's tests check it against
 // that function. Do not edit.
 

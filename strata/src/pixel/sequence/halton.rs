@@ -17,8 +17,8 @@ use crate::samplers::halton;
 pub(crate) const ROW: Row = Row {
     name: "halton",
     suffix: "",
-    make: |_, _| Ok(Sequence::halton()),
-    build: "`Sequence::halton()`",
+    build: |_, _| Ok(Sequence::halton()),
+    constructor: "`Sequence::halton()`",
     spp: SppUse::HaltonBlocks,
     round: |n| halton_block(n).0,
     promise: "each block's `2^a x 3^b` strata, one value each",

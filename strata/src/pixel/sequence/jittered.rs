@@ -12,8 +12,8 @@ use crate::sampler::StrataGrid;
 pub(crate) const ROW: Row = Row {
     name: "jittered",
     suffix: "",
-    make: |_, _| Ok(Sequence::jittered()),
-    build: "`Sequence::jittered()`",
+    build: |_, _| Ok(Sequence::jittered()),
+    constructor: "`Sequence::jittered()`",
     spp: SppUse::Square,
     round: |n| {
         let s = n.isqrt();
@@ -52,6 +52,6 @@ impl Sequence {
 pub(crate) fn draw(k: &DrawKeys, index: u32, spp: &SamplesPerPixel) -> [f32; 2] {
     let (_, c, key) = block_permuted(k.stream(), index, &spp.cells);
     let (row, col) = spp.side.div_rem(c);
-    let h = hash_u64(key, c as u64);
+    let h = hash_u64(c as u64, key);
     spp.strata.place2([col, row], [h as u32, (h >> 32) as u32])
 }

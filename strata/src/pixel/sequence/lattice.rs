@@ -8,8 +8,8 @@ use super::{Points, Row, Sequence, SppUse, axes_up_to, power_of_two};
 pub(crate) const ROW: Row = Row {
     name: "lattice",
     suffix: "",
-    make: |_, _| Ok(Sequence::lattice()),
-    build: "`Sequence::lattice()`",
+    build: |_, _| Ok(Sequence::lattice()),
+    constructor: "`Sequence::lattice()`",
     spp: SppUse::Ignored,
     round: power_of_two,
     promise: "`n x 1` and `1 x n` strata at every power of two; shifted",

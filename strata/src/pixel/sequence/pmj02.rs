@@ -10,8 +10,8 @@ use crate::sampler::StrataGrid;
 pub(crate) const ROW: Row = Row {
     name: "pmj02",
     suffix: "",
-    make: |_, _| Ok(Sequence::pmj02()),
-    build: "`Sequence::pmj02()`",
+    build: |_, _| Ok(Sequence::pmj02()),
+    constructor: "`Sequence::pmj02()`",
     spp: SppUse::Ignored,
     round: power_of_two,
     promise: "every power-of-two prefix a (0,m,2)-net; Owen-scrambled",

@@ -8,8 +8,8 @@ use crate::prelude::*;
 pub(crate) const ROW: Row = Row {
     name: "random",
     suffix: "",
-    make: |_, _| Ok(Sequence::random()),
-    build: "`Sequence::random()`",
+    build: |_, _| Ok(Sequence::random()),
+    constructor: "`Sequence::random()`",
     spp: SppUse::Ignored,
     round: |n| n,
     promise: "independent uniform values (hashed)",

@@ -10,8 +10,8 @@ use crate::sampler::StrataGrid;
 pub(crate) const ROW: Row = Row {
     name: "sobol",
     suffix: "",
-    make: |_, _| Ok(Sequence::sobol()),
-    build: "`Sequence::sobol()`",
+    build: |_, _| Ok(Sequence::sobol()),
+    constructor: "`Sequence::sobol()`",
     spp: SppUse::Ignored,
     round: power_of_two,
     promise: "every power-of-two prefix a (0,m,2)-net; Owen-scrambled",

@@ -18,8 +18,8 @@ pub(super) const DEFAULT_GROUP: u32 = 4;
 pub(crate) const ROW: Row = Row {
     name: "sobol12",
     suffix: "`sobol12-G`: groups of `G` dimensions, a power of two from 2 to 512 (default 4)",
-    make: |_, s| Sequence::sobol12(group_by_name("sobol12", s, DEFAULT_GROUP)?),
-    build: "`Sequence::sobol12(group)`",
+    build: |_, s| Sequence::sobol12(group_by_name("sobol12", s, DEFAULT_GROUP)?),
+    constructor: "`Sequence::sobol12(group)`",
     spp: SppUse::Ignored,
     round: power_of_two,
     promise: "one index per group of draws; the 2D draw at a group's dimension `2k` a \

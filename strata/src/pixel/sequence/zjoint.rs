@@ -17,8 +17,8 @@ const DEFAULT_GROUP: u32 = 8;
 pub(crate) const ROW: Row = Row {
     name: "zjoint",
     suffix: "`zjoint-G`: groups of `G` dimensions, a power of two from 2 to 512 (default 8)",
-    make: |r, s| Sequence::zjoint(r[0], r[1], group_by_name("zjoint", s, DEFAULT_GROUP)?),
-    build: "`Sequence::zjoint(width, height, group)`",
+    build: |r, s| Sequence::zjoint(r[0], r[1], group_by_name("zjoint", s, DEFAULT_GROUP)?),
+    constructor: "`Sequence::zjoint(width, height, group)`",
     spp: SppUse::PixelBlock,
     round: power_of_two,
     promise: "the Z order shared by a group's draws, which read distinct Sobol' dimensions",

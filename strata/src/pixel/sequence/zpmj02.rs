@@ -8,8 +8,8 @@ use crate::sampler::StrataGrid;
 pub(crate) const ROW: Row = Row {
     name: "zpmj02",
     suffix: "",
-    make: |r, _| Sequence::zpmj02(r[0], r[1]),
-    build: "`Sequence::zpmj02(width, height)`",
+    build: |r, _| Sequence::zpmj02(r[0], r[1]),
+    constructor: "`Sequence::zpmj02(width, height)`",
     spp: SppUse::PixelBlock,
     round: power_of_two,
     promise: "as `pmj02` per pixel; pixels along a scrambled Z curve",

@@ -15,8 +15,8 @@ use crate::error::Result;
 pub(crate) const ROW: Row = Row {
     name: "zquad",
     suffix: "",
-    make: |r, _| Sequence::zquad(r[0], r[1]),
-    build: "`Sequence::zquad(width, height)`",
+    build: |r, _| Sequence::zquad(r[0], r[1]),
+    constructor: "`Sequence::zquad(width, height)`",
     spp: SppUse::PixelBlock,
     round: power_of_two,
     promise: "the Z order shared by a group of 4 draws, which read the dimensions of a \

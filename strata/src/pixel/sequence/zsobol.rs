@@ -19,8 +19,8 @@ use crate::sampler::StrataGrid;
 pub(crate) const ROW: Row = Row {
     name: "zsobol",
     suffix: "",
-    make: |r, _| Sequence::zsobol(r[0], r[1]),
-    build: "`Sequence::zsobol(width, height)`",
+    build: |r, _| Sequence::zsobol(r[0], r[1]),
+    constructor: "`Sequence::zsobol(width, height)`",
     spp: SppUse::PixelBlock,
     round: power_of_two,
     promise: "as `sobol` per pixel; pixels along a scrambled Z curve (blue-noise error)",

@@ -8,14 +8,14 @@ use crate::error::Result;
 pub(crate) const ROW: Row = Row {
     name: "zsobol12",
     suffix: "`zsobol12-G`: groups of `G` dimensions, as `sobol12-G`",
-    make: |r, s| {
+    build: |r, s| {
         Sequence::zsobol12(
             r[0],
             r[1],
             group_by_name("zsobol12", s, super::sobol12::DEFAULT_GROUP)?,
         )
     },
-    build: "`Sequence::zsobol12(width, height, group)`",
+    constructor: "`Sequence::zsobol12(width, height, group)`",
     spp: SppUse::PixelBlock,
     round: power_of_two,
     promise: "as `sobol12` per pixel; the Z order shared by a group's draws",
