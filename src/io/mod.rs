@@ -76,8 +76,8 @@ pub fn write_file(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     let fail = |e: std::io::Error| Error::io(path.display().to_string(), e);
     let meta = std::fs::metadata(path);
     match refusal(path, meta.as_ref().ok())? {
-        Kind::InPlace => return write_in_place(path, bytes),
-        Kind::Replaced | Kind::New => {}
+        WriteMode::InPlace => return write_in_place(path, bytes),
+        WriteMode::Replaced | WriteMode::New => {}
     }
     let target = write_target(path)?;
     create_parent(&target)?;
@@ -150,7 +150,7 @@ fn write_named(
 }
 
 /// What [`write_file`] does with a path, from its metadata (`None`: nothing there).
-enum Kind {
+enum WriteMode {
     /// Not a regular file (a device, a pipe): written in place.
     InPlace,
     /// A regular file the user may write: replaced.
@@ -161,22 +161,22 @@ enum Kind {
 
 /// The error [`write_file`] gives `path` before writing anything (an empty name, a directory,
 /// a file the user could not write), or what it will do.
-fn refusal(path: &Path, meta: Option<&std::fs::Metadata>) -> Result<Kind> {
+fn refusal(path: &Path, meta: Option<&std::fs::Metadata>) -> Result<WriteMode> {
     let refuse = |why: &str| Err(Error::io(path.display().to_string(), why));
     if path.as_os_str().is_empty() {
         return refuse("an empty file name");
     }
     match meta {
-        None => Ok(Kind::New),
+        None => Ok(WriteMode::New),
         Some(m) if m.is_dir() => refuse("a directory, not a file"),
-        Some(m) if !m.is_file() => Ok(Kind::InPlace),
+        Some(m) if !m.is_file() => Ok(WriteMode::InPlace),
         Some(m) => {
             // what the user could not write by redirection is not replaced behind their back
             // (renaming needs only the directory's permission)
             let writable = !m.permissions().readonly()
                 && std::fs::OpenOptions::new().write(true).open(path).is_ok();
             if writable {
-                Ok(Kind::Replaced)
+                Ok(WriteMode::Replaced)
             } else {
                 refuse(
                     "the file is read-only (or not writable by you), so it was not replaced: \
@@ -233,7 +233,7 @@ pub fn write_target(path: impl AsRef<Path>) -> Result<std::path::PathBuf> {
 pub fn check_writable(path: impl AsRef<Path>) -> Result<()> {
     let path = path.as_ref();
     let meta = std::fs::metadata(path);
-    if let Kind::InPlace = refusal(path, meta.as_ref().ok())? {
+    if let WriteMode::InPlace = refusal(path, meta.as_ref().ok())? {
         // a device or a pipe: its permission bits only (opening a pipe would wait for a
         // reader, or end a waiting reader's input)
         return match &meta {

@@ -151,9 +151,10 @@ pub(crate) struct Shell {
     live: u32,
     /// The top `j` bits (the position's, bit-reversed).
     top: u32,
-    /// The index's top bit, reversed (0 for index 0); all ones from `2^16` on, where
-    /// [`Shell::nested_rev`] takes over.
+    /// The index's top bit, reversed (0 for index 0).
     marker: u32,
+    /// From `2^16` on (`j > 15`, past the tables): [`Shell::nested_rev`] reorders the shell.
+    nested: bool,
 }
 
 impl Shell {
@@ -170,13 +171,8 @@ impl Shell {
             m,
             live: if x == m { 0 } else { top },
             top,
-            marker: if j > MAX_FIELD_BITS {
-                u32::MAX
-            } else if index == 0 {
-                0
-            } else {
-                0x8000_0000 >> j
-            },
+            marker: if index == 0 { 0 } else { 0x8000_0000 >> j },
+            nested: j > MAX_FIELD_BITS,
         }
     }
 
@@ -185,7 +181,7 @@ impl Shell {
     #[inline(always)]
     pub(crate) fn map_rev(&self, dim: u32, key: u32) -> u32 {
         let t = hash32(dim, self.salt);
-        if self.marker == u32::MAX {
+        if self.nested {
             return self.nested_rev(t);
         }
         self.marker
@@ -204,7 +200,7 @@ impl Shell {
     #[inline(always)]
     pub(crate) fn affine_rev(&self, dim: u32) -> u32 {
         let t = hash32(dim, self.salt);
-        if self.marker == u32::MAX {
+        if self.nested {
             return self.nested_rev(t);
         }
         self.marker | affine(t, self.x, self.m, self.live, self.top)
