@@ -64,6 +64,10 @@ LAYOUT = [
                "1,2,4,16,64", "--samplers", "sobol,zjoint,zquad,sobol12-4,zsobol12-4",
                "--layout", "interacting", "--interactions", "--out", "{out}", "--markdown",
                "{md}"], True),
+        (["render-studio-direct-1,2,4"],
+         EX + ["render", "--", "--scene", "studio-direct", "--seeds", "64", "--spp", "1,2,4",
+               "--samplers", "sobol,zsobol,zjoint,pbrt-zsobol,pbrt-zsobol-seeded",
+               "--interactions", "--out", "{out}", "--markdown", "{md}"], True),
     ]),
     ("Speed of the path-tracer adapter", [
         (["bench-pixel"],

@@ -154,8 +154,10 @@ pub fn parse() -> Result<Option<Args>, CliError> {
     use clap::{CommandFactory, FromArgMatches};
     let sequences = format!(
         "path-tracer sequences (default all; the Z-ordered ones for the image size): {}; also \
-         two references written in this program, not in all: pbrt-padded (pbrt-v4's \
-         PaddedSobolSampler, FastOwen) and pbrt-zsobol (its ZSobolSampler; powers of two), and \
+         references written in this program, not in all: pbrt-padded (pbrt-v4's \
+         PaddedSobolSampler, FastOwen), pbrt-zsobol (its ZSobolSampler; powers of two) and \
+         pbrt-zsobol-seeded (the same with the seed in its pixel order's hash, which pbrt keys \
+         by the dimension alone: a new order per seed, as the crate's Z-ordered sequences), and \
          experiments on a sequence SEQ, not in all: SEQ+permute (each draw reads its samples \
          through a random permutation of the pixel's 0..spp, pbrt's pairing; powers of two) and \
          SEQ+shells (a random permutation inside each shell [2^j, 2^(j+1)) of the index: every \

@@ -139,7 +139,7 @@ fn measure(
                 (&mut permuted, later)
             };
             if split {
-                let one = crate::split::one_draw_with(
+                let one = crate::split::one_draw_sum(&crate::split::one_draw_with(
                     args,
                     scene,
                     method,
@@ -148,7 +148,7 @@ fn measure(
                     reference,
                     &emitters.draws,
                     Some(&seeds_of),
-                )?;
+                )?);
                 let rest: Vec<f64> = lum.iter().zip(&one).map(|(e, o)| e - o).collect();
                 let part = spectrum::error_image_masked(&rest, &emitters.keep, w, h)?;
                 interaction[(frame > 0) as usize] += part.lowband / n;

@@ -69,7 +69,7 @@ fn main() -> ExitCode {
         io::write_text(args.out.join("render.csv"), &csv)?;
         figures::write_blue_noise(&args, &rows, false)?;
         figures::write_blue_noise(&args, &rows, true)?;
-        let split = split::interaction_table(&rows);
+        let split = split::interaction_table(&rows, &emitters.names);
         if let Some(t) = &split {
             outln!("\n{t}")?;
         }

@@ -10,7 +10,7 @@ use crate::pbrt::{self, PaddedSobol, Randomize, ZSobol};
 use crate::trace::Draws;
 
 /// The reference samplers' names (`--samplers`; not in `all`).
-pub const REFERENCES: [&str; 2] = ["pbrt-padded", "pbrt-zsobol"];
+pub const REFERENCES: [&str; 3] = ["pbrt-padded", "pbrt-zsobol", "pbrt-zsobol-seeded"];
 
 /// A sampler of `--samplers`.
 #[derive(Clone, Debug, PartialEq)]
@@ -19,8 +19,9 @@ pub enum Method {
     Crate(Sequence),
     /// pbrt-v4's `PaddedSobolSampler` (FastOwen).
     PbrtPadded,
-    /// pbrt-v4's `ZSobolSampler` (FastOwen).
-    PbrtZSobol,
+    /// pbrt-v4's `ZSobolSampler` (FastOwen); `seeded`: with the seed in the hash of its pixel
+    /// order (pbrt's depends on the dimension only, so that every seed orders the pixels alike).
+    PbrtZSobol { seeded: bool },
     /// An experiment: a crate sequence (with `--padding`) whose draw at dimension `d` reads the
     /// sample `perm_d(i)` instead of sample `i`.
     Repaired(Sequence, Repair),
@@ -45,7 +46,8 @@ impl Method {
     pub fn by_name(name: &str, size: (u32, u32)) -> Result<Method, CliError> {
         match name {
             "pbrt-padded" => return Ok(Method::PbrtPadded),
-            "pbrt-zsobol" => return Ok(Method::PbrtZSobol),
+            "pbrt-zsobol" => return Ok(Method::PbrtZSobol { seeded: false }),
+            "pbrt-zsobol-seeded" => return Ok(Method::PbrtZSobol { seeded: true }),
             _ => {}
         }
         let resolution = [size.0, size.1];
@@ -82,10 +84,10 @@ impl Method {
                 PixelSampler::new(seq.clone(), spp, strata::Seed(0))?;
             }
             Method::PbrtPadded => {}
-            Method::PbrtZSobol => {}
+            Method::PbrtZSobol { .. } => {}
         }
         let why = match self {
-            Method::PbrtZSobol => {
+            Method::PbrtZSobol { .. } => {
                 "pbrt-zsobol takes powers of two only (pbrt's ZSobol rounds \
                                    the count down)"
             }
@@ -290,12 +292,10 @@ pub fn with_sampler<R>(
             f.visit(PixelSampler::new(seq.clone(), spp, strata::Seed(seed))?.with_padding(padding))
         }
         Method::PbrtPadded => f.visit(PaddedSobol::new(spp, pbrt_seed(seed), Randomize::FastOwen)),
-        Method::PbrtZSobol => f.visit(ZSobol::new(
-            spp,
-            [size.0, size.1],
-            pbrt_seed(seed),
-            Randomize::FastOwen,
-        )),
+        Method::PbrtZSobol { seeded } => {
+            let s = ZSobol::new(spp, [size.0, size.1], pbrt_seed(seed), Randomize::FastOwen);
+            f.visit(if *seeded { s.with_seeded_order() } else { s })
+        }
         Method::Repaired(seq, repair) => {
             let inner =
                 PixelSampler::new(seq.clone(), spp, strata::Seed(seed))?.with_padding(padding);

@@ -315,6 +315,9 @@ pub struct ZSobol {
     base4_digits: u32,
     seed: i32,
     randomize: Randomize,
+    /// XOR-ed into the hash of every digit's permutation: 0 in pbrt (the pixel order depends
+    /// on the dimension alone), a hash of the seed in [`ZSobol::with_seeded_order`].
+    order_key: u64,
     morton: u64,
     dim: u32,
 }
@@ -331,9 +334,18 @@ impl ZSobol {
             base4_digits: res.ilog2() + log4_spp,
             seed: seed as i32,
             randomize,
+            order_key: 0,
             morton: 0,
             dim: 0,
         }
+    }
+
+    /// Not pbrt: the same sampler with the seed in the hash of the pixel order, so that each
+    /// seed orders the pixels anew (pbrt's order is one per dimension for every seed: a study
+    /// over seeds then measures one order's luck).
+    pub fn with_seeded_order(mut self) -> Self {
+        self.order_key = mix_bits(self.seed as u32 as u64 | 1 << 32);
+        self
     }
 
     /// The samples per pixel pbrt takes (a power of two).
@@ -364,12 +376,12 @@ impl ZSobol {
             let shift = 2 * i - odd as u32;
             let digit = (self.morton >> shift) & 3;
             let higher = self.morton >> (shift + 2);
-            let p = (mix_bits(higher ^ mult) >> 24) % 24;
+            let p = (mix_bits(higher ^ mult ^ self.order_key) >> 24) % 24;
             index |= (PERMUTATIONS[p as usize][digit as usize] as u64) << shift;
         }
         if odd {
             let digit = self.morton & 1;
-            index |= digit ^ (mix_bits((self.morton >> 1) ^ mult) & 1);
+            index |= digit ^ (mix_bits((self.morton >> 1) ^ mult ^ self.order_key) & 1);
         }
         index
     }

@@ -26,6 +26,8 @@ pub struct Emitters {
     /// The first dimensions of the draws of the camera and the first bounce: the film, the
     /// lens (and the shutter time of the spheres), the lobe, the light choice, the light point.
     pub draws: Vec<u32>,
+    /// Their names, in that order.
+    pub names: Vec<&'static str>,
 }
 
 /// A row's figures over the pixels that do not see an emitter: the RMSE of linear radiance
@@ -75,8 +77,20 @@ pub fn emitters(args: &Args, scene: &Scene, reference: &[Vec3]) -> Result<Emitte
         keep.len() - kept,
         keep.len()
     );
-    let draws = scene.layout.split_draws(args.scene == SceneKind::Spheres);
-    Ok(Emitters { keep, kept, draws })
+    let time = args.scene == SceneKind::Spheres;
+    let draws = scene.layout.split_draws(time);
+    let mut names = vec!["film", "lens"];
+    if time {
+        names.push("time");
+    }
+    names.extend(["lobe", "light choice", "light point"]);
+    debug_assert_eq!(names.len(), draws.len());
+    Ok(Emitters {
+        keep,
+        kept,
+        draws,
+        names,
+    })
 }
 
 /// Which pixels do not see an emitter (`true`: kept in the masked figures). A pixel sees one
@@ -174,12 +188,12 @@ impl Draws for Mixed<'_> {
 /// block a net of the inner Sobol' sampler).
 const INNER: u64 = 64;
 
-/// The one-draw part of a render's luminance error (row-major): per pixel, the mean over its
-/// samples of the sum over `draws` (their first dimensions) of each draw's main effect,
+/// The main effects of `draws` (their first dimensions) in a render's luminance error, one
+/// image (row-major) per draw: per pixel, the mean over its samples of the draw's
 /// `E[L | that draw] - I`, with the expectation over the other draws estimated by [`INNER`]
-/// Sobol' points and `I` the reference. The rest of the error (the render's minus this) is the
-/// draws' interactions (and, for pixels whose camera ray meets the mirror, the later bounces'
-/// draws).
+/// Sobol' points and `I` the reference. Their sum is the one-draw part of the error; the rest
+/// (the render's minus the sum) is the draws' interactions (and, for pixels whose camera ray
+/// meets the mirror, the later bounces' draws).
 pub fn one_draw_errors(
     scene: &Scene,
     tested: &dyn Stateless,
@@ -187,17 +201,17 @@ pub fn one_draw_errors(
     size: (u32, u32),
     reference: &[Vec3],
     draws: &[u32],
-) -> Vec<f64> {
+) -> Vec<Vec<f64>> {
     let others = PixelSampler::new(Sequence::sobol(), 1, strata::Seed(0x1a7e_5eed))
         .expect("sobol takes any count");
-    (0..size.0 * size.1)
+    let per_pixel: Vec<Vec<f64>> = (0..size.0 * size.1)
         .into_par_iter()
         .map(|p| {
             let pixel = [p % size.0, p / size.0];
             let truth = luminance(reference[p as usize]) as f64;
-            let mut sum = 0.0;
+            let mut sums = vec![0.0; draws.len()];
             for i in 0..spp as u64 {
-                for &keep in draws {
+                for (sum, &keep) in sums.iter_mut().zip(draws) {
                     let mut mean = 0.0;
                     for m in 0..INNER {
                         let mut s = Mixed {
@@ -211,17 +225,28 @@ pub fn one_draw_errors(
                         };
                         mean += luminance(radiance(pixel[0], pixel[1], size, &mut s, scene)) as f64;
                     }
-                    sum += mean / INNER as f64 - truth;
+                    *sum += mean / INNER as f64 - truth;
                 }
             }
-            sum / spp as f64
+            sums.iter().map(|s| s / spp as f64).collect()
         })
+        .collect();
+    (0..draws.len())
+        .map(|d| per_pixel.iter().map(|p| p[d]).collect())
+        .collect()
+}
+
+/// The one-draw part of the error: the sum of the draws' main effects, pixel by pixel.
+pub fn one_draw_sum(per_draw: &[Vec<f64>]) -> Vec<f64> {
+    let n = per_draw.first().map_or(0, Vec::len);
+    (0..n)
+        .map(|p| per_draw.iter().map(|d| d[p]).sum())
         .collect()
 }
 
 /// With `--interactions`: the one-draw and the interaction parts of the error at the smallest
 /// count, emitters masked (Markdown), or `None` when no row has them.
-pub fn interaction_table(rows: &[crate::sweep::Row]) -> Option<String> {
+pub fn interaction_table(rows: &[crate::sweep::Row], names: &[&str]) -> Option<String> {
     let mut t = String::from(
         "The error split at the smallest count, without the pixels that see an emitter: the \
          one-draw part (per pixel, the sum over the camera's and the first bounce's draws of \
@@ -246,6 +271,27 @@ pub fn interaction_table(rows: &[crate::sweep::Row]) -> Option<String> {
                 rest.lowband
             ));
         }
+    }
+    t.push_str(&format!(
+        "\nEach draw's main effect alone (the one-draw part is their sum): the low-band share of \
+         its error image, without the pixels that see an emitter, over the seeds (a draw that \
+         changes nothing in this scene has the error of the others integrated out: the same \
+         figure for every sampler).\n\n| sampler | spp | {} |\n|---|---|{}\n",
+        names.join(" | "),
+        "---|".repeat(names.len())
+    ));
+    for r in rows.iter().filter(|r| r.split.is_some()) {
+        let cells: Vec<String> = r
+            .per_draw
+            .iter()
+            .map(|m| format!("{:.4}", m.lowband))
+            .collect();
+        t.push_str(&format!(
+            "| {} | {} | {} |\n",
+            r.name,
+            r.spp,
+            cells.join(" | ")
+        ));
     }
     any.then_some(t)
 }
@@ -280,7 +326,7 @@ pub fn one_draw_with(
     reference: &[Vec3],
     draws: &[u32],
     seeds: Option<&SeedPermutation>,
-) -> Result<Vec<f64>, CliError> {
+) -> Result<Vec<Vec<f64>>, CliError> {
     /// The one-draw errors with whichever sampler the method is.
     struct OneDraw<'a> {
         scene: &'a Scene,
@@ -290,8 +336,8 @@ pub fn one_draw_with(
         draws: &'a [u32],
         seeds: Option<&'a SeedPermutation>,
     }
-    impl Visit<Vec<f64>> for OneDraw<'_> {
-        fn visit<S: PixelDraws + 'static>(self, s: S) -> Vec<f64> {
+    impl Visit<Vec<Vec<f64>>> for OneDraw<'_> {
+        fn visit<S: PixelDraws + 'static>(self, s: S) -> Vec<Vec<f64>> {
             // the crate's sampler has stateless draws of its own; the others are copied
             let inner: Box<dyn Stateless> =
                 match (&s as &dyn std::any::Any).downcast_ref::<strata::PixelSampler>() {

@@ -40,6 +40,8 @@ pub struct Row {
     /// With `--interactions`, at the smallest count: the one-draw and the interaction parts of
     /// the error, without the pixels that see an emitter, over the seeds.
     pub split: Option<[Masked; 2]>,
+    /// With them, each draw's main effect ([`Emitters::draws`]), the same way.
+    pub per_draw: Vec<Masked>,
 }
 
 /// The samplers of `--samplers` at the image size (the crate's sequences, the references,
@@ -140,6 +142,7 @@ fn measure(
         errors: None,
         split: (args.interactions && spp == args.spp[0] && emitters.kept > 0)
             .then(<[Masked; 2]>::default),
+        per_draw: Vec::new(),
     };
     for k in 0..args.seeds as u64 {
         let start = Instant::now();
@@ -188,6 +191,7 @@ fn measure(
         masked: m.masked.finish(),
         masked_errors: m.errors,
         split: m.split.map(|parts| parts.map(|p| p.finish())),
+        per_draw: m.per_draw.iter().map(Masked::finish).collect(),
     })
 }
 
@@ -231,6 +235,7 @@ struct MaskedSums {
     masked: Masked,
     errors: Option<(ErrorImage, Vec<f64>)>,
     split: Option<[Masked; 2]>,
+    per_draw: Vec<Masked>,
 }
 
 /// Adds one seed's figures without the pixels that see an emitter: the RMSE of linear
@@ -257,7 +262,7 @@ fn masked(
         / (emitters.kept as f64 * seeds);
     m.masked.add(&e, seeds);
     if let Some(parts) = &mut m.split {
-        let one = crate::split::one_draw_with(
+        let per_draw = crate::split::one_draw_with(
             args,
             scene,
             s.seq,
@@ -267,6 +272,13 @@ fn masked(
             &emitters.draws,
             None,
         )?;
+        m.per_draw.resize_with(per_draw.len(), Masked::default);
+        for (part, errors) in m.per_draw.iter_mut().zip(&per_draw) {
+            let p = spectrum::error_image_masked(errors, keep, size.0, size.1)?;
+            part.rmse += p.rmse.powi(2) / seeds;
+            part.add(&p, seeds);
+        }
+        let one = crate::split::one_draw_sum(&per_draw);
         let rest: Vec<f64> = s.lum.iter().zip(&one).map(|(e, o)| e - o).collect();
         for (part, errors) in parts.iter_mut().zip([&one, &rest]) {
             let p = spectrum::error_image_masked(errors, keep, size.0, size.1)?;
