@@ -59,11 +59,6 @@ LAYOUT = [
                "1,2,4,16,64", "--samplers",
                "sobol,zsobol,zjoint,zquad,sobol12,zsobol12,pbrt-padded,pbrt-zsobol",
                "--interactions", "--out", "{out}", "--markdown", "{md}"], True),
-        (["render-cornell-direct-1,2,4,16,64-interacting"],
-         EX + ["render", "--", "--scene", "cornell-direct", "--seeds", "16", "--spp",
-               "1,2,4,16,64", "--samplers", "sobol,zjoint,zquad,sobol12-4,zsobol12-4",
-               "--layout", "interacting", "--interactions", "--out", "{out}", "--markdown",
-               "{md}"], True),
         (["render-studio-direct-1,2,4"],
          EX + ["render", "--", "--scene", "studio-direct", "--seeds", "64", "--spp", "1,2,4",
                "--samplers", "sobol,zsobol,zjoint,pbrt-zsobol,pbrt-zsobol-seeded",
@@ -79,6 +74,11 @@ LAYOUT = [
 
 # Studies kept out of the file (their latest runs are in git's history), rerun by --extras.
 EXTRAS = [
+    (["render-cornell-direct-1,2,4,16,64-interacting"],
+     EX + ["render", "--", "--scene", "cornell-direct", "--seeds", "16", "--spp",
+           "1,2,4,16,64", "--samplers", "sobol,zjoint,zquad,sobol12-4,zsobol12-4",
+           "--layout", "interacting", "--interactions", "--out", "{out}", "--markdown",
+           "{md}"], True),
     (["nets-zjoint-8"], EX + ["nets", "--", "--markdown", "{md}"], False),
     (["render-cornell-4,16,64,256"],
      EX + ["render", "--", "--scene", "cornell", "--seeds", "16", "--spp", "4,16,64,256",
