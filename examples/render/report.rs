@@ -52,12 +52,13 @@ pub fn results(rows: &[Row]) -> (String, String) {
 const BASELINE: &str = "sobol";
 
 /// Every render's figures as ratios to `sobol`'s at the same count in the same run (`None`
-/// without `sobol`): per-pixel RMSE and the low-band share of the error, over all pixels and
+/// without `sobol` or with nothing beside it): per-pixel RMSE and the low-band share of the error, over all pixels and
 /// without those that see an emitter, and (with `--interactions`, at the smallest count) the
 /// interaction part's low band.
 pub fn ratios(rows: &[Row]) -> Option<String> {
     let base = |spp: u32| rows.iter().find(|r| r.name == BASELINE && r.spp == spp);
-    rows.iter().any(|r| r.name == BASELINE).then_some(())?;
+    let others = rows.iter().any(|r| r.name != BASELINE);
+    (others && rows.iter().any(|r| r.name == BASELINE)).then_some(())?;
     let mut t = format!(
         "Ratios to `{BASELINE}` at the same count, same run (below 1: better; the low-band \
          share below 1 is bluer).\n\n| sampler | spp | rmse | masked rmse | lowband | masked \
@@ -198,8 +199,23 @@ pub fn write_trade(
     sequences: &[(String, Method)],
     rows: &[Row],
 ) -> Result<String, CliError> {
-    let targets = trade_targets(args, rows);
     let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.ms, r.rmse)).collect();
+    if args.spp.len() < 2 {
+        // a power law needs two counts: no time to an error to fit
+        write_pareto(
+            args,
+            sequences,
+            rows,
+            &points,
+            &study::pareto_front(&points),
+        )?;
+        return Ok(
+            "The renderer's trade (the time to reach an error) needs two or more \
+                   counts (`--spp`); this run has one.\n"
+                .to_string(),
+        );
+    }
+    let targets = trade_targets(args, rows);
     let front = study::pareto_front(&points);
     let lines = trade_lines(args, sequences, rows, &targets);
     let table = trade_table(args, &targets, &lines, rows, &front);
@@ -208,10 +224,9 @@ pub fn write_trade(
 }
 
 /// The trade's target RMSEs: the median over the sequences at each count but the smallest
-/// (with one count, the first row's RMSE).
+/// (two or more counts).
 fn trade_targets(args: &Args, rows: &[Row]) -> Vec<f64> {
-    let mut targets: Vec<f64> = args
-        .spp
+    args.spp
         .iter()
         .skip(1)
         .map(|&spp| {
@@ -223,11 +238,7 @@ fn trade_targets(args: &Args, rows: &[Row]) -> Vec<f64> {
             v.sort_by(f64::total_cmp);
             v[v.len() / 2]
         })
-        .collect();
-    if targets.is_empty() {
-        targets = rows.iter().map(|r| r.rmse).take(1).collect();
-    }
-    targets
+        .collect()
 }
 
 /// Whether sequence `name` has a render on the Pareto front `front` (indices into `rows`).

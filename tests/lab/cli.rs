@@ -361,7 +361,7 @@ fn render_draws_the_pbrt_references_and_the_experiments_in_the_studio() {
             "--scene",
             "studio-direct",
             "--samplers",
-            "sobol,pbrt-padded,pbrt-zsobol,sobol+shells,pmj02+permute",
+            "sobol,pbrt-padded,pbrt-zsobol,pbrt-zsobol-seeded,sobol+shells,pmj02+permute",
             "--spp",
             "1,4",
             "--size",
@@ -400,6 +400,8 @@ fn render_draws_the_pbrt_references_and_the_experiments_in_the_studio() {
             ("pbrt-padded", "4"),
             ("pbrt-zsobol", "1"),
             ("pbrt-zsobol", "4"),
+            ("pbrt-zsobol-seeded", "1"),
+            ("pbrt-zsobol-seeded", "4"),
             ("sobol+shells", "1"),
             ("sobol+shells", "4"),
             ("pmj02+permute", "1"),
@@ -420,8 +422,16 @@ fn render_draws_the_pbrt_references_and_the_experiments_in_the_studio() {
         .skip(2)
         .take_while(|l| l.starts_with('|'))
         .collect();
-    assert_eq!(split.len(), 5, "{out}");
+    assert_eq!(split.len(), 6, "{out}");
     assert!(split[2].starts_with("| pbrt-zsobol | 1 |"), "{out}");
+    // the seeded order is another sampler: its draws differ from pbrt's at the same seed
+    let row = |name: &str| {
+        rows.iter()
+            .find(|r| r[0] == name && r[1] == "1")
+            .unwrap()
+            .clone()
+    };
+    assert_ne!(row("pbrt-zsobol")[2], row("pbrt-zsobol-seeded")[2], "{csv}");
     let _ = std::fs::remove_dir_all(&dir);
     for (args, says) in [
         (
@@ -433,7 +443,10 @@ fn render_draws_the_pbrt_references_and_the_experiments_in_the_studio() {
             "powers of two",
         ),
         (vec!["--samplers", "sobol+twist"], "not an experiment"),
-        (vec!["--samplers", "pbrt"], "pbrt-padded, pbrt-zsobol"),
+        (
+            vec!["--samplers", "pbrt"],
+            "pbrt-padded, pbrt-zsobol, pbrt-zsobol-seeded",
+        ),
         (
             vec!["--scene", "studio", "--interactions"],
             "direct-lighting",
@@ -523,9 +536,58 @@ fn render_splits_the_error_into_one_draw_and_interaction_parts() {
         // (both parts carry error at 1 spp)
         assert!(cells[0] > 0.0 && cells[3] > 0.0, "{row}");
     }
+    // each draw's main effect: a row per sampler, a low band per draw of the camera and the
+    // first bounce (film, lens, lobe, light choice, light point)
+    let per_draw: Vec<&str> = out
+        .lines()
+        .skip_while(|l| !l.starts_with("| sampler | spp | film | lens | lobe |"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .collect();
+    assert_eq!(per_draw.len(), 2, "{out}");
+    for (row, name) in per_draw.iter().zip(["random", "zjoint"]) {
+        assert!(row.starts_with(&format!("| {name} | 1 |")), "{row}");
+        let cells: Vec<f64> = row
+            .split('|')
+            .skip(3)
+            .filter_map(|c| c.trim().parse().ok())
+            .collect();
+        assert_eq!(cells.len(), 5, "{row}");
+        assert!(cells.iter().all(|v| v.is_finite() && *v >= 0.0), "{row}");
+    }
     for f in ["emitter-mask.png", "blue-noise-masked.png"] {
         assert!(dir.join(f).exists(), "{f}");
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn render_with_one_count_or_one_sampler_says_what_it_cannot_show() {
+    // one count: no power law to fit for the time to an error; sobol alone: nothing to divide
+    let dir = std::env::temp_dir().join(format!("strata-render-one-{}", std::process::id()));
+    let (code, out, err) = run_example(
+        "render",
+        &[
+            "--scene",
+            "cornell-direct",
+            "--samplers",
+            "sobol",
+            "--spp",
+            "2",
+            "--size",
+            "16x16",
+            "--reference-spp",
+            "64",
+            "--seeds",
+            "1",
+            "--out",
+            dir.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("needs two or more counts"), "{out}");
+    assert!(!out.contains(" at  spp"), "{out}");
+    assert!(!out.contains("Ratios to"), "{out}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
