@@ -3,7 +3,7 @@
 
 usage: tools/criterion_table.py GROUP_PREFIX [BASELINE_ID] [--before SAVED] [--markdown FILE --section NAME]
 
-Reads target/criterion/<group>/<id>/new/estimates.json for every group whose name starts with
+Reads target/criterion/<group>/<id>/new/estimates.json (under $CARGO_TARGET_DIR when set) for every group whose name starts with
 GROUP_PREFIX (criterion writes '/' in group names as '_'). For each group, prints the median time
 per iteration, the time per element when the benchmark declared a throughput, and the ratio to
 BASELINE_ID measured in the same group (default: the id containing 'baseline'; a comma-separated
@@ -67,7 +67,8 @@ def main():
         sys.exit(__doc__)
     prefix = args[0].replace("/", "_")
     baseline_id = args[1] if len(args) > 1 else None
-    root = os.path.join("target", "criterion")
+    # criterion writes under the cargo target directory (CARGO_TARGET_DIR when set)
+    root = os.path.join(os.environ.get("CARGO_TARGET_DIR") or "target", "criterion")
     groups = sorted(g for g in os.listdir(root) if g.startswith(prefix))
     lines = []
     print = lines.append  # noqa: A001 - collect the table, then print or write it
@@ -112,7 +113,11 @@ def main():
     builtins.print(table)
     if markdown:
         command = " ".join(["python3", "tools/criterion_table.py"] + sys.argv[1:])
-        write_section(markdown, section, f"<!-- written by `{command}` after `cargo bench` -->\n\n{table}\n")
+        # the build the run measured: the environment that changes it, as given
+        env = " ".join(f"{k}='{os.environ[k]}'" for k in ("CARGO_TARGET_DIR", "RUSTFLAGS")
+                       if os.environ.get(k))
+        bench = f"{env} cargo bench" if env else "cargo bench"
+        write_section(markdown, section, f"<!-- written by `{command}` after `{bench}` -->\n\n{table}\n")
 
 
 if __name__ == "__main__":

@@ -69,6 +69,14 @@ LAYOUT = [
          ["sh", "-c", "cargo bench -p strata-benches --bench pixel && python3 "
           "tools/criterion_table.py pixel sobol_burley-sample_4d,sobol_burley-sample "
           "--markdown {md} --section bench-pixel"], True),
+        # the same image group built for x86-64-v3 (AVX2; SSE4.1's 32-bit multiply), where the
+        # peer's four-lane code runs natively: needs such a CPU
+        (["bench-pixel-x86-64-v3"],
+         ["sh", "-c", "export CARGO_TARGET_DIR=target/x86-64-v3 RUSTFLAGS='-C "
+          "target-cpu=x86-64-v3' && cargo bench -p strata-benches --bench pixel -- pixel/get_2d "
+          "&& python3 tools/criterion_table.py pixel_get_2d "
+          "sobol_burley-sample_4d,sobol_burley-sample --markdown {md} "
+          "--section bench-pixel-x86-64-v3"], True),
     ]),
 ]
 
