@@ -114,8 +114,10 @@ def main():
     if markdown:
         command = " ".join(["python3", "tools/criterion_table.py"] + sys.argv[1:])
         # the build the run measured: the environment that changes it, as given
-        env = " ".join(f"{k}='{os.environ[k]}'" for k in ("CARGO_TARGET_DIR", "RUSTFLAGS")
-                       if os.environ.get(k))
+        given = {k: os.environ.get(k) for k in ("CARGO_TARGET_DIR", "RUSTFLAGS")}
+        if given["CARGO_TARGET_DIR"]:
+            given["CARGO_TARGET_DIR"] = os.path.relpath(given["CARGO_TARGET_DIR"])
+        env = " ".join(f"{k}='{v}'" for k, v in given.items() if v)
         bench = f"{env} cargo bench" if env else "cargo bench"
         write_section(markdown, section, f"<!-- written by `{command}` after `{bench}` -->\n\n{table}\n")
 

@@ -72,7 +72,7 @@ LAYOUT = [
         # the same image group built for x86-64-v3 (AVX2; SSE4.1's 32-bit multiply), where the
         # peer's four-lane code runs natively: needs such a CPU
         (["bench-pixel-x86-64-v3"],
-         ["sh", "-c", "export CARGO_TARGET_DIR=target/x86-64-v3 RUSTFLAGS='-C "
+         ["sh", "-c", "export CARGO_TARGET_DIR=\"$PWD/target/x86-64-v3\" RUSTFLAGS='-C "
           "target-cpu=x86-64-v3' && cargo bench -p strata-benches --bench pixel -- pixel/get_2d "
           "&& python3 tools/criterion_table.py pixel_get_2d "
           "sobol_burley-sample_4d,sobol_burley-sample --markdown {md} "
