@@ -5,7 +5,7 @@
 
 use strata::pixel::GpuParameters;
 
-/// The compute shader around the kernel: tuple `k` is [`tuple`]`(k)`, computed the same way on
+/// The compute shader around the kernel: tuple `k` is [`tuple()`]`(k)`, computed the same way on
 /// both sides; its two 32-bit values land at `out[2k]`, `out[2k + 1]`.
 pub fn compute_shader() -> String {
     format!(
