@@ -554,7 +554,7 @@ fn write_err(e: std::io::Error) -> Error {
 /// Writes sets in `format`: CSV takes one set (with a header `x,y` or `x0,x1,...`); UTK text
 /// separates sets with `#`; UTK binary writes `f64` coordinates. Numbers in the text formats
 /// use Rust's shortest round-trip form, so reading them back gives the same values.
-pub fn write(out: &mut impl Write, format: Format, sets: &[PointSet]) -> Result<()> {
+pub fn write(sets: &[PointSet], format: Format, out: &mut impl Write) -> Result<()> {
     if format == Format::Csv && sets.len() != 1 {
         return Err(Error::input(
             CONTEXT,
@@ -696,7 +696,7 @@ mod tests {
 
     fn written(format: Format, sets: &[PointSet]) -> Vec<u8> {
         let mut out = Vec::new();
-        write(&mut out, format, sets).unwrap();
+        write(sets, format, &mut out).unwrap();
         out
     }
 
@@ -868,13 +868,13 @@ mod tests {
     #[test]
     fn writers_refuse_what_their_format_cannot_hold() {
         let mut s = sets();
-        assert!(write(&mut Vec::new(), Format::Csv, &s).is_err());
+        assert!(write(&s, Format::Csv, &mut Vec::new()).is_err());
         s[1] = PointSet::new(vec![0.5; 3], 3).unwrap();
-        let m = write(&mut Vec::new(), Format::UtkBin, &s)
+        let m = write(&s, Format::UtkBin, &mut Vec::new())
             .unwrap_err()
             .to_string();
         assert!(m.contains("one shape"), "{m}");
-        assert!(write(&mut Vec::new(), Format::UtkBin, &[]).is_err());
+        assert!(write(&[], Format::UtkBin, &mut Vec::new()).is_err());
         assert!(PointSet::new(vec![0.5; 3], 2).is_err());
         assert!(PointSet::new(vec![0.5, 1.0], 2).is_err());
     }

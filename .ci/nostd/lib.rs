@@ -36,7 +36,7 @@ static ALLOCATOR: NoAlloc = NoAlloc;
 /// Sobol' (Owen-scrambled) by index, dimension and seed.
 #[unsafe(no_mangle)]
 pub extern "C" fn strata_sobol(index: u32, dim: u32, seed: u64) -> f32 {
-    sobol::owen_scrambled(index, dim, seed).unwrap_or(-1.0)
+    sobol::owen_scrambled(index, dim, Seed(seed)).unwrap_or(-1.0)
 }
 
 /// Sequence `k` of `Sequence::NAMES` (every one of them, by the list: a new sequence is linked
@@ -62,7 +62,7 @@ pub extern "C" fn strata_pmj02(index: u32, seed: u64) -> f32 {
 /// Scrambled Halton by index, dimension and seed.
 #[unsafe(no_mangle)]
 pub extern "C" fn strata_halton(index: u64, dim: u32, seed: u64) -> f32 {
-    halton::scrambled_radical_inverse(index, dim % halton::MAX_DIMENSIONS, seed).unwrap_or(0.0)
+    halton::scrambled_radical_inverse(index, dim % halton::MAX_DIMENSIONS, Seed(seed)).unwrap_or(0.0)
 }
 
 /// Hashing, Kensler's permutation and float conversion.

@@ -88,8 +88,8 @@ impl Method {
         }
         let why = match self {
             Method::PbrtZSobol { .. } => {
-                "pbrt-zsobol takes powers of two only (pbrt's ZSobol rounds \
-                                   the count down)"
+                "pbrt-zsobol and pbrt-zsobol-seeded take powers of two only (pbrt's ZSobol \
+                 rounds the count down)"
             }
             Method::Repaired(_, Repair::Permute) => {
                 "the +permute experiments take powers of two only (a permutation of a pixel's \

@@ -193,7 +193,8 @@ struct Line {
 /// (power laws of RMSE and time against spp, fitted over the measured counts; `*`: outside
 /// them). The targets are the median RMSE over the sequences at each count but the smallest
 /// (the error a typical sequence reaches there). Writes `pareto.png` (RMSE against render
-/// time, sequences on the Pareto front bold) and returns the Markdown table.
+/// time, sequences on the Pareto front bold) and returns the Markdown table (with one count,
+/// a sentence: a power law needs two).
 pub fn write_trade(
     args: &Args,
     sequences: &[(String, Method)],

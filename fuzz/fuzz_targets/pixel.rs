@@ -12,7 +12,7 @@ fuzz_target!(|data: &[u8]| {
     let w = |i: usize| u64::from_le_bytes(data[i..i + 8].try_into().unwrap());
     let name = Sequence::NAMES[data[0] as usize % Sequence::NAMES.len()];
     let spp = (data[1] as u32).max(1);
-    let Ok(s) = PixelSampler::new(Sequence::by_name(name).unwrap(), spp, strata::Seed(w(2))) else { return };
+    let Ok(s) = PixelSampler::new(Sequence::by_name(name, [64, 64]).unwrap(), spp, strata::Seed(w(2))) else { return };
     let pixel = [w(10) as u32, (w(10) >> 32) as u32];
     let (index, dim) = (w(18), w(24) as u32);
     let v = s.sample_2d(pixel, index, dim);

@@ -26,7 +26,7 @@ fuzz_target!(|data: &[u8]| {
     if entry.expensive && n > 400 && n < 1 << 40 {
         n %= 400;
     }
-    let mut p = Params::new(n).seed(word(17));
+    let mut p = Params::new(n).seed(strata::Seed(word(17)));
     let flags = data[25];
     if flags & 1 != 0 {
         p.set("radius", f64::from_bits(word(26)));

@@ -235,7 +235,6 @@ enum AnyPoints<'py> {
     F64(PyReadonlyArray2<'py, f64>),
 }
 
-/// Runs `f` on the coordinates of `points` (a slice of either float type) and its dimension.
 /// The number of columns of a point array as the library's dimension count.
 fn dims_of(columns: usize, what: &str) -> PyResult<u32> {
     u32::try_from(columns).map_err(|_| {
@@ -246,6 +245,7 @@ fn dims_of(columns: usize, what: &str) -> PyResult<u32> {
     })
 }
 
+/// Runs `f` on the coordinates of `points` (a slice of either float type) and its dimension.
 macro_rules! with_points {
     ($points:expr, $what:expr, |$s:ident, $d:ident| $body:expr) => {
         match &$points {
@@ -285,7 +285,7 @@ fn discrepancy(py: Python<'_>, points: AnyPoints<'_>, method: &str) -> PyResult<
             "MD" => disc::mixture_squared(s, d),
             "L2-star" => disc::l2_star(s, d),
             _ if d != 2 => Err(strata_lab::Error::input(
-                "discrepancy::star_2d",
+                "analysis::discrepancy::star_2d",
                 format!(
                     "the exact star discrepancy is for 2D sets; these points have {d} dimensions"
                 ),

@@ -54,7 +54,7 @@ fn check<T: Copy + Into<f64>>(points: &[T], dims: usize) -> Result<usize> {
         .find(|v: &f64| !(0.0..=1.0).contains(v))
     {
         return Err(Error::input(
-            "discrepancy",
+            "analysis::discrepancy",
             format!("coordinate {v} is outside [0, 1]"),
         ));
     }
@@ -179,7 +179,7 @@ pub fn net_t_value<T: Copy + Into<f64>>(points: &[T]) -> Result<Option<u32>> {
         .find(|v: &f64| !(0.0..1.0).contains(v))
     {
         return Err(Error::input(
-            "discrepancy::net_t_value",
+            "analysis::discrepancy::net_t_value",
             format!("coordinate {v} is outside [0, 1), where a net's cells lie"),
         ));
     }
@@ -215,7 +215,7 @@ pub fn star_2d<T: Copy + Into<f64>>(points: &[T]) -> Result<f64> {
     let n = check(points, 2)?;
     if n > MAX_EXACT_STAR {
         return Err(Error::input(
-            "discrepancy::star_2d",
+            "analysis::discrepancy::star_2d",
             format!("{n} points; the exact star discrepancy takes at most {MAX_EXACT_STAR}"),
         ));
     }

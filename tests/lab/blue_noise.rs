@@ -239,7 +239,7 @@ fn blue_noise_sets_are_well_spaced() {
 
 #[test]
 fn best_candidate_is_progressive() {
-    let mut p = Params::new(1);
+    let mut p = Params::new(1).seed(strata::Seed(1));
     p.set("candidates", (2) as f64);
     let mut s = registry::build("best-candidate", &p).unwrap();
     let pts = crate::common::take(s.as_mut(), 512);

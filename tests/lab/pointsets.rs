@@ -7,7 +7,7 @@ use strata_lab::pointsets::{self, Format, PointSet};
 
 fn valid(format: Format, sets: &[PointSet]) -> Vec<u8> {
     let mut out = Vec::new();
-    pointsets::write(&mut out, format, sets).unwrap();
+    pointsets::write(sets, format, &mut out).unwrap();
     out
 }
 

@@ -29,7 +29,7 @@ fn table() {
         for name in ["pmj02bn", "pmj02"] {
             let mut sum = 0.0;
             for seed in 0..32u64 {
-                let mut params = Params::new(n as u64).seed(seed);
+                let mut params = Params::new(n as u64).seed(strata::Seed(seed));
                 if name == "pmj02bn" {
                     params.iterations = std::env::var("SWEEPS").ok().map(|v| v.parse().unwrap());
                 }
@@ -62,7 +62,7 @@ fn main() {
     for r in 0..rounds {
         let run_ours = |buf: &mut Vec<Point2>| {
             let t = Instant::now();
-            let mut params = Params::new(n as u64).seed(1000 + r as u64);
+            let mut params = Params::new(n as u64).seed(strata::Seed(1000 + r as u64));
             params.iterations = std::env::var("SWEEPS").ok().map(|v| v.parse().unwrap());
             let mut s = registry::build("pmj02bn", &params).unwrap();
             s.fill(buf);
