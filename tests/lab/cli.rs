@@ -240,6 +240,24 @@ fn the_main_job_and_the_study_give_the_same_bytes_with_1_and_2_threads() {
     assert_eq!(one.2, two.2, "the study differs between 1 and 2 threads");
 }
 
+/// The rows of the Markdown table a program printed under the header line that contains
+/// `header` (after its `|---|` line), up to the first line that is not a row.
+fn printed_table<'a>(out: &'a str, header: &str) -> Vec<&'a str> {
+    out.lines()
+        .skip_while(|l| !l.contains(header))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .collect()
+}
+
+/// The numbers of a printed table row after its first two cells (sampler, count).
+fn row_numbers(row: &str) -> Vec<f64> {
+    row.split('|')
+        .skip(3)
+        .filter_map(|c| c.trim().parse().ok())
+        .collect()
+}
+
 fn run_example(name: &str, args: &[&str]) -> (i32, String, String) {
     let bin = example_bin(name).unwrap_or_else(|| panic!("the {name} example is built"));
     let out = Command::new(bin)
@@ -416,12 +434,7 @@ fn render_draws_the_pbrt_references_and_the_experiments_in_the_studio() {
         }
     }
     // the interaction split has a row per sampler at the smallest count
-    let split: Vec<&str> = out
-        .lines()
-        .skip_while(|l| !l.contains("one-draw rmse"))
-        .skip(2)
-        .take_while(|l| l.starts_with('|'))
-        .collect();
+    let split: Vec<&str> = printed_table(&out, "one-draw rmse");
     assert_eq!(split.len(), 6, "{out}");
     assert!(split[2].starts_with("| pbrt-zsobol | 1 |"), "{out}");
     // the seeded order is another sampler: its draws differ from pbrt's at the same seed
@@ -517,20 +530,11 @@ fn render_splits_the_error_into_one_draw_and_interaction_parts() {
     );
     assert_eq!(code, 0, "{err}");
     // one row per sampler at the smallest count, each part's figures finite
-    let table: Vec<&str> = out
-        .lines()
-        .skip_while(|l| !l.contains("one-draw rmse"))
-        .skip(2)
-        .take_while(|l| l.starts_with('|'))
-        .collect();
+    let table: Vec<&str> = printed_table(&out, "one-draw rmse");
     assert_eq!(table.len(), 2, "{out}");
     for (row, name) in table.iter().zip(["random", "zjoint"]) {
         assert!(row.starts_with(&format!("| {name} | 1 |")), "{row}");
-        let cells: Vec<f64> = row
-            .split('|')
-            .skip(3)
-            .filter_map(|c| c.trim().parse().ok())
-            .collect();
+        let cells = row_numbers(row);
         assert_eq!(cells.len(), 6, "{row}");
         assert!(cells.iter().all(|v| v.is_finite() && *v >= 0.0), "{row}");
         // (both parts carry error at 1 spp)
@@ -538,20 +542,11 @@ fn render_splits_the_error_into_one_draw_and_interaction_parts() {
     }
     // each draw's main effect: a row per sampler, a low band per draw of the camera and the
     // first bounce (film, lens, lobe, light choice, light point)
-    let per_draw: Vec<&str> = out
-        .lines()
-        .skip_while(|l| !l.starts_with("| sampler | spp | film | lens | lobe |"))
-        .skip(2)
-        .take_while(|l| l.starts_with('|'))
-        .collect();
+    let per_draw: Vec<&str> = printed_table(&out, "| sampler | spp | film | lens | lobe |");
     assert_eq!(per_draw.len(), 2, "{out}");
     for (row, name) in per_draw.iter().zip(["random", "zjoint"]) {
         assert!(row.starts_with(&format!("| {name} | 1 |")), "{row}");
-        let cells: Vec<f64> = row
-            .split('|')
-            .skip(3)
-            .filter_map(|c| c.trim().parse().ok())
-            .collect();
+        let cells = row_numbers(row);
         assert_eq!(cells.len(), 5, "{row}");
         assert!(cells.iter().all(|v| v.is_finite() && *v >= 0.0), "{row}");
     }
@@ -631,11 +626,8 @@ fn render_runs_the_frames_and_the_interacting_layout() {
     assert_eq!(code, 0, "{err}");
     // the frames table: a row per sampler and count, figures finite, the interaction part's low
     // band at the smallest count only
-    let frames: Vec<Vec<String>> = out
-        .lines()
-        .skip_while(|l| !l.contains("| plain rmse |"))
-        .skip(2)
-        .take_while(|l| l.starts_with('|'))
+    let frames: Vec<Vec<String>> = printed_table(&out, "| plain rmse |")
+        .iter()
         .map(|l| l.split('|').map(|c| c.trim().to_string()).collect())
         .collect();
     let names: Vec<(&str, &str)> = frames

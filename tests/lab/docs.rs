@@ -402,26 +402,29 @@ fn the_entry_types_are_a_leaf_below_the_samplers_and_the_registry_is_above_them(
     );
 }
 
+/// Every `.rs` file under the repository's directories `dirs`, at any depth.
+fn rust_sources(dirs: &[&str]) -> Vec<std::path::PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut stack: Vec<_> = dirs.iter().map(|d| root.join(d)).collect();
+    let mut files = Vec::new();
+    while let Some(p) = stack.pop() {
+        if p.is_dir() {
+            stack.extend(std::fs::read_dir(&p).unwrap().map(|e| e.unwrap().path()));
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            files.push(p);
+        }
+    }
+    files
+}
+
 #[test]
 fn no_source_cites_an_issue_number() {
     // the code says why in its own words; an issue's number means nothing to a reader of the
     // published crates (history is git's)
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut stack: Vec<_> = ["strata/src", "src", "python/src", "examples"]
-        .iter()
-        .map(|d| root.join(d))
-        .collect();
-    let (mut files, mut cited) = (0, Vec::new());
-    while let Some(p) = stack.pop() {
-        if p.is_dir() {
-            stack.extend(std::fs::read_dir(&p).unwrap().map(|e| e.unwrap().path()));
-            continue;
-        }
-        if p.extension().is_none_or(|e| e != "rs") {
-            continue;
-        }
-        files += 1;
-        for (n, line) in std::fs::read_to_string(&p).unwrap().lines().enumerate() {
+    let sources = rust_sources(&["strata/src", "src", "python/src", "examples"]);
+    let (files, mut cited) = (sources.len(), Vec::new());
+    for p in &sources {
+        for (n, line) in std::fs::read_to_string(p).unwrap().lines().enumerate() {
             let lower = line.to_lowercase();
             for (i, _) in lower.match_indices("issue") {
                 let rest = lower[i + 5..].trim_start_matches(['s', ' ', '#']);
@@ -444,8 +447,6 @@ fn every_error_context_written_in_the_code_is_a_rust_path() {
     // an error names where it happened in one form: the path of what was called
     // (`Sequence::by_name`, `spectrum::point_set_measures`, `pointsets`), which is also how a
     // sampler's name reads; paths and names built at run time are not literals
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut stack: Vec<_> = ["strata/src", "src"].iter().map(|d| root.join(d)).collect();
     let is_path = |c: &str| {
         !c.is_empty()
             && c.split("::").all(|part| {
@@ -456,14 +457,7 @@ fn every_error_context_written_in_the_code_is_a_rust_path() {
             })
     };
     let (mut contexts, mut bad) = (0, Vec::new());
-    while let Some(p) = stack.pop() {
-        if p.is_dir() {
-            stack.extend(std::fs::read_dir(&p).unwrap().map(|e| e.unwrap().path()));
-            continue;
-        }
-        if p.extension().is_none_or(|e| e != "rs") {
-            continue;
-        }
+    for p in rust_sources(&["strata/src", "src"]) {
         let text = std::fs::read_to_string(&p).unwrap();
         let mut literals: Vec<String> = Vec::new();
         for call in ["Error::input(", "Error::parameter(", "Error::count("] {
