@@ -35,6 +35,10 @@ pub(crate) mod streams {
     pub(crate) const NET02BN: u64 = 0x0602;
     /// The blue-noise (0,m,2)-net's sweeps: sweep `s` draws stream `NET02BN_SWEEPS + s`.
     pub(crate) const NET02BN_SWEEPS: u64 = 0x0603;
+    /// The blue-noise table optimiser's generator.
+    pub(crate) const BNTABLE: [u64; 2] = [0x0b70, 0x0b71];
+    /// The test integrands of a table's figures.
+    pub(crate) const BNTABLE_TESTS: [u64; 2] = [0x0b72, 0x0b73];
 }
 
 /// PCG32 seeded from two streams of `key` (state and increment).

@@ -64,6 +64,15 @@ LAYOUT = [
                "--samplers", "sobol,zsobol,zjoint,pbrt-zsobol,pbrt-zsobol-seeded",
                "--interactions", "--out", "{out}", "--markdown", "{md}"], True),
     ]),
+    ("Blue noise without a count", [
+        # one configuration of the progressive sequences at every count, beside zsobol told
+        # each count and OpenQMC's blue-noise sampler, and an adaptive image
+        (["render-" + scene + "-1,2,3,4,8,16,64,256-adaptive"],
+         EX + ["render", "--", "--scene", scene, "--seeds", "32", "--spp",
+               "1,2,3,4,8,16,64,256", "--samplers", "sobol,zsobol,sobolbn,openqmc-sobolbn",
+               "--adaptive", "64", "--out", "{out}", "--markdown", "{md}"], True)
+        for scene in ["cornell-direct", "cornell", "studio"]
+    ]),
     ("Speed of the path-tracer adapter", [
         (["bench-pixel"],
          ["sh", "-c", "cargo bench -p strata-benches --bench pixel && python3 "

@@ -26,8 +26,8 @@ directly or in a mirror, whose error is the emitter's edge), emitter-mask.png (t
 those pixels in magenta), NAME.png and NAME-error.png (the largest count; the error map is the per-pixel \
 relative error, colour-mapped from 0 to 0.5), NAME-SPP.png and NAME-SPP-error-spectrum.png \
 (the signed error image beside its periodogram) for each count, reference.png, compare.png \
-(one row per sampler), blue-noise.png (every sampler's error image and periodogram at the \
-smallest count) and blue-noise-masked.png (the same without the pixels that see an emitter), convergence.png (RMSE against spp with the fitted slope per sampler) and \
+(one row per sampler), blue-noise.png (every sampler's error image and periodogram at 1, 4 and \
+16 spp, those rendered, else at the smallest count) and blue-noise-masked.png (the same without the pixels that see an emitter), convergence.png (RMSE against spp with the fitted slope per sampler) and \
 pareto.png (RMSE against render time, the sequences on the Pareto front bold); prints the \
 tables, the slopes and the renderer's trade: per sequence the render time to reach the RMSE \
 that the median sequence reaches at each count but the smallest (power laws of RMSE and \
@@ -68,6 +68,12 @@ struct Cli {
     /// the interaction part's low band too)
     #[arg(long, value_name = "F", value_parser = common::whole::<u32>("--frames", 2, 64))]
     frames: Option<u32>,
+    /// also an adaptive image per sampler and seed: each pixel stops at its own count, drawn
+    /// uniformly from 1 to MAX (2 to 4096) by a hash of the pixel and the seed, the same for
+    /// every sampler (a Z-ordered sequence is told MAX); measured as the other renders,
+    /// emitters masked: a table on stdout and in --markdown, and adaptive.csv
+    #[arg(long, value_name = "MAX", value_parser = common::whole::<u32>("--adaptive", 2, 4096))]
+    adaptive: Option<u32>,
     /// the tiles' side of --frames, 1 to 64
     #[arg(long, value_name = "T", default_value_t = 4,
           value_parser = common::whole::<u32>("--frame-tile", 1, strata::pixel::frames::MAX_TILE as u64))]
@@ -96,8 +102,8 @@ struct Cli {
     #[arg(long)]
     interactions: bool,
     /// also write the tables into FILE, as its section 'render-SCENE-COUNTS' (e.g.
-    /// render-cornell-4,16,64,256), followed by -interacting, -frames, -nested or -uniform with
-    /// those options
+    /// render-cornell-4,16,64,256), followed by -interacting, -frames, -adaptive, -nested or
+    /// -uniform with those options
     #[arg(long, value_name = "FILE")]
     markdown: Option<PathBuf>,
 }
@@ -139,6 +145,8 @@ pub struct Args {
     pub frames: u32,
     /// `--frame-tile T`: its tiles' side.
     pub frame_tile: u32,
+    /// `--adaptive MAX`: the largest stopping count of the adaptive images.
+    pub adaptive: Option<u32>,
     pub reference_spp: Option<u32>,
     pub seed: u64,
     pub seeds: u32,
@@ -157,8 +165,9 @@ pub fn parse() -> Result<Option<Args>, CliError> {
          references written in this program, not in all: pbrt-padded (pbrt-v4's \
          PaddedSobolSampler, FastOwen), pbrt-zsobol (its ZSobolSampler; powers of two) and \
          pbrt-zsobol-seeded (the same with the seed in its pixel order's hash, which pbrt keys \
-         by the dimension alone: a new order per seed, as the crate's Z-ordered sequences), and \
-         experiments on a sequence SEQ, not in all: SEQ+permute (each draw reads its samples \
+         by the dimension alone: a new order per seed, as the crate's Z-ordered sequences), \
+         openqmc-sobolbn (OpenQMC's SobolBnSampler: progressive blue noise from its 256 x 256 \
+         table; the seed is its frame, times 65536), and experiments on a sequence SEQ, not in all: SEQ+permute (each draw reads its samples \
          through a random permutation of the pixel's 0..spp, pbrt's pairing; powers of two) and \
          SEQ+shells (a random permutation inside each shell [2^j, 2^(j+1)) of the index: every \
          power-of-two prefix keeps its samples)",
@@ -182,6 +191,7 @@ pub fn parse() -> Result<Option<Args>, CliError> {
         layout: c.layout,
         frames: c.frames.unwrap_or(0),
         frame_tile: c.frame_tile,
+        adaptive: c.adaptive,
         reference_spp: c.reference_spp,
         seed: c.seed,
         seeds: c.seeds,
@@ -308,13 +318,18 @@ pub fn markdown_section(args: &Args) -> String {
         Layout::Interacting => "-interacting",
     };
     let frames = if args.frames > 0 { "-frames" } else { "" };
+    let adaptive = if args.adaptive.is_some() {
+        "-adaptive"
+    } else {
+        ""
+    };
     let padding = match args.padding {
         Padding::Nested => "-nested",
         Padding::Uniform => "-uniform",
         _ => "",
     };
     format!(
-        "render-{}-{}{layout}{frames}{padding}",
+        "render-{}-{}{layout}{frames}{adaptive}{padding}",
         args.scene.name(),
         counts.join(",")
     )

@@ -13,59 +13,77 @@ use crate::picture::{error_canvas, error_image_canvas, label_width, to_canvas};
 use crate::sweep::Row;
 
 /// blue-noise.png (or, `masked`, blue-noise-masked.png, without the pixels that see an emitter):
-/// per sampler (side by side), at the smallest count, the signed error image (one colour scale
-/// for all) above its periodogram: white error against blue.
+/// per sampler (side by side), the signed error image (one colour scale per count) above its
+/// periodogram: white error against blue; one band per count of 1, 4 and 16 that was rendered
+/// (the smallest count when none was).
 pub fn write_blue_noise(args: &Args, rows: &[Row], masked: bool) -> Result<(), CliError> {
-    let smallest = args.spp[0];
+    let mut counts: Vec<u32> = [1, 4, 16]
+        .into_iter()
+        .filter(|n| args.spp.contains(n))
+        .collect();
+    if counts.is_empty() {
+        counts.push(args.spp[0]);
+    }
     // each row's error image and pixels: all of them, or without the emitters' pixels
-    let mine: Vec<(&Row, &ErrorImage, &[f64])> = rows
-        .iter()
-        .filter(|r| r.spp == smallest)
-        .filter_map(|r| match (masked, &r.masked_errors) {
-            (false, _) => Some((r, &r.errors, r.error_pixels.as_slice())),
-            (true, Some((e, p))) => Some((r, e, p.as_slice())),
+    fn pick(r: &Row, masked: bool) -> Option<(&ErrorImage, &[f64])> {
+        match (masked, &r.masked_errors) {
+            (false, _) => Some((&r.errors, r.error_pixels.as_slice())),
+            (true, Some((e, p))) => Some((e, p.as_slice())),
             (true, None) => None,
+        }
+    }
+    let bands: Vec<Vec<(&Row, &ErrorImage, &[f64])>> = counts
+        .iter()
+        .map(|&n| {
+            rows.iter()
+                .filter(|r| r.spp == n)
+                .filter_map(|r| pick(r, masked).map(|(e, p)| (r, e, p)))
+                .collect()
         })
         .collect();
-    let Some(first) = mine.first() else {
+    let Some(first) = bands[0].first() else {
         return Ok(());
     };
     let (w, h) = (first.1.width, first.1.height);
     let label_h = 34u32;
     let cell_w = w.max(150) + 12;
-    let scale = 4.0 * mine.iter().map(|r| r.1.rmse).fold(1e-9, f64::max);
+    let band_h = label_h + 2 * h + 24;
     let mut c = Canvas::new(
-        8 + cell_w * mine.len() as u32,
-        label_h + 2 * h + 16,
+        8 + cell_w * bands[0].len() as u32,
+        band_h * bands.len() as u32,
         Rgb::WHITE,
     );
-    for (k, (r, errors, pixels)) in mine.iter().enumerate() {
-        let x = 8 + cell_w * k as u32;
-        io::label(
-            &mut c,
-            &format!("{} at {} spp", r.name, r.spp),
-            x as i32,
-            2,
-            12,
-        );
-        io::label(
-            &mut c,
-            &format!(
-                "low band {:.3}, blur2 {:.4}",
-                errors.lowband, errors.blur2_rmse
-            ),
-            x as i32,
-            17,
-            11,
-        );
-        let both = error_image_canvas(errors, pixels, scale);
-        // the canvas holds the image and the spectrum side by side: stack them
-        let mut image = Canvas::new(w, h, Rgb::WHITE);
-        image.paste(&both, 0, 0);
-        let mut spectrum = Canvas::new(w, h, Rgb::WHITE);
-        spectrum.paste(&both, -((w + 8) as i64), 0);
-        c.paste(&image, x as i64, label_h as i64);
-        c.paste(&spectrum, x as i64, (label_h + h + 8) as i64);
+    for (b, band) in bands.iter().enumerate() {
+        let top = b as u32 * band_h;
+        let scale = 4.0 * band.iter().map(|r| r.1.rmse).fold(1e-9, f64::max);
+        for (k, (r, errors, pixels)) in band.iter().enumerate() {
+            let x = 8 + cell_w * k as u32;
+            io::label(
+                &mut c,
+                &format!("{} at {} spp", r.name, r.spp),
+                x as i32,
+                top as i32 + 2,
+                12,
+            );
+            io::label(
+                &mut c,
+                &format!(
+                    "low band {:.3}, blur2 {:.4}",
+                    errors.lowband, errors.blur2_rmse
+                ),
+                x as i32,
+                top as i32 + 17,
+                11,
+            );
+            let both = error_image_canvas(errors, pixels, scale);
+            // the canvas holds the image and the spectrum side by side: stack them
+            let mut image = Canvas::new(w, h, Rgb::WHITE);
+            image.paste(&both, 0, 0);
+            let mut spectrum = Canvas::new(w, h, Rgb::WHITE);
+            spectrum.paste(&both, -((w + 8) as i64), 0);
+            c.paste(&image, x as i64, (top + label_h) as i64);
+            c.paste(&spectrum, x as i64, (top + label_h + h + 8) as i64);
+        }
     }
     let name = if masked {
         "blue-noise-masked.png"

@@ -32,10 +32,12 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod adaptive;
 mod args;
 mod figures;
 mod frames;
 mod method;
+mod openqmc;
 mod pbrt;
 mod picture;
 mod report;
@@ -47,6 +49,24 @@ mod trace;
 use std::process::ExitCode;
 
 use strata_lab::io;
+
+/// The optional studies beside the sweep: `--frames` and `--adaptive`, each a table.
+fn studies(
+    args: &args::Args,
+    scene: &scene::Scene,
+    sequences: &[(String, method::Method)],
+    reference: &[glam::Vec3],
+    emitters: &split::Emitters,
+) -> Result<(Option<String>, Option<String>), common::CliError> {
+    let (f, tile) = (args.frames, args.frame_tile);
+    let frames = (f > 0)
+        .then(|| frames::table(args, scene, sequences, reference, emitters, f, tile))
+        .transpose()?;
+    let adaptive = (args.adaptive)
+        .map(|m| adaptive::table(args, scene, sequences, reference, emitters, m))
+        .transpose()?;
+    Ok((frames, adaptive))
+}
 
 /// Renders the reference, every sequence at every count over the seeds, then writes the
 /// pictures, `render.csv` and the tables (see `--help`).
@@ -74,11 +94,8 @@ fn main() -> ExitCode {
             outln!("\n{t}")?;
         }
 
-        let (f, tile) = (args.frames, args.frame_tile);
-        let frames = (f > 0)
-            .then(|| frames::table(&args, &scene, &sequences, &reference, &emitters, f, tile))
-            .transpose()?;
-        if let Some(t) = &frames {
+        let (frames, adaptive) = studies(&args, &scene, &sequences, &reference, &emitters)?;
+        for t in [&frames, &adaptive].into_iter().flatten() {
             outln!("\n{t}")?;
         }
         let ratios = report::ratios(&rows);
@@ -96,6 +113,7 @@ fn main() -> ExitCode {
                 trade: &trade,
                 split: split.as_deref(),
                 frames: frames.as_deref(),
+                adaptive: adaptive.as_deref(),
                 ratios: ratios.as_deref(),
                 masked: emitters.keep.len() - emitters.kept,
             };

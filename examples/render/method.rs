@@ -1,16 +1,23 @@
 //! What `render` draws from: one of the crate's path-tracer sequences, a reference sampler
-//! written in this program (pbrt-v4's padded Sobol' and ZSobol, [`crate::pbrt`]), or an
+//! written in this program (pbrt-v4's padded Sobol' and ZSobol, [`crate::pbrt`]; OpenQMC's
+//! blue-noise Sobol', [`crate::openqmc`]), or an
 //! experiment on the crate's padding (a crate sequence whose draws are paired anew).
 
 use glam::Vec2;
 use strata::pixel::{Padding, PixelSampler, Sequence};
 
 use crate::common::{CliError, cli_error};
+use crate::openqmc::OpenQmcBn;
 use crate::pbrt::{self, PaddedSobol, Randomize, ZSobol};
 use crate::trace::Draws;
 
 /// The reference samplers' names (`--samplers`; not in `all`).
-pub const REFERENCES: [&str; 3] = ["pbrt-padded", "pbrt-zsobol", "pbrt-zsobol-seeded"];
+pub const REFERENCES: [&str; 4] = [
+    "pbrt-padded",
+    "pbrt-zsobol",
+    "pbrt-zsobol-seeded",
+    "openqmc-sobolbn",
+];
 
 /// A sampler of `--samplers`.
 #[derive(Clone, Debug, PartialEq)]
@@ -22,6 +29,8 @@ pub enum Method {
     /// pbrt-v4's `ZSobolSampler` (FastOwen); `seeded`: with the seed in the hash of its pixel
     /// order (pbrt's depends on the dimension only, so that every seed orders the pixels alike).
     PbrtZSobol { seeded: bool },
+    /// OpenQMC's `SobolBnSampler` (progressive blue noise from a 256 x 256 table).
+    OpenQmcBn,
     /// An experiment: a crate sequence (with `--padding`) whose draw at dimension `d` reads the
     /// sample `perm_d(i)` instead of sample `i`.
     Repaired(Sequence, Repair),
@@ -48,6 +57,7 @@ impl Method {
             "pbrt-padded" => return Ok(Method::PbrtPadded),
             "pbrt-zsobol" => return Ok(Method::PbrtZSobol { seeded: false }),
             "pbrt-zsobol-seeded" => return Ok(Method::PbrtZSobol { seeded: true }),
+            "openqmc-sobolbn" => return Ok(Method::OpenQmcBn),
             _ => {}
         }
         let resolution = [size.0, size.1];
@@ -83,7 +93,7 @@ impl Method {
             Method::Crate(seq) | Method::Repaired(seq, _) => {
                 PixelSampler::new(seq.clone(), spp, strata::Seed(0))?;
             }
-            Method::PbrtPadded => {}
+            Method::PbrtPadded | Method::OpenQmcBn => {}
             Method::PbrtZSobol { .. } => {}
         }
         let why = match self {
@@ -161,6 +171,7 @@ macro_rules! pbrt_draws {
 
 pbrt_draws!(PaddedSobol);
 pbrt_draws!(ZSobol);
+pbrt_draws!(OpenQmcBn);
 
 /// [`Method::Repaired`]: the crate's sampler, each draw at the permuted sample index.
 #[derive(Clone, Debug)]
@@ -292,6 +303,7 @@ pub fn with_sampler<R>(
             f.visit(PixelSampler::new(seq.clone(), spp, strata::Seed(seed))?.with_padding(padding))
         }
         Method::PbrtPadded => f.visit(PaddedSobol::new(spp, pbrt_seed(seed), Randomize::FastOwen)),
+        Method::OpenQmcBn => f.visit(OpenQmcBn::new(seed)),
         Method::PbrtZSobol { seeded } => {
             let s = ZSobol::new(spp, [size.0, size.1], pbrt_seed(seed), Randomize::FastOwen);
             f.visit(if *seeded { s.with_seeded_order() } else { s })

@@ -149,6 +149,7 @@ pub struct Tables<'a> {
     pub trade: &'a str,
     pub split: Option<&'a str>,
     pub frames: Option<&'a str>,
+    pub adaptive: Option<&'a str>,
     pub ratios: Option<&'a str>,
     pub masked: usize,
 }
@@ -168,7 +169,7 @@ pub fn write_markdown(path: &Path, args: &Args, ref_spp: u32, t: &Tables) -> Res
              (signed luminance error): its RMSE after a Gaussian blur of sigma 1 and 2 \
              pixels, and the share of its power below 1/8 cycle per pixel (white \
              error: about 0.05); 'masked': the same without the {} pixels that see \
-             an emitter, directly or in a mirror.\n\n{full}\n{trade}{}{}{}",
+             an emitter, directly or in a mirror.\n\n{full}\n{trade}{}{}{}{}",
             args.scene.name(),
             size.0,
             size.1,
@@ -176,6 +177,7 @@ pub fn write_markdown(path: &Path, args: &Args, ref_spp: u32, t: &Tables) -> Res
             t.masked,
             t.split.map_or(String::new(), |s| format!("\n{s}")),
             t.frames.map_or(String::new(), |s| format!("\n{s}")),
+            t.adaptive.map_or(String::new(), |s| format!("\n{s}")),
             t.ratios.map_or(String::new(), |s| format!("\n{s}"))
         ),
     )

@@ -400,7 +400,66 @@ pub fn render(
     progress: Option<&str>,
     padding: Padding,
 ) -> Result<Vec<Vec3>, strata_lab::Error> {
-    render_inner(scene, method, spp, size, seed, progress, padding, None)
+    render_counts(
+        scene,
+        method,
+        Counts::Fixed(spp),
+        size,
+        seed,
+        progress,
+        padding,
+        None,
+    )
+}
+
+/// How many samples each pixel takes: `Fixed(spp)`, or `Adaptive { max, key }`: pixel `(x, y)`
+/// takes [`Counts::at`] samples, from 1 to `max`, varying smoothly across the image as an
+/// adaptive sampler's counts follow the image's variance.
+#[derive(Clone, Copy, Debug)]
+pub enum Counts {
+    Fixed(u32),
+    Adaptive { max: u32, key: u64 },
+}
+
+/// The cell of the adaptive counts' random field, pixels.
+pub const COUNT_CELL: u32 = 16;
+
+impl Counts {
+    /// The samples of pixel `(x, y)`: for `Adaptive`, `1 + floor(max u)`, `u` the bilinear
+    /// interpolation of values uniform in `[0, 1)` hashed at the corners of `COUNT_CELL`-pixel
+    /// cells.
+    #[inline]
+    pub fn at(&self, x: u32, y: u32) -> u32 {
+        match *self {
+            Counts::Fixed(spp) => spp,
+            Counts::Adaptive { max, key } => {
+                let corner = |cx: u32, cy: u32| {
+                    let h = strata::hash::hash_u64((cy as u64) << 32 | cx as u64, key);
+                    (h >> 11) as f64 / (1u64 << 53) as f64
+                };
+                let (cx, cy) = (x / COUNT_CELL, y / COUNT_CELL);
+                let c = COUNT_CELL as f64;
+                let (fx, fy) = ((x % COUNT_CELL) as f64 / c, (y % COUNT_CELL) as f64 / c);
+                let top = corner(cx, cy) * (1.0 - fx) + corner(cx + 1, cy) * fx;
+                let bottom = corner(cx, cy + 1) * (1.0 - fx) + corner(cx + 1, cy + 1) * fx;
+                let u = top * (1.0 - fy) + bottom * fy;
+                (1 + (u * max as f64) as u32).min(max)
+            }
+        }
+    }
+}
+
+/// [`render`] with each pixel stopping at its own count, `Counts::Adaptive { max, key }`; the
+/// sampler is made for `max` samples per pixel.
+pub fn render_adaptive(
+    scene: &Scene,
+    method: &Method,
+    counts: Counts,
+    size: (u32, u32),
+    seed: u64,
+    padding: Padding,
+) -> Result<Vec<Vec3>, strata_lab::Error> {
+    render_counts(scene, method, counts, size, seed, None, padding, None)
 }
 
 /// [`render`] with each pixel taking the draws of the pixel `seeds` gives it (`--frames`).
@@ -413,14 +472,23 @@ pub fn render_remapped(
     padding: Padding,
     seeds: Option<&SeedPermutation>,
 ) -> Result<Vec<Vec3>, strata_lab::Error> {
-    render_inner(scene, method, spp, size, seed, None, padding, seeds)
+    render_counts(
+        scene,
+        method,
+        Counts::Fixed(spp),
+        size,
+        seed,
+        None,
+        padding,
+        seeds,
+    )
 }
 
 #[allow(clippy::too_many_arguments)]
-fn render_inner(
+fn render_counts(
     scene: &Scene,
     method: &Method,
-    spp: u32,
+    counts: Counts,
     size: (u32, u32),
     seed: u64,
     progress: Option<&str>,
@@ -430,7 +498,7 @@ fn render_inner(
     /// [`render_with`] for whichever sampler `method` is.
     struct Go<'a> {
         scene: &'a Scene,
-        spp: u32,
+        counts: Counts,
         size: (u32, u32),
         progress: Option<&'a str>,
         seeds: Option<&'a SeedPermutation>,
@@ -440,16 +508,20 @@ fn render_inner(
             render_with(
                 self.scene,
                 s,
-                self.spp,
+                self.counts,
                 self.size,
                 self.progress,
                 self.seeds,
             )
         }
     }
+    let spp = match counts {
+        Counts::Fixed(spp) => spp,
+        Counts::Adaptive { max, .. } => max,
+    };
     let go = Go {
         scene,
-        spp,
+        counts,
         size,
         progress,
         seeds,
@@ -457,12 +529,12 @@ fn render_inner(
     with_sampler(method, spp, size, seed, padding, go)
 }
 
-/// Renders the image with `spp` samples per pixel of `sampler` (cloned per row), each pixel
-/// taking the draws of the pixel `seeds` gives it (its own without).
+/// Renders the image with `counts` samples per pixel of `sampler` (cloned per row), each
+/// pixel taking the draws of the pixel `seeds` gives it (its own without).
 fn render_with<S: PixelDraws>(
     scene: &Scene,
     sampler: S,
-    spp: u32,
+    counts: Counts,
     size: (u32, u32),
     progress: Option<&str>,
     seeds: Option<&SeedPermutation>,
@@ -476,6 +548,7 @@ fn render_with<S: PixelDraws>(
                 .map(|x| {
                     let mut sum = Vec3::ZERO;
                     let from = seeds.map_or([x, y], |p| p.source([x, y]));
+                    let spp = counts.at(x, y);
                     for i in 0..spp {
                         s.start(from, i);
                         sum += radiance(x, y, size, &mut s, scene);

@@ -22,6 +22,7 @@
 
 pub mod best_candidate;
 pub mod bnot;
+pub mod bntable;
 pub mod ccvt;
 pub mod lloyd;
 pub mod mask;

@@ -27,7 +27,7 @@ struct StrataParameters {
     key: vec4<u32>,
     resolution: vec2<u32>,
     // what the draws read: 0 hashed values, 1 Sobol', 2 pmj02, 3 the lattice, 4 a joint
-    // sequence's matrices (in `strata_tables`)
+    // sequence's matrices, 5 Sobol' through a blue-noise table (both in `strata_tables`)
     kernel: u32,
     // bits 0-7: log2 of the samples per pixel rounded up to a power of two (the Z-ordered
     // sequences' block of each pixel); bit 8: the shell padding (`Padding::Shells`; else the
@@ -35,8 +35,8 @@ struct StrataParameters {
     flags: u32,
 }
 
-// Words of `strata_tables` before a joint sequence's group size and matrices: the shell
-// padding's table, two 16-bit entries per word.
+// Words of `strata_tables` before a joint sequence's group size and matrices (or a blue-noise
+// table's side and entries): the shell padding's table, two 16-bit entries per word.
 const STRATA_JOINT_AT = 32768u;
 
 // lowbias32 (Wellons) of x ^ key: a bijective 32-bit hash.
@@ -258,6 +258,24 @@ fn strata_joint_point_rev(d: u32, index_rev: u32) -> u32 {
     return v;
 }
 
+// `sobolbn`'s draw at `dim` of `pixel` whose padded index is `r` (bit-reversed): the entry of the
+// blue-noise table at the pixel shifted toroidally by the draw (from the image's keys), its
+// rank XOR-ed onto the index, the Sobol' point there Owen-scrambled under its key and a second
+// key hashed from it, then a digital shift per seed and dimension.
+fn strata_blue_noise(params: StrataParameters, pixel: vec2<u32>, dim: u32, r: u32) -> vec2<u32> {
+    let image = strata_draw_keys(strata_tile_keys(params.key, 0u), dim);
+    let side_bits = strata_tables[STRATA_JOINT_AT];
+    let m = (1u << side_bits) - 1u;
+    let x = (pixel.x + (image.e >> 22u)) & m;
+    let y = (pixel.y + (image.e >> 12u)) & m;
+    let at = STRATA_JOINT_AT + 1u + 2u * ((y << side_bits) | x);
+    let key = strata_tables[at];
+    let p = strata_sobol01_rev(reverseBits(r ^ strata_tables[at + 1u]));
+    let k2 = key * 0x9e3779b9u;
+    let v = strata_owen_rev2(p, vec2<u32>(key, k2 ^ (k2 >> 16u)));
+    return reverseBits(v ^ image.v);
+}
+
 // The 2D draw at `dim` of sample `index` of `pixel`, as 32-bit fixed point (value / 2^32).
 fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32) -> vec2<u32> {
     let kernel = params.kernel;
@@ -300,6 +318,9 @@ fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32)
     if (!shells || in_z) {
         let kg = strata_draw_keys(keys, g);
         r = strata_shuffle_rev(r, kg.e, kg.h);
+    }
+    if (kernel == 5u) {
+        return strata_blue_noise(params, pixel, dim, r);
     }
     let v = strata_draw_keys(keys, dim).v;
     var p: vec2<u32>;

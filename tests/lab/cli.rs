@@ -379,7 +379,8 @@ fn render_draws_the_pbrt_references_and_the_experiments_in_the_studio() {
             "--scene",
             "studio-direct",
             "--samplers",
-            "sobol,pbrt-padded,pbrt-zsobol,pbrt-zsobol-seeded,sobol+shells,pmj02+permute",
+            "sobol,pbrt-padded,pbrt-zsobol,pbrt-zsobol-seeded,openqmc-sobolbn,sobol+shells,\
+             pmj02+permute",
             "--spp",
             "1,4",
             "--size",
@@ -420,6 +421,8 @@ fn render_draws_the_pbrt_references_and_the_experiments_in_the_studio() {
             ("pbrt-zsobol", "4"),
             ("pbrt-zsobol-seeded", "1"),
             ("pbrt-zsobol-seeded", "4"),
+            ("openqmc-sobolbn", "1"),
+            ("openqmc-sobolbn", "4"),
             ("sobol+shells", "1"),
             ("sobol+shells", "4"),
             ("pmj02+permute", "1"),
@@ -435,7 +438,7 @@ fn render_draws_the_pbrt_references_and_the_experiments_in_the_studio() {
     }
     // the interaction split has a row per sampler at the smallest count
     let split: Vec<&str> = printed_table(&out, "one-draw rmse");
-    assert_eq!(split.len(), 6, "{out}");
+    assert_eq!(split.len(), 7, "{out}");
     assert!(split[2].starts_with("| pbrt-zsobol | 1 |"), "{out}");
     // the seeded order is another sampler: its draws differ from pbrt's at the same seed
     let row = |name: &str| {
@@ -458,7 +461,7 @@ fn render_draws_the_pbrt_references_and_the_experiments_in_the_studio() {
         (vec!["--samplers", "sobol+twist"], "not an experiment"),
         (
             vec!["--samplers", "pbrt"],
-            "pbrt-padded, pbrt-zsobol, pbrt-zsobol-seeded",
+            "pbrt-padded, pbrt-zsobol, pbrt-zsobol-seeded, openqmc-sobolbn",
         ),
         (
             vec!["--scene", "studio", "--interactions"],
@@ -817,6 +820,78 @@ fn mask_writes_the_built_in_table_and_refuses_bad_sides() {
         (&["--sides", "8"][..], "--sides"),
     ] {
         let (code, _, err) = run_example("mask", bad);
+        assert_eq!(code, 2, "{bad:?}");
+        assert!(
+            err.contains(says) && err.lines().count() == 1,
+            "{bad:?}: {err}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bntable_writes_a_table_the_crate_accepts_and_refuses_bad_options() {
+    let dir = std::env::temp_dir().join(format!("strata-bntable-{}", std::process::id()));
+    let table = dir.join("t/table.rs");
+    let (code, out, err) = run_example(
+        "bntable",
+        &[
+            "--side",
+            "16",
+            "--levels",
+            "2",
+            "--integrands",
+            "8",
+            "--effort",
+            "4",
+            "--out",
+            table.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    // a row per count with the table's and the random start's low band, then the file
+    let rows: Vec<Vec<f64>> = printed_table(&out, "count")
+        .iter()
+        .map(|r| r.split('|').filter_map(|c| c.trim().parse().ok()).collect())
+        .collect();
+    assert_eq!(rows.len(), 3, "{out}");
+    for (count, r) in [1.0, 2.0, 4.0].iter().zip(&rows) {
+        assert_eq!((r[0], r.len()), (*count, 3), "{out}");
+        assert!(r[1] > 0.0 && r[2] > 0.0, "{out}");
+    }
+    let text = std::fs::read_to_string(&table).unwrap();
+    assert!(
+        text.contains("pub(super) const SIDE: u32 = 16;") && text.contains("--side 16 --levels 2"),
+        "{text}"
+    );
+    // the entries parse into a table the crate takes
+    let entries: Vec<[u32; 2]> = text
+        .lines()
+        .filter(|l| l.starts_with("    ["))
+        .flat_map(|l| {
+            l.split("],")
+                .filter(|e| e.contains("0x"))
+                .collect::<Vec<_>>()
+        })
+        .map(|e| {
+            let v: Vec<u32> = e
+                .trim_matches(|c| c == ' ' || c == '[')
+                .split(", ")
+                .map(|h| u32::from_str_radix(h.trim_start_matches("0x"), 16).unwrap())
+                .collect();
+            [v[0], v[1]]
+        })
+        .collect();
+    assert_eq!(entries.len(), 256);
+    strata::pixel::BlueNoiseTable::new(16, &entries).unwrap();
+    for (bad, says) in [
+        (&["--side", "24"][..], "power of two"),
+        (&["--side", "8"][..], "--side"),
+        (&["--levels", "11"][..], "--levels"),
+        (&["--integrands", "0"][..], "--integrands"),
+        (&["--effort", "x"][..], "--effort"),
+    ] {
+        let (code, _, err) = run_example("bntable", bad);
         assert_eq!(code, 2, "{bad:?}");
         assert!(
             err.contains(says) && err.lines().count() == 1,

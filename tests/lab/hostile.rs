@@ -189,6 +189,7 @@ fn help_and_lists() -> Vec<(&'static str, Vec<&'static str>)> {
         "path_tracer",
         "nets",
         "mask",
+        "bntable",
     ]
     .into_iter()
     .map(|p| (p, vec!["--help"]))

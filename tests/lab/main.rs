@@ -18,6 +18,7 @@ mod pmj;
 mod pointsets;
 mod properties;
 mod public_api;
+mod render_openqmc;
 mod render_pbrt;
 mod spectrum;
 mod stratification;

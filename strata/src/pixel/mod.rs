@@ -23,14 +23,14 @@
 //! ```text
 //! let gpu = sampler.gpu_parameters()?;     // refuses jittered, halton and Padding::Uniform
 //! uniform StrataParameters  <- gpu.words()  // eight u32
-//! storage strata_tables     <- gpu.tables() // 128 KiB (and a joint sequence's matrices)
+//! storage strata_tables     <- gpu.tables() // 128 KiB (and a joint sequence's or sobolbn's table)
 //! shader: strata::pixel::WGSL, then @binding(N) var<storage, read> strata_tables: array<u32>;
 //! let u = strata_get_2d(params, pixel, index, dim);   // or strata_draw: 32-bit fixed point
 //! ```
 //!
 //! The storage buffer is part of the parameters' contract: the shell padding's table (and, for
-//! `zjoint`, `zquad`, `sobol12` and `zsobol12`, their generator columns) is read from it by every
-//! draw ([`GpuParameters::tables`]).
+//! `zjoint`, `zquad`, `sobol12` and `zsobol12`, their generator columns; for `sobolbn`, its
+//! blue-noise table) is read from it by every draw ([`GpuParameters::tables`]).
 //!
 //! What is tested, and nothing more: the repository's GPU test (`gpu/`) validates the module with
 //! `naga` and runs it through `wgpu` on the Vulkan adapter present (Mesa's lavapipe CPU driver in
@@ -56,8 +56,8 @@
 //!   and so are `zquad`'s groups of four, over the base-4 Faure sequence, and the groups of
 //!   `sobol12` and `zsobol12` over the (1,2)-Sobol' sequence.
 //!   A scene that never asks for lens or time dimensions never computes them.
-//! * **Stratified draws.** Per pixel and draw: `pmj02` and `sobol` are (0,m,2)-nets at every
-//!   power-of-two prefix; `lattice` has one point per `1/n` in each coordinate at every power of
+//! * **Stratified draws.** Per pixel and draw: `pmj02`, `sobol` and `sobolbn` are
+//!   (0,m,2)-nets at every power-of-two prefix; `lattice` has one point per `1/n` in each coordinate at every power of
 //!   two `n`; `zsobol` and `zpmj02` are nets at every power of two up to the samples per pixel
 //!   (rounded up to a power of two); `zjoint` has one point per `1/n` in each coordinate of
 //!   every draw at those counts, the first draw of each group is a net, and the pairs of draws
@@ -168,6 +168,7 @@
 //! # Ok::<(), strata::Error>(())
 //! ```
 
+pub mod bluenoise;
 pub mod frames;
 mod kernel;
 mod padding;
@@ -176,6 +177,7 @@ mod sequence;
 #[cfg(feature = "std")]
 pub mod warp;
 
+pub use bluenoise::BlueNoiseTable;
 pub use kernel::DrawKeys;
 use kernel::Key;
 pub use rng::PixelRng;
@@ -185,7 +187,7 @@ use sequence::{Points, SamplesPerPixel};
 use crate::error::{Error, Result};
 use crate::prelude::*;
 use crate::sampler::Seed;
-use crate::scramble::{X2, join};
+use crate::scramble::{Lanes, X2, join};
 use kernel::{PixelKeys, ZPixel};
 use padding::Shell;
 
@@ -242,7 +244,8 @@ pub struct GpuParameters {
     pub resolution: [u32; 2],
     /// What the draws read: 0 hashed values (`random`), 1 Sobol' (`sobol`, `zsobol`), 2
     /// pmj02 (`pmj02`, `zpmj02`), 3 the lattice, 4 a joint sequence's matrices (`zjoint`,
-    /// `zquad`, `sobol12`, `zsobol12`: [`tables`](Self::tables) holds them).
+    /// `zquad`, `sobol12`, `zsobol12`: [`tables`](Self::tables) holds them), 5 Sobol' through a
+    /// blue-noise table (`sobolbn`: [`tables`](Self::tables) holds it).
     pub kernel: u32,
     /// `log2` of the samples per pixel rounded up to a power of two (the Z-ordered sequences'
     /// block of each pixel).
@@ -251,9 +254,9 @@ pub struct GpuParameters {
     pub padding: u32,
     /// Whether pixels read blocks of one global sequence along a Z curve.
     pub z_ordered: bool,
-    /// The joint sequences' matrices (empty for the others), after the padding's table in
-    /// [`tables`](Self::tables).
-    columns: Vec<u32>,
+    /// The joint sequences' matrices or the blue-noise sequences' table (empty for the
+    /// others), after the padding's table in [`tables`](Self::tables).
+    extra: Vec<u32>,
 }
 
 /// Words of the shader's storage buffer before a joint sequence's matrices: the shell
@@ -279,17 +282,20 @@ impl GpuParameters {
 
     /// The words of the storage buffer `strata_tables` the shader reads, for every sequence:
     /// the shell padding's table (the powers of the primitive element of each GF(2^j),
-    /// `j <= 15`, 16 bits each, two per word: 32 768 words, 128 KiB), then, for a joint sequence, its group size `G` and the 32 generator columns, in the
-    /// bit-reversed domain, of each dimension `0..=G` its draws read (`1 + 32 (G + 1)` words:
-    /// 161 for `zquad`, 16 417 for groups of 512).
+    /// `j <= 15`, 16 bits each, two per word: 32 768 words, 128 KiB), then, for a joint
+    /// sequence, its group size `G` and the 32 generator columns, in the bit-reversed domain,
+    /// of each dimension `0..=G` its draws read (`1 + 32 (G + 1)` words: 161 for `zquad`,
+    /// 16 417 for groups of 512), or for `sobolbn`, `log2` of its table's side and its
+    /// entries, the key and the rank bit-reversed, row-major (`1 + 2 side^2` words: 32 769,
+    /// 128 KiB, for the built-in table).
     pub fn tables(&self) -> Vec<u32> {
-        let mut words = Vec::with_capacity(GPU_PADDING_WORDS + self.columns.len());
+        let mut words = Vec::with_capacity(GPU_PADDING_WORDS + self.extra.len());
         words.extend(
             padding::EXP
                 .chunks(2)
                 .map(|p| p[0] as u32 | (p[1] as u32) << 16),
         );
-        words.extend_from_slice(&self.columns);
+        words.extend_from_slice(&self.extra);
         words
     }
 }
@@ -348,6 +354,8 @@ impl PixelState {
 /// What the draws of one pixel sample share.
 #[derive(Clone, Copy, Debug)]
 struct SampleState {
+    /// The pixel.
+    pixel: [u32; 2],
     /// The pixel's own keys.
     own: PixelKeys,
     /// The sample index (below `2^32`: the index modulo `2^32` in its epoch).
@@ -452,6 +460,7 @@ impl PixelSampler {
                 z: None,
             },
             current: SampleState {
+                pixel: [0, 0],
                 own,
                 index: 0,
                 shell: Shell::new(0, 0),
@@ -576,7 +585,7 @@ impl PixelSampler {
             z_bits: self.spp.z_bits(),
             padding,
             z_ordered: self.sequence.z_ordered(),
-            columns: self.sequence.gpu_columns(),
+            extra: self.sequence.gpu_words(),
         })
     }
 
@@ -805,6 +814,7 @@ impl PixelSampler {
     fn sample_state(&self, pixel: &PixelState, index: u32) -> SampleState {
         let bits = self.spp.z_bits();
         SampleState {
+            pixel: pixel.pixel,
             own: pixel.own,
             index,
             shell: Shell::new(index, pixel.own.0[2]),
@@ -1020,6 +1030,13 @@ impl PixelSampler {
             Points::Halton => {
                 sequence::halton_draw(&DrawKeys::new(&c.own, dim), c.index, &self.spp)
             }
+            Points::BlueNoise(t) => {
+                let (i, key, shift) = self.blue_noise_at::<P>(t, c, dim);
+                bluenoise::point_rev_x2(key, i)
+                    .xor(X2::new(shift))
+                    .reverse_bits()
+                    .unit_f32()
+            }
         }
     }
 
@@ -1041,6 +1058,12 @@ impl PixelSampler {
                 let (i, v) = self.at::<P>(c, g, dim, z);
                 kernel::joint::<[u32; 2]>(tables, v, dim - g, i)
             }
+            Points::BlueNoise(t) => {
+                let (i, key, shift) = self.blue_noise_at::<P>(t, c, dim);
+                bluenoise::point_rev::<[u32; 2]>(key, i)
+                    .xor(shift)
+                    .reverse_bits()
+            }
             Points::Jittered | Points::Halton => return None,
         })
     }
@@ -1057,6 +1080,7 @@ impl PixelSampler {
             | Points::Digital(_)
             | Points::Lattice
             | Points::Joint(_)
+            | Points::BlueNoise(_)
             | Points::Jittered => self.one(c, dim, z)[0],
         }
     }
@@ -1122,12 +1146,45 @@ impl PixelSampler {
                     vb,
                 )
             }
+            Points::BlueNoise(t) => {
+                let ((ia, ka, sa), (ib, kb, sb)) = (
+                    self.blue_noise_at::<P>(t, c, dim),
+                    self.blue_noise_at::<P>(t, c, d2),
+                );
+                join(
+                    bluenoise::point_rev_x2(ka, ia).xor(X2::new(sa)),
+                    bluenoise::point_rev_x2(kb, ib).xor(X2::new(sb)),
+                )
+                .reverse_bits()
+                .unit_f32()
+            }
             Points::Jittered | Points::Halton => {
                 let [x, y] = self.one_with::<P>(c, dim, z[0]);
                 let [u, w] = self.one_with::<P>(c, d2, z[1]);
                 [x, y, u, w]
             }
         }
+    }
+
+    /// Where the draw at `dim` of a blue-noise sequence reads: the pixel's padded index
+    /// XOR-ed with the rank of its entry in the table `t` shifted by the draw (bit-reversed),
+    /// the entry's key, and the draw's digital shift of the values (in the reversed domain).
+    /// The shift of the table and the digital shift come from the image's keys (`z_tile0`, a
+    /// hash of the seed alone) and the dimension, from independent words of them.
+    #[inline(always)]
+    fn blue_noise_at<const P: u8>(
+        &self,
+        t: &BlueNoiseTable,
+        c: &SampleState,
+        dim: u32,
+    ) -> (u32, u32, [u32; 2]) {
+        let (index, _) = self.at::<P>(c, dim, dim, None);
+        let image = DrawKeys::new(&self.z_tile0, dim);
+        let [key, rank_rev] = t.entry_rev([
+            c.pixel[0].wrapping_add(image.e >> 22),
+            c.pixel[1].wrapping_add(image.e >> 12),
+        ]);
+        (index ^ rank_rev, key, image.v)
     }
 
     /// 40 random bits for the low end of [`PixelRng`]'s words, beyond the sequence's 24.

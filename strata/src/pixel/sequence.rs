@@ -29,6 +29,7 @@ mod pmj02;
 mod random;
 mod sobol;
 mod sobol12;
+mod sobolbn;
 mod zjoint;
 mod zpmj02;
 mod zquad;
@@ -44,12 +45,14 @@ use crate::hash::{DivMod, GOLDEN_GAMMA, Permutation, mix64};
 use crate::prelude::*;
 use crate::sampler::StrataGrid;
 
+use super::BlueNoiseTable;
+
 pub(crate) use halton::{draw as halton_draw, draw_1d as halton_draw_1d};
 pub(crate) use jittered::draw as jittered_draw;
 
 /// Every sequence, in the order of [`Sequence::NAMES`]: adding a sequence is its unit file
 /// and one line here.
-pub(crate) const ROWS: [&Row; 12] = [
+pub(crate) const ROWS: [&Row; 13] = [
     &random::ROW,
     &jittered::ROW,
     &pmj02::ROW,
@@ -62,6 +65,7 @@ pub(crate) const ROWS: [&Row; 12] = [
     &zjoint::ROW,
     &sobol12::ROW,
     &zsobol12::ROW,
+    &sobolbn::ROW,
 ];
 
 /// The largest block of [`Sequence::halton`]: `2^31`.
@@ -199,6 +203,9 @@ pub(crate) enum Points {
     /// Dimensions `0..=group` of a multi-dimensional digital sequence (their byte tables, built
     /// when the sequence is made and shared by its clones), one padded index per group.
     Joint(Arc<[ByteTables]>),
+    /// Sobol' dimensions 0 and 1 at the padded index XOR-ed with the rank of a table entry,
+    /// Owen-scrambled under its key (see `bluenoise.rs`).
+    BlueNoise(BlueNoiseTable),
 }
 
 impl Points {
@@ -207,7 +214,7 @@ impl Points {
     #[inline(always)]
     pub(crate) fn padded(&self) -> bool {
         match self {
-            Points::Digital(_) | Points::Lattice | Points::Joint(_) => true,
+            Points::Digital(_) | Points::Lattice | Points::Joint(_) | Points::BlueNoise(_) => true,
             Points::Hashed | Points::Jittered | Points::Halton => false,
         }
     }
@@ -220,7 +227,7 @@ impl Points {
     }
 
     /// The kernel's number in the shader (`None`: CPU only): 0 hashed, 1 Sobol', 2 pmj02,
-    /// 3 lattice, 4 joint.
+    /// 3 lattice, 4 joint, 5 blue-noise table.
     #[inline(always)]
     pub(crate) fn kernel(&self) -> Option<u32> {
         match self {
@@ -229,6 +236,7 @@ impl Points {
             Points::Digital(Pair2::Pmj02) => Some(2),
             Points::Lattice => Some(3),
             Points::Joint(_) => Some(4),
+            Points::BlueNoise(_) => Some(5),
             Points::Jittered | Points::Halton => None,
         }
     }
@@ -499,20 +507,28 @@ impl Sequence {
         &self.points
     }
 
-    /// The shader's words of a joint sequence's matrices (see
-    /// [`GpuParameters::tables`](super::GpuParameters::tables)): the group size `G`, then the
-    /// 32 generator columns, in the bit-reversed domain, of each dimension `0..=G` the draws
-    /// read; empty for the other sequences.
-    pub(crate) fn gpu_columns(&self) -> Vec<u32> {
-        let Points::Joint(dims) = &self.points else {
-            return Vec::new();
-        };
-        let mut words = Vec::with_capacity(1 + 32 * dims.len());
-        words.push(self.group);
-        for t in dims.iter() {
-            words.extend((0..32).map(|j| t[j / 8][1 << (j % 8)]));
+    /// The shader's words after the padding's table (see
+    /// [`GpuParameters::tables`](super::GpuParameters::tables)): for a joint sequence, the group
+    /// size `G`, then the 32 generator columns, in the bit-reversed domain, of each dimension
+    /// `0..=G` the draws read; for a blue-noise sequence, `log2` of its table's side, then its
+    /// entries (the key and the rank bit-reversed, row-major); empty for the other sequences.
+    pub(crate) fn gpu_words(&self) -> Vec<u32> {
+        match &self.points {
+            Points::Joint(dims) => {
+                let mut words = Vec::with_capacity(1 + 32 * dims.len());
+                words.push(self.group);
+                for t in dims.iter() {
+                    words.extend((0..32).map(|j| t[j / 8][1 << (j % 8)]));
+                }
+                words
+            }
+            Points::BlueNoise(t) => t.gpu_words(),
+            Points::Hashed
+            | Points::Jittered
+            | Points::Halton
+            | Points::Digital(_)
+            | Points::Lattice => Vec::new(),
         }
-        words
     }
 
     /// The sample count nearest above `n` at which the sequence is best stratified (a square

@@ -2,7 +2,7 @@
 //! per-pixel stratification, padding decorrelation, index limits; and Sobol' direction
 //! numbers checked against an independent implementation.
 
-use crate::common::{cell, is_net};
+use crate::common::{cell, is_net, is_net_fixed};
 use strata::pixel::{Padding, PixelSampler, Sequence};
 
 fn all() -> Vec<Sequence> {
@@ -1100,5 +1100,34 @@ fn the_padding_changes_every_group_of_every_padded_sequence() {
                 name => assert!(changed >= 7, "{name} at {dim}: {changed} of 16 changed"),
             }
         }
+    }
+}
+
+#[test]
+fn sobolbn_wraps_its_table_and_keeps_every_prefix_a_net_past_the_ranks() {
+    let s = PixelSampler::new(Sequence::sobolbn(), 1, strata::Seed(5)).unwrap();
+    let side = strata::pixel::BlueNoiseTable::builtin().side();
+    let fixed = |p: [u32; 2], range: std::ops::Range<u64>, dim: u32| -> Vec<[u32; 2]> {
+        range.map(|i| s.sample_2d_u32(p, i, dim).unwrap()).collect()
+    };
+    for dim in [0u32, 2, 9] {
+        // an image larger than the table: a pixel and its copy one side away read one entry,
+        // so that their first 2^m samples are the same set (each pixel pads its own order)
+        for m in [0u32, 2, 6] {
+            let mut a = fixed([3, 70], 0..1 << m, dim);
+            let mut b = fixed([3 + side, 70 + 2 * side], 0..1 << m, dim);
+            a.sort_unstable();
+            b.sort_unstable();
+            assert_eq!(a, b, "dim {dim} m {m}");
+        }
+        // another pixel of the tile: another entry
+        assert_ne!(fixed([4, 70], 0..1, dim), fixed([3, 70], 0..1, dim));
+        // past the table's ranks (below 2^16) and past the 2^6 samples it arranges: every
+        // power-of-two prefix and every aligned block a net, as sobol's
+        assert!(is_net_fixed(&fixed([3, 70], 0..1 << 17, dim)), "dim {dim}");
+        assert!(
+            is_net_fixed(&fixed([3, 70], 1 << 16..1 << 17, dim)),
+            "dim {dim}"
+        );
     }
 }
