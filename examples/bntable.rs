@@ -55,9 +55,10 @@ struct Args {
     #[arg(long, value_name = "S", default_value_t = BUILTIN.seed.0,
           value_parser = common::whole::<u64>("--seed", 0, u64::MAX))]
     seed: u64,
-    /// the Rust table (the default is the built-in's, from the repository's root)
-    #[arg(long, value_name = "FILE", default_value = BUILTIN_TABLE)]
-    out: std::path::PathBuf,
+    /// the Rust table; the default, the built-in table's file (strata/src/pixel/bluenoise/
+    /// sobol_128.rs, from the repository's root), only with the built-in's options
+    #[arg(long, value_name = "FILE")]
+    out: Option<std::path::PathBuf>,
 }
 
 /// `--side N`: a power of two from 16 to 1024.
@@ -86,7 +87,6 @@ fn main() -> ExitCode {
         let Some(args) = parse()? else {
             return Ok(());
         };
-        strata_lab::io::check_writable(&args.out)?;
         let options = TableOptions {
             side: args.side,
             levels: args.levels,
@@ -95,6 +95,18 @@ fn main() -> ExitCode {
             polish: !args.no_polish,
             seed: strata::Seed(args.seed),
         };
+        let out = match args.out {
+            Some(out) => out,
+            None if options == BUILTIN => BUILTIN_TABLE.into(),
+            None => {
+                return Err(cli_error(
+                    "--out FILE is needed with options other than the built-in's (without it \
+                     the program rewrites the built-in table, strata/src/pixel/bluenoise/\
+                     sobol_128.rs)",
+                ));
+            }
+        };
+        strata_lab::io::check_writable(&out)?;
         let start = Instant::now();
         let table = optimise(&options)?;
         let seconds = start.elapsed().as_secs_f64();
@@ -103,12 +115,12 @@ fn main() -> ExitCode {
             "cargo run --release --example bntable -- {}",
             command.join(" ")
         );
-        strata_lab::io::write_text(&args.out, &rust_table(&table, command.trim_end(), seconds))?;
+        strata_lab::io::write_text(&out, &rust_table(&table, command.trim_end(), seconds))?;
         outln!("| count | low band, table | low band, random entries |\n|---|---|---|")?;
         for f in &table.lowband {
             outln!("| {} | {:.4} | {:.4} |", f.count, f.table, f.random)?;
         }
-        outln!("wrote {} in {seconds:.1} s", args.out.display())?;
+        outln!("wrote {} in {seconds:.1} s", out.display())?;
         Ok(())
     })
 }

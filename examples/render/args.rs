@@ -68,10 +68,11 @@ struct Cli {
     /// the interaction part's low band too)
     #[arg(long, value_name = "F", value_parser = common::whole::<u32>("--frames", 2, 64))]
     frames: Option<u32>,
-    /// also an adaptive image per sampler and seed: each pixel stops at its own count, drawn
-    /// uniformly from 1 to MAX (2 to 4096) by a hash of the pixel and the seed, the same for
-    /// every sampler (a Z-ordered sequence is told MAX); measured as the other renders,
-    /// emitters masked: a table on stdout and in --markdown, and adaptive.csv
+    /// also an adaptive image per sampler and seed: each pixel stops at its own count, from 1
+    /// to MAX (2 to 4096), varying smoothly over the image (a random field over cells of 16
+    /// pixels hashed from the seed, the same for every sampler; a Z-ordered sequence is told
+    /// MAX); measured as the other renders, emitters masked: a table on stdout and in
+    /// --markdown, and adaptive.csv
     #[arg(long, value_name = "MAX", value_parser = common::whole::<u32>("--adaptive", 2, 4096))]
     adaptive: Option<u32>,
     /// the tiles' side of --frames, 1 to 64

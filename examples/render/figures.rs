@@ -41,15 +41,17 @@ pub fn write_blue_noise(args: &Args, rows: &[Row], masked: bool) -> Result<(), C
                 .collect()
         })
         .collect();
-    let Some(first) = bands[0].first() else {
+    let bands: Vec<_> = bands.into_iter().filter(|b| !b.is_empty()).collect();
+    let Some(first) = bands.first().and_then(|b| b.first()) else {
         return Ok(());
     };
     let (w, h) = (first.1.width, first.1.height);
     let label_h = 34u32;
     let cell_w = w.max(150) + 12;
     let band_h = label_h + 2 * h + 24;
+    let columns = bands.iter().map(Vec::len).max().unwrap_or(1) as u32;
     let mut c = Canvas::new(
-        8 + cell_w * bands[0].len() as u32,
+        8 + cell_w * columns,
         band_h * bands.len() as u32,
         Rgb::WHITE,
     );

@@ -242,7 +242,7 @@ fn entry_errors(key: u32, rank: u32, tests: &[Shifted], levels: u32, out: &mut [
     let mut next = 1u32;
     let mut level = 0;
     for i in 0..1u32 << levels {
-        let p = BlueNoiseTable::point_u32(key, rank, i);
+        let p = BlueNoiseTable::point_u32(i, rank, key);
         for (s, t) in sums.iter_mut().zip(tests) {
             *s += t.eval(p);
         }
@@ -463,8 +463,25 @@ fn check(o: &TableOptions) -> Result<()> {
             return Err(Error::parameter(context, name, v, format!("{lo} to {hi}")));
         }
     }
+    // the errors of every pixel at every count over every integrand, twice (the field and its
+    // low-passed copy), in f32
+    let numbers = (o.side as u64).pow(2) * (o.levels as u64 + 1) * o.integrands as u64;
+    if numbers > MAX_FIELD {
+        return Err(Error::input(
+            context,
+            format!(
+                "side^2 (levels + 1) integrands = {numbers} errors per field: at most {MAX_FIELD} \
+                 (2 GiB of memory for the two fields); take a smaller side, fewer levels or \
+                 fewer integrands"
+            ),
+        ));
+    }
     Ok(())
 }
+
+/// The most errors of one field [`optimise`] keeps (`side^2 (levels + 1) integrands`, `f32`):
+/// 2^28, 1 GiB per field.
+pub const MAX_FIELD: u64 = 1 << 28;
 
 /// Makes a table (see the [module docs](self)); deterministic for given options.
 pub fn optimise(o: &TableOptions) -> Result<Table> {
@@ -478,14 +495,17 @@ pub fn optimise(o: &TableOptions) -> Result<Table> {
     let k = tests.len();
     // random keys; ranks random above the arranged bits, 0 below
     let high = MAX_RANK >> levels;
-    let mut entries: Vec<[u32; 2]> = (0..n)
-        .map(|_| {
-            [
-                rng.next_u32(),
-                ((rng.next_u32() as u64 * high as u64) >> 32) as u32 * (1 << levels),
-            ]
-        })
-        .collect();
+    // distinct keys, so that no two entries are alike
+    let mut keys = std::collections::HashSet::with_capacity(n);
+    let mut entries: Vec<[u32; 2]> = Vec::with_capacity(n);
+    while entries.len() < n {
+        let key = rng.next_u32();
+        let rank = ((rng.next_u32() as u64 * high as u64) >> 32) as u32 * (1 << levels);
+        if keys.insert(key) {
+            entries.push([key, rank]);
+        }
+    }
+    drop(keys);
     let start = entries.clone();
     let all_errors = |entries: &[[u32; 2]], tests: &[Shifted]| {
         let f = (levels as usize + 1) * tests.len();
@@ -504,9 +524,11 @@ pub fn optimise(o: &TableOptions) -> Result<Table> {
     let moves = o.effort as u64 * n as u64;
 
     // 1. keys: the whole count's errors blue
-    let all = all_errors(&entries, &tests);
-    let mut field = Field::new(side, k, level_of(&all, levels as usize, k));
-    anneal_swaps(&mut field, &mut entries, moves, &mut rng);
+    {
+        let top = level_of(&all_errors(&entries, &tests), levels as usize, k);
+        let mut field = Field::new(side, k, top);
+        anneal_swaps(&mut field, &mut entries, moves, &mut rng);
+    }
 
     // 2. ranks, from the top down: bit l chooses the half of the 2^(l+1) samples that comes
     // first
@@ -630,6 +652,9 @@ pub fn optimise(o: &TableOptions) -> Result<Table> {
         anneal_swaps(&mut field, &mut entries, moves, &mut rng);
     }
 
+    drop(field);
+    // a table the renderer's crate takes (the keys are distinct)
+    BlueNoiseTable::new(o.side, &entries)?;
     let lowband = figures(o.side, levels, &held_out, &start, &entries)?;
     Ok(Table {
         options: *o,
@@ -646,7 +671,7 @@ fn block_sums(key: u32, base: u32, tests: &[Shifted], levels: u32) -> Vec<f64> {
     let leaves = 1usize << levels;
     let mut sums = vec![0.0f64; (2 * leaves - 1) * k];
     for i in 0..leaves {
-        let p = BlueNoiseTable::point_u32(key, base, i as u32);
+        let p = BlueNoiseTable::point_u32(i as u32, base, key);
         let row = &mut sums[(leaves - 1 + i) * k..(leaves + i) * k];
         for (s, t) in row.iter_mut().zip(tests) {
             *s = t.eval(p);
@@ -738,11 +763,14 @@ fn lowband_per_count(
 /// kinds [`optimise`] arranges for): how blue a table is, 0.049 for white noise.
 pub fn table_lowband(side: u32, entries: &[[u32; 2]], levels: u32, seed: Seed) -> Result<Vec<f64>> {
     BlueNoiseTable::new(side, entries)?;
-    check(&TableOptions {
-        side,
-        levels,
-        ..BUILTIN
-    })?;
+    if !(1..=10).contains(&levels) {
+        return Err(Error::parameter(
+            "samplers::bntable::table_lowband",
+            "levels",
+            levels,
+            "1 to 10",
+        ));
+    }
     let mut rng = pcg(seed.0, streams::BNTABLE_TESTS);
     let tests: Vec<Shifted> = (0..HELD_OUT).map(|_| Shifted::draw(&mut rng)).collect();
     lowband_per_count(side, levels, &tests, entries)
@@ -755,7 +783,7 @@ pub fn rust_table(table: &Table, command: &str, seconds: f64) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "//! The built-in table of `sobolbn`: {side} x {side} entries `[key, rank]`, made by the \
+        "//! {which} table of `sobolbn`: {side} x {side} entries `[key, rank]`, made by the \
          lab's\n\
          //! `bntable` program (`strata_lab::samplers::bntable::optimise`: side {side}, levels \
          {levels},\n\
@@ -770,6 +798,7 @@ pub fn rust_table(table: &Table, command: &str, seconds: f64) -> String {
         effort = o.effort,
         polish = o.polish,
         seed = o.seed.0,
+        which = if *o == BUILTIN { "The built-in" } else { "A" },
     );
     for f in &table.lowband {
         let _ = writeln!(

@@ -261,9 +261,10 @@ fn strata_joint_point_rev(d: u32, index_rev: u32) -> u32 {
 // `sobolbn`'s draw at `dim` of `pixel` whose padded index is `r` (bit-reversed): the entry of the
 // blue-noise table at the pixel shifted toroidally by the draw (from the image's keys), its
 // rank XOR-ed onto the index, the Sobol' point there Owen-scrambled under its key and a second
-// key hashed from it, then a digital shift per seed and dimension.
+// key hashed from it, then a digital shift per seed, dimension and coordinate.
 fn strata_blue_noise(params: StrataParameters, pixel: vec2<u32>, dim: u32, r: u32) -> vec2<u32> {
-    let image = strata_draw_keys(strata_tile_keys(params.key, 0u), dim);
+    let image_keys = strata_tile_keys(params.key, 0u);
+    let image = strata_draw_keys(image_keys, dim);
     let side_bits = strata_tables[STRATA_JOINT_AT];
     let m = (1u << side_bits) - 1u;
     let x = (pixel.x + (image.e >> 22u)) & m;
@@ -273,7 +274,7 @@ fn strata_blue_noise(params: StrataParameters, pixel: vec2<u32>, dim: u32, r: u3
     let p = strata_sobol01_rev(reverseBits(r ^ strata_tables[at + 1u]));
     let k2 = key * 0x9e3779b9u;
     let v = strata_owen_rev2(p, vec2<u32>(key, k2 ^ (k2 >> 16u)));
-    return reverseBits(v ^ image.v);
+    return reverseBits(v ^ vec2<u32>(image.v.x, strata_hash32(dim, image_keys.w)));
 }
 
 // The 2D draw at `dim` of sample `index` of `pixel`, as 32-bit fixed point (value / 2^32).
@@ -320,6 +321,12 @@ fn strata_draw(params: StrataParameters, pixel: vec2<u32>, index: u32, dim: u32)
         r = strata_shuffle_rev(r, kg.e, kg.h);
     }
     if (kernel == 5u) {
+        if (!shells) {
+            // the nested shuffle moves the first 2^m samples to an aligned block: back to the
+            // first, XOR-ing the shuffle of index 0
+            let k0 = strata_draw_keys(own, dim);
+            r ^= strata_shuffle_rev(0u, k0.e, k0.h);
+        }
         return strata_blue_noise(params, pixel, dim, r);
     }
     let v = strata_draw_keys(keys, dim).v;

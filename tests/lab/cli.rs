@@ -369,6 +369,64 @@ fn render_sweeps_counts_and_refuses_bad_input() {
 }
 
 #[test]
+fn render_adaptive_stops_each_pixel_at_its_own_count_for_every_sampler() {
+    let dir = std::env::temp_dir().join(format!("strata-render-adaptive-{}", std::process::id()));
+    let md = dir.join("results.md");
+    let (code, out, err) = run_example(
+        "render",
+        &[
+            "--scene",
+            "cornell-direct",
+            "--samplers",
+            "sobol,zsobol,sobolbn",
+            "--spp",
+            "1,4",
+            "--size",
+            "32x32",
+            "--reference-spp",
+            "64",
+            "--seeds",
+            "2",
+            "--adaptive",
+            "8",
+            "--out",
+            dir.to_str().unwrap(),
+            "--markdown",
+            md.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    // a row per sampler, with the ratio to sobol's low band (1 for sobol itself)
+    let rows = printed_table(&out, "| sampler | masked rmse | masked blur2_rmse");
+    assert_eq!(rows.len(), 3, "{out}");
+    assert!(rows[0].starts_with("| sobol |") && rows[0].ends_with("| 1.000 | 1.000 |"));
+    let csv = std::fs::read_to_string(dir.join("adaptive.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "sampler,max_spp,lowband,masked_rmse,masked_blur2_rmse,masked_lowband,\
+         masked_scaled_lowband"
+    );
+    assert_eq!(lines.len(), 4, "{csv}");
+    for l in &lines[1..] {
+        let v: Vec<&str> = l.split(',').collect();
+        assert_eq!((v.len(), v[1]), (7, "8"), "{l}");
+        assert!(
+            v[2..].iter().all(|x| x.parse::<f64>().unwrap() > 0.0),
+            "{l}"
+        );
+    }
+    // its own section name, with the table in it
+    let text = std::fs::read_to_string(&md).unwrap();
+    assert!(text.contains("<!-- begin render-cornell-direct-1,4-adaptive -->"));
+    assert!(text.contains("Adaptive images: each pixel stops at its own count, from 1 to 8"));
+    let (code, _, err) = run_example("render", &["--adaptive", "1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--adaptive"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn render_draws_the_pbrt_references_and_the_experiments_in_the_studio() {
     // issue 39: pbrt-v4's two samplers and the padding experiments beside a crate sequence, in
     // the scene that is not a box, with the interaction split (their stateless draws)

@@ -1,7 +1,8 @@
 //! The tables of the progressive blue-noise sequences (`sobolbn`): per pixel of a toroidal
 //! tile, a *key* (the Owen scramble of the pixel's copy of the sequence) and a *rank* (an XOR
-//! of its sample index), arranged offline so that neighbouring pixels' errors cancel at every
-//! power-of-two count, without knowing the count.
+//! of its sample index), arranged offline so that neighbouring pixels' errors cancel at the
+//! power-of-two counts the table was made for, without knowing the count: most at 1 and 2
+//! samples, less at each larger count (the table's header has its figures).
 //!
 //! The scheme is Heitz, Belcour, Ostromoukhov, Coeurjolly and Iehl's ("A Low-Discrepancy
 //! Sampler that Distributes Monte Carlo Errors as a Blue Noise in Screen Space", SIGGRAPH Talks
@@ -20,14 +21,19 @@
 //! padded index (the [`Padding`](super::Padding) reorders the samples inside each shell and
 //! keeps every power-of-two prefix's set, so the sets the table arranged stay), XOR-ed with the
 //! rank; the point's two coordinates are Owen-scrambled under the key (and a second key hashed
-//! from it), then XOR-ed with a digital shift drawn per seed and dimension. The shift keeps
-//! every net a net and the pixels' relative strata (a common shift of all of them), and it makes
-//! each value uniform over seeds and two draws independent of each other, which the table alone
-//! would not (two draws read neighbouring entries for some seeds).
+//! from it), then XOR-ed with a digital shift drawn per seed, dimension and coordinate. The
+//! shift keeps every net a net and the pixels' relative strata (a common shift of all of
+//! them), and it makes each value uniform over seeds and two draws independent of each other,
+//! which the table alone would not: every seed would draw from the table's finite set of
+//! point sets, so that a pixel's expected value would be their mean, not the integral. The
+//! table's optimiser sees its test integrands through such shifts.
 //!
 //! # Guarantees and limits
 //!
-//! Every power-of-two prefix of every draw of every pixel is a (0,m,2)-net, as `sobol`'s.
+//! Every power-of-two prefix of every draw of every pixel is a (0,m,2)-net, as `sobol`'s, under
+//! the shell and the nested padding (which keep each prefix's set, so that the table's
+//! arrangement holds); `Padding::Uniform` reorders whole blocks of the samples per pixel, and
+//! keeps the arranged sets only at multiples of them.
 //! Images larger than the tile wrap toroidally (pixel `x` reads column `x mod W`): a pixel and
 //! its copy `W` pixels away draw alike up to their padding. The table orders the first
 //! `2^16` samples (ranks below `2^16`); past them, and at counts above those the table was
@@ -35,6 +41,7 @@
 //! aligned blocks, nets as `sobol`'s, with no blue-noise arrangement between pixels.
 
 use alloc::sync::Arc;
+use core::ops::Deref;
 
 use crate::digital::SOBOL01;
 use crate::error::{Error, Result};
@@ -56,8 +63,38 @@ pub struct BlueNoiseTable {
     /// `log2` of the side.
     side_bits: u32,
     /// Row-major entries: the key and the rank bit-reversed (the draws' domain).
-    entries: Arc<[[u32; 2]]>,
+    entries: Entries,
 }
+
+/// The entries of a table: the built-in one's, reversed at compile time, or a program's.
+#[derive(Clone)]
+enum Entries {
+    Builtin(&'static [[u32; 2]]),
+    Shared(Arc<[[u32; 2]]>),
+}
+
+impl Deref for Entries {
+    type Target = [[u32; 2]];
+
+    #[inline(always)]
+    fn deref(&self) -> &[[u32; 2]] {
+        match self {
+            Entries::Builtin(e) => e,
+            Entries::Shared(e) => e,
+        }
+    }
+}
+
+/// The built-in table's entries with their ranks bit-reversed (the draws' domain).
+static BUILTIN: [[u32; 2]; sobol_128::ENTRIES.len()] = {
+    let mut t = sobol_128::ENTRIES;
+    let mut k = 0;
+    while k < t.len() {
+        t[k][1] = t[k][1].reverse_bits();
+        k += 1;
+    }
+    t
+};
 
 impl core::fmt::Debug for BlueNoiseTable {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
@@ -69,7 +106,7 @@ impl core::fmt::Debug for BlueNoiseTable {
 
 impl PartialEq for BlueNoiseTable {
     fn eq(&self, other: &Self) -> bool {
-        self.side_bits == other.side_bits && self.entries == other.entries
+        self.side_bits == other.side_bits && *self.entries == *other.entries
     }
 }
 
@@ -124,17 +161,22 @@ impl BlueNoiseTable {
         }
         Ok(BlueNoiseTable {
             side_bits: side.trailing_zeros(),
-            entries: entries
-                .iter()
-                .map(|&[key, rank]| [key, rank.reverse_bits()])
-                .collect(),
+            entries: Entries::Shared(
+                entries
+                    .iter()
+                    .map(|&[key, rank]| [key, rank.reverse_bits()])
+                    .collect(),
+            ),
         })
     }
 
-    /// The built-in table of `sobolbn` (see the [module docs](self)).
+    /// The built-in table of `sobolbn` (see the [module docs](self)): no allocation, no check
+    /// at run time (a test checks it as [`new`](Self::new) would).
     pub fn builtin() -> Self {
-        BlueNoiseTable::new(sobol_128::SIDE, &sobol_128::ENTRIES)
-            .expect("the built-in table is valid (a test checks it)")
+        BlueNoiseTable {
+            side_bits: sobol_128::SIDE.trailing_zeros(),
+            entries: Entries::Builtin(&BUILTIN),
+        }
     }
 
     /// The side of the tile.
@@ -142,10 +184,10 @@ impl BlueNoiseTable {
         1 << self.side_bits
     }
 
-    /// The entry `(key, rank)` at `(x, y)` of the tile, toroidally (`x mod side`,
+    /// The entry `(key, rank)` at `pixel` of the tile, toroidally (`x mod side`,
     /// `y mod side`).
-    pub fn entry(&self, x: u32, y: u32) -> [u32; 2] {
-        let [key, rank_rev] = self.entry_rev([x, y]);
+    pub fn entry(&self, pixel: [u32; 2]) -> [u32; 2] {
+        let [key, rank_rev] = self.entry_rev(pixel);
         [key, rank_rev.reverse_bits()]
     }
 
@@ -165,11 +207,12 @@ impl BlueNoiseTable {
         self.entries[(((p[1] & m) << self.side_bits) | (p[0] & m)) as usize]
     }
 
-    /// Sample `index` of an entry `(key, rank)` before the draw's digital shift, as 32-bit
-    /// fixed-point values: the Sobol' point (dimensions 0 and 1) at `index ^ rank`,
-    /// Owen-scrambled under the entry's two keys. The lab's table optimiser measures entries
-    /// with it; a draw at a padded index `j` is this point at `j`, XOR-ed with its shift.
-    pub fn point_u32(key: u32, rank: u32, index: u32) -> [u32; 2] {
+    /// Sample `index` of an entry with rank `rank` and key `key`, before the draw's digital
+    /// shift, as 32-bit fixed-point values: the Sobol' point (dimensions 0 and 1) at
+    /// `index ^ rank`, Owen-scrambled under the entry's two keys. The lab's table optimiser
+    /// measures entries with it; a draw at a padded index `j` is this point at `j`, XOR-ed with
+    /// its shift.
+    pub fn point_u32(index: u32, rank: u32, key: u32) -> [u32; 2] {
         point_rev::<[u32; 2]>(key, (index ^ rank).reverse_bits()).reverse_bits()
     }
 }
@@ -201,19 +244,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_builtin_table_is_valid_and_its_ranks_order_a_net_at_every_prefix() {
+    fn the_builtin_table_is_valid_and_its_entries_prefixes_are_nets() {
+        // the built-in, reversed at compile time, is what `new` makes of its file
         let t = BlueNoiseTable::builtin();
         assert_eq!(t.side(), sobol_128::SIDE);
+        assert!(t == BlueNoiseTable::new(sobol_128::SIDE, &sobol_128::ENTRIES).unwrap());
         // every prefix of 2^m samples of an entry is an aligned block of its sequence: a
         // (0,m,2)-net, one point per elementary interval of every shape
         for (x, y) in [(0u32, 0u32), (5, 77), (127, 127)] {
-            let [key, rank] = t.entry(x, y);
+            let [key, rank] = t.entry([x, y]);
             for m in 0..=8u32 {
                 let n = 1u32 << m;
                 for a in 0..=m {
                     let mut seen = vec![false; n as usize];
                     for i in 0..n {
-                        let [u, v] = BlueNoiseTable::point_u32(key, rank, i);
+                        let [u, v] = BlueNoiseTable::point_u32(i, rank, key);
                         // the elementary interval of 2^a x 2^(m-a) cells holding the point
                         let cell =
                             ((u as u64) >> (32 - a)) << (m - a) | (v as u64) >> (32 - (m - a));
@@ -245,7 +290,7 @@ mod tests {
         assert!(e.contains("twice"), "{e}");
         // entries wrap toroidally
         let t = BlueNoiseTable::new(2, &ok).unwrap();
-        assert_eq!(t.entry(3, 5), t.entry(1, 1));
-        assert_eq!(t.entry(1, 1), [4, 5]);
+        assert_eq!(t.entry([3, 5]), t.entry([1, 1]));
+        assert_eq!(t.entry([1, 1]), [4, 5]);
     }
 }

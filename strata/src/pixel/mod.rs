@@ -54,7 +54,9 @@
 //!   *group* of dimensions are distinct dimensions of one multi-dimensional Sobol' sequence,
 //!   stratified jointly rather than independent (its groups are independent of each other),
 //!   and so are `zquad`'s groups of four, over the base-4 Faure sequence, and the groups of
-//!   `sobol12` and `zsobol12` over the (1,2)-Sobol' sequence.
+//!   `sobol12` and `zsobol12` over the (1,2)-Sobol' sequence. Neighbouring pixels of the
+//!   Z-ordered sequences and of `sobolbn` are correlated by design (their errors cancel: blue
+//!   noise), each pixel's draws still uniform and independent of each other.
 //!   A scene that never asks for lens or time dimensions never computes them.
 //! * **Stratified draws.** Per pixel and draw: `pmj02`, `sobol` and `sobolbn` are
 //!   (0,m,2)-nets at every power-of-two prefix; `lattice` has one point per `1/n` in each coordinate at every power of
@@ -302,8 +304,10 @@ impl GpuParameters {
 
 /// How the samples of two draws of a pixel meet (which sample of one draw is paired with which
 /// sample of another), for the sequences that read a padded index (`sobol`, `pmj02`, the
-/// lattice, the Z-ordered and the joint sequences); `random`, `jittered` and `halton` are
-/// unchanged by it.
+/// lattice, the Z-ordered and the joint sequences, `sobolbn`); `random`, `jittered` and
+/// `halton` are unchanged by it. `sobolbn` keeps the sets its table arranged at every power of
+/// two under `Shells` and `Nested`, and only at multiples of the samples per pixel (rounded up
+/// to a power of two) under `Uniform`.
 #[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Padding {
@@ -1169,8 +1173,11 @@ impl PixelSampler {
     /// Where the draw at `dim` of a blue-noise sequence reads: the pixel's padded index
     /// XOR-ed with the rank of its entry in the table `t` shifted by the draw (bit-reversed),
     /// the entry's key, and the draw's digital shift of the values (in the reversed domain).
-    /// The shift of the table and the digital shift come from the image's keys (`z_tile0`, a
-    /// hash of the seed alone) and the dimension, from independent words of them.
+    /// Under [`Padding::Nested`] the shuffled index is XOR-ed with the shuffle of index 0, so
+    /// that the first `2^m` samples stay the first `2^m` (the sets the table arranged). The
+    /// shift of the table and the two coordinates' digital shifts come from the image's keys
+    /// (`z_tile0`, a hash of the seed alone) and the dimension, each from its own word of
+    /// them.
     #[inline(always)]
     fn blue_noise_at<const P: u8>(
         &self,
@@ -1178,13 +1185,17 @@ impl PixelSampler {
         c: &SampleState,
         dim: u32,
     ) -> (u32, u32, [u32; 2]) {
-        let (index, _) = self.at::<P>(c, dim, dim, None);
+        let (mut index, _) = self.at::<P>(c, dim, dim, None);
+        if P == NESTED {
+            index ^= kernel::shuffled(&DrawKeys::new(&c.own, dim), 0);
+        }
         let image = DrawKeys::new(&self.z_tile0, dim);
         let [key, rank_rev] = t.entry_rev([
             c.pixel[0].wrapping_add(image.e >> 22),
             c.pixel[1].wrapping_add(image.e >> 12),
         ]);
-        (index ^ rank_rev, key, image.v)
+        let shift = [image.v[0], crate::hash::hash32(dim, self.z_tile0.0[3])];
+        (index ^ rank_rev, key, shift)
     }
 
     /// 40 random bits for the low end of [`PixelRng`]'s words, beyond the sequence's 24.

@@ -1,6 +1,6 @@
 //! The built-in table of `sobolbn`: 128 x 128 entries `[key, rank]`, made by the lab's
 //! `bntable` program (`strata_lab::samplers::bntable::optimise`: side 128, levels 6,
-//! integrands 512, effort 100, polish true, seed 0x626e7462) in 88 s on one core:
+//! integrands 512, effort 100, polish true, seed 0x626e7462) in 83 s on one core:
 //! `cargo run --release --example bntable --`.
 //! The low-band share of the error over the tile per count (held-out integrands; white
 //! noise 0.049):

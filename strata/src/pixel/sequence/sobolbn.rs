@@ -1,9 +1,10 @@
 //! `sobolbn`: as `sobol`, but each pixel reads its copy of the sequence through an entry of a
 //! toroidal table (an Owen scramble key and an XOR of the sample index), arranged offline so
-//! that the error is blue noise in screen space at every power-of-two count, without knowing
-//! the count: for viewports and adaptive samplers (Heitz et al. 2019; made progressive as
-//! OpenQMC's `SobolBnSampler`). Each draw reads the table shifted anew, so every draw is blue;
-//! see [`super::super::bluenoise`] for the draw and its limits.
+//! that the error is blue noise in screen space at the power-of-two counts its table was made
+//! for (1 to 64 samples, most at 1 and 2), without knowing the count: for viewports and
+//! adaptive samplers (Heitz et al. 2019; made progressive as OpenQMC's `SobolBnSampler`). Each
+//! draw reads the table shifted anew, so every draw is blue; see [`super::super::bluenoise`]
+//! for the draw and its limits.
 
 use super::{Points, Row, Sequence, SppUse, power_of_two};
 use crate::pixel::BlueNoiseTable;
@@ -16,8 +17,8 @@ pub(crate) const ROW: Row = Row {
     constructor: "`Sequence::sobolbn()`",
     spp: SppUse::Ignored,
     round: power_of_two,
-    promise: "as `sobol`; pixels through a table made so that the error is blue noise at every \
-              power of two (progressive)",
+    promise: "as `sobol`; pixels through a table arranged so that the error is blue noise at 1 \
+              to 64 samples, most at 1 and 2 (progressive)",
     strata: |_, n| StrataGrid::net(n, true),
     source: "Heitz et al. 2019, OpenQMC",
 };
