@@ -9,6 +9,9 @@
 //! * `pixel/one-pixel-4096` and `pixel/one-pixel-65536`: one pixel at 4096 and 65536 samples,
 //!   four 2D values per sample (the cost of a draw deep into a pixel's sequence), every
 //!   sequence the kernel draws beside the peer's `sample_4d`.
+//! * `pixel/one-spp-pass`: a 128 x 128 image at one sample per pixel, four 2D values per
+//!   sample (a viewport's progressive pass: the pixel's setup is paid by every sample), the
+//!   kernel's sequences beside the peer's `sample_4d`.
 //! * `pixel/one-value`: one value per call, `sobol::owen_scrambled(index, dim, seed)` against
 //!   `sobol_burley::sample(index, dim, seed)` over dimensions 0-31: time per value.
 //! * `pixel/whole-point`: a 4D point of a research sequence per call, `SobolNd::fill` against
@@ -116,8 +119,8 @@ fn group<'a>(c: &'a mut Criterion, name: &str, elements: u64) -> BenchmarkGroup<
     g
 }
 
-/// The sequences a shape times: every one at the image shape, the kernel's at one pixel.
-fn sequences(shape: Shape, one_pixel: bool) -> Vec<(&'static str, Sequence)> {
+/// The sequences a shape times: every one, or the kernel's only.
+fn sequences(shape: Shape, kernel_only: bool) -> Vec<(&'static str, Sequence)> {
     Sequence::NAMES
         .iter()
         .map(|&name| {
@@ -126,13 +129,15 @@ fn sequences(shape: Shape, one_pixel: bool) -> Vec<(&'static str, Sequence)> {
                 Sequence::by_name(name, [shape.side, shape.side]).unwrap(),
             )
         })
-        .filter(|(_, s)| !one_pixel || s.runs_on_gpu())
+        .filter(|(_, s)| !kernel_only || s.runs_on_gpu())
         .collect()
 }
 
-fn adapter_group(c: &mut Criterion, label: &str, shape: Shape, one_pixel: bool) {
+/// Every sequence (or the kernel's only) by `get_2d` and `get_4d` beside the peer; with every
+/// sequence, also the nested padding and the peer's scalar `sample`.
+fn adapter_group(c: &mut Criterion, label: &str, shape: Shape, kernel_only: bool) {
     let mut g = group(c, label, shape.values());
-    for (name, sequence) in sequences(shape, one_pixel) {
+    for (name, sequence) in sequences(shape, kernel_only) {
         let mut s = PixelSampler::new(sequence, shape.spp, Seed(1)).unwrap();
         g.bench_function(BenchmarkId::from_parameter(name), |b| {
             b.iter(|| black_box(get_2d(&mut s, shape)))
@@ -141,7 +146,7 @@ fn adapter_group(c: &mut Criterion, label: &str, shape: Shape, one_pixel: bool) 
             b.iter(|| black_box(get_4d(&mut s, shape)))
         });
     }
-    if !one_pixel {
+    if !kernel_only {
         // the nested padding alone, for the record
         for name in ["sobol", "zsobol"] {
             let sequence = Sequence::by_name(name, [shape.side, shape.side]).unwrap();
@@ -177,6 +182,12 @@ fn pixel(c: &mut Criterion) {
         };
         adapter_group(c, &format!("pixel/one-pixel-{spp}"), shape, true);
     }
+    let pass = Shape {
+        side: 128,
+        spp: 1,
+        pairs: 4,
+    };
+    adapter_group(c, "pixel/one-spp-pass", pass, true);
 
     // one value per call: 4096 indices x 32 dimensions, one seed per index block
     let mut g = group(c, "pixel/one-value", 4096 * 32);

@@ -68,6 +68,9 @@ fn the_gpu_computes_the_cpu_bits() {
             Sequence::zjoint(64, 64, 2).unwrap(),
             Sequence::zjoint(48, 64, 512).unwrap(),
             Sequence::sobol12(512).unwrap(),
+            // a blue-noise table of another side than the built-in's (the shader reads the
+            // side from the parameters): 64 x 64 entries of hashed keys and every rank
+            Sequence::sobolbn_with(small_table()),
         ])
         .collect();
     assert!(sequences.len() >= 10, "{sequences:?}");
@@ -84,7 +87,7 @@ fn the_gpu_computes_the_cpu_bits() {
             1 => sequence.name().to_string(),
             g => format!("{}-{g}", sequence.name()),
         };
-        let name = format!("{name} ({padding:?})");
+        let name = format!("{name} ({padding:?}, case {k})");
         // the Z-ordered ones with 16 samples per pixel: the grid's indices up to 255 cross each
         // pixel's block; the others ignore the count
         let s = PixelSampler::new(sequence, 16, Seed(0x5eed + k as u64))
@@ -112,6 +115,19 @@ fn the_gpu_computes_the_cpu_bits() {
         );
         eprintln!("{name}: {COUNT} draws bit-identical");
     }
+}
+
+/// A 64 x 64 blue-noise table of hashed entries (keys and ranks below 4096; not optimised:
+/// the test checks the GPU's reading of a table of another side, not its noise).
+fn small_table() -> strata::pixel::BlueNoiseTable {
+    let side = 64u32;
+    let entries: Vec<[u32; 2]> = (0..side * side)
+        .map(|i| {
+            let h = strata::hash::mix64(i as u64 ^ 0x0074_6162_6c65_3634);
+            [h as u32, (h >> 52) as u32]
+        })
+        .collect();
+    strata::pixel::BlueNoiseTable::new(side, &entries).unwrap()
 }
 
 #[test]
