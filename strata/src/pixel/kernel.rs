@@ -80,9 +80,19 @@ pub(crate) struct PixelKeys(pub(crate) [u32; 4]);
 /// lanes.
 #[inline]
 pub(crate) fn pixel_keys(key: &Key, pixel: [u32; 2]) -> PixelKeys {
-    let k = X4::new(key.0);
-    let a = lowbias_lanes(k.xor(X4::splat(pixel[1])));
-    PixelKeys(lowbias_lanes(a.xor(X4::splat(pixel[0]))).to_array())
+    pixel_keys_in_row(&row_keys(key, pixel[1]), pixel[0])
+}
+
+/// The part of [`pixel_keys`] that depends on the row `y` only: `lowbias(y ^ k_j)`.
+#[inline]
+pub(crate) fn row_keys(key: &Key, y: u32) -> [u32; 4] {
+    lowbias_lanes(X4::new(key.0).xor(X4::splat(y))).to_array()
+}
+
+/// [`pixel_keys`] of the pixel in column `x` of the row whose [`row_keys`] are `row`.
+#[inline]
+pub(crate) fn pixel_keys_in_row(row: &[u32; 4], x: u32) -> PixelKeys {
+    PixelKeys(lowbias_lanes(X4::new(*row).xor(X4::splat(x))).to_array())
 }
 
 /// Wellons' `lowbias32` in every lane (as [`crate::hash::hash32`] with a zero key).

@@ -392,6 +392,9 @@ const SHELLS: u8 = 0;
 const NESTED: u8 = 1;
 /// See [`SHELLS`].
 const UNIFORM: u8 = 2;
+/// [`SHELLS`] below `2^16`, each draw's [`Shell::keys`] from the sampler's cache (the stateful
+/// draws' paths; the same values).
+const SHELLS_CACHED: u8 = 3;
 
 /// The tag of a pending pair in [`PixelSampler`]'s `next`.
 const PENDING: u64 = 1 << 32;
@@ -421,6 +424,13 @@ pub struct PixelSampler {
     /// where `z_valid` has the dimension's bit.
     z_bases: [u32; 64],
     z_valid: u64,
+    /// The current shell's [`Shell::keys`] per draw for dimensions below 64 (the samples of one
+    /// shell of a pixel share them), valid where `shell_valid` has the dimension's bit.
+    shell_keys: [u32; 64],
+    shell_valid: u64,
+    /// The row part of the last pixel's keys ([`kernel::row_keys`]): the row `y`, the epoch
+    /// and the words (a renderer's next pixel is mostly in the same row).
+    row: (u32, u32, [u32; 4]),
     /// The draw at dimension `next - 2^32` of the current sample, computed beside the
     /// previous one by [`get_2d`](Self::get_2d) (`next` is 0 when there is none: one
     /// comparison per call).
@@ -477,6 +487,9 @@ impl PixelSampler {
             route: Route::Generic,
             z_bases: [0; 64],
             z_valid: 0,
+            shell_keys: [0; 64],
+            shell_valid: 0,
+            row: (0, 0, kernel::row_keys(&key, 0)),
             next_pair: [0.0; 2],
             next: 0,
             dim: 0,
@@ -598,10 +611,23 @@ impl PixelSampler {
     pub fn start_pixel_sample(&mut self, pixel: [u32; 2], index: u64, dim: u32) {
         let epoch = (index >> 32) as u32;
         if !self.pixel.is(pixel, epoch) {
-            self.pixel = self.pixel_state(pixel, epoch);
+            if (self.row.0, self.row.1) != (pixel[1], epoch) {
+                self.row = (
+                    pixel[1],
+                    epoch,
+                    kernel::row_keys(&self.key.epoch(epoch), pixel[1]),
+                );
+            }
+            let own = kernel::pixel_keys_in_row(&self.row.2, pixel[0]);
+            self.pixel = self.pixel_state_with(pixel, epoch, own);
             self.z_valid = 0;
+            self.shell_valid = 0;
         }
-        self.current = self.sample_state(&self.pixel, index as u32);
+        let sample = self.sample_state(&self.pixel, index as u32);
+        if !sample.shell.same_size(&self.current.shell) {
+            self.shell_valid = 0;
+        }
+        self.current = sample;
         self.next = 0;
         self.dim = dim;
         self.limit = None;
@@ -703,14 +729,25 @@ impl PixelSampler {
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[cfg_attr(debug_assertions, inline)]
     fn draw_4(&mut self, dim: u32) -> [f32; 4] {
+        let z = self.current.z.is_some();
         match (self.route, self.padding) {
+            // the shells below 2^16 (nearly every sample a renderer takes): the cached keys
+            (Route::Digital(t), Padding::Shells) if !self.current.shell.nested() => {
+                return self.digital_4::<SHELLS_CACHED>(t, dim);
+            }
             (Route::Digital(t), Padding::Shells) => return self.digital_4::<SHELLS>(t, dim),
             (Route::Digital(t), Padding::Nested) => return self.digital_4::<NESTED>(t, dim),
-            (Route::DigitalZ(t), Padding::Shells) if self.current.z.is_some() => {
+            (Route::DigitalZ(t), Padding::Shells) if z && !self.current.shell.nested() => {
+                return self.digital_z_4::<SHELLS_CACHED>(t, dim);
+            }
+            (Route::DigitalZ(t), Padding::Shells) if z => {
                 return self.digital_z_4::<SHELLS>(t, dim);
             }
-            (Route::DigitalZ(t), Padding::Nested) if self.current.z.is_some() => {
+            (Route::DigitalZ(t), Padding::Nested) if z => {
                 return self.digital_z_4::<NESTED>(t, dim);
+            }
+            (Route::Joint, Padding::Shells) if !self.current.shell.nested() => {
+                return self.joint_4::<SHELLS_CACHED>(dim);
             }
             (Route::Joint, Padding::Shells) => return self.joint_4::<SHELLS>(dim),
             (Route::Joint, Padding::Nested) => return self.joint_4::<NESTED>(dim),
@@ -798,6 +835,13 @@ impl PixelSampler {
 
     /// The state of `pixel` in `epoch`.
     fn pixel_state(&self, pixel: [u32; 2], epoch: u32) -> PixelState {
+        let own = kernel::pixel_keys(&self.key.epoch(epoch), pixel);
+        self.pixel_state_with(pixel, epoch, own)
+    }
+
+    /// The state of `pixel` in `epoch`, whose keys are `own`.
+    #[inline(always)]
+    fn pixel_state_with(&self, pixel: [u32; 2], epoch: u32, own: PixelKeys) -> PixelState {
         let z = match self.sequence.resolution() {
             Some(res) if epoch == 0 => kernel::z_pixel(&self.key, res, pixel),
             _ => None,
@@ -805,7 +849,7 @@ impl PixelSampler {
         PixelState {
             pixel,
             epoch,
-            own: kernel::pixel_keys(&self.key.epoch(epoch), pixel),
+            own,
             z,
         }
     }
@@ -912,12 +956,27 @@ impl PixelSampler {
         dim: u32,
         z: Option<u32>,
     ) -> (u32, [u32; 2]) {
+        self.at_keyed::<P>(c, g, dim, z, 0)
+    }
+
+    /// [`at`](Self::at), and under [`SHELLS_CACHED`] (below `2^16`) with the shell's
+    /// [`Shell::keys`] for the group at `g` given (`shell`; unread under the other paddings).
+    #[inline(always)]
+    fn at_keyed<const P: u8>(
+        &self,
+        c: &SampleState,
+        g: u32,
+        dim: u32,
+        z: Option<u32>,
+        shell: u32,
+    ) -> (u32, [u32; 2]) {
         let Some(z) = z else {
             // the pixel's own copy: padded (the shells and the uniform blocks mix their
             // positions themselves) or shuffled
             let keys = c.own;
             let index = match P {
                 SHELLS => c.shell.map_rev(g, DrawKeys::hash(&keys, g)),
+                SHELLS_CACHED => c.shell.mixed(shell, DrawKeys::hash(&keys, g)),
                 NESTED => kernel::shuffled(&DrawKeys::new(&keys, g), c.index.reverse_bits()),
                 _ => padding::uniform_rev(
                     c.index,
@@ -935,6 +994,7 @@ impl PixelSampler {
         let keys = self.tile_keys(c, g);
         let a = match P {
             SHELLS => c.shell.affine_rev(g),
+            SHELLS_CACHED => c.shell.affine_keyed(shell),
             NESTED => c.index.reverse_bits(),
             _ => padding::uniform_rev(c.index, self.spp.z_bits(), c.own.0[2], g, 0),
         };
@@ -945,14 +1005,33 @@ impl PixelSampler {
     /// [`two`](Self::two) for a digital sequence that is not Z-ordered, under the padding `P`:
     /// the same values, by the shortest path.
     #[inline(always)]
-    fn digital_4<const P: u8>(&self, t: &crate::digital::PairTables, dim: u32) -> [f32; 4] {
+    fn digital_4<const P: u8>(&mut self, t: &crate::digital::PairTables, dim: u32) -> [f32; 4] {
         let d2 = dim.wrapping_add(2);
+        let (sa, sb) = (self.shell_keys_of::<P>(dim), self.shell_keys_of::<P>(d2));
         let c = &self.current;
         let ((ia, va), (ib, vb)) = (
-            self.at::<P>(c, dim, dim, None),
-            self.at::<P>(c, d2, d2, None),
+            self.at_keyed::<P>(c, dim, dim, None, sa),
+            self.at_keyed::<P>(c, d2, d2, None, sb),
         );
         kernel::scrambled_pair(t.point_rev(ia), va, t.point_rev(ib), vb)
+    }
+
+    /// The current shell's [`Shell::keys`] for the group at `g` under [`SHELLS_CACHED`] (0
+    /// under the other paddings, which do not read them), from the cache for groups below 64.
+    #[inline(always)]
+    fn shell_keys_of<const P: u8>(&mut self, g: u32) -> u32 {
+        if P != SHELLS_CACHED {
+            return 0;
+        }
+        if g >= 64 {
+            return self.current.shell.keys(g);
+        }
+        let bit = 1u64 << g;
+        if self.shell_valid & bit == 0 {
+            self.shell_keys[g as usize] = self.current.shell.keys(g);
+            self.shell_valid |= bit;
+        }
+        self.shell_keys[g as usize]
     }
 
     /// [`two`](Self::two) for a Z-ordered digital sequence under the padding `P`, inside the
@@ -961,8 +1040,12 @@ impl PixelSampler {
     fn digital_z_4<const P: u8>(&mut self, t: &crate::digital::PairTables, dim: u32) -> [f32; 4] {
         let d2 = dim.wrapping_add(2);
         let (za, zb) = (self.z_base_of_group(dim), self.z_base_of_group(d2));
+        let (sa, sb) = (self.shell_keys_of::<P>(dim), self.shell_keys_of::<P>(d2));
         let c = &self.current;
-        let ((ia, va), (ib, vb)) = (self.at::<P>(c, dim, dim, za), self.at::<P>(c, d2, d2, zb));
+        let ((ia, va), (ib, vb)) = (
+            self.at_keyed::<P>(c, dim, dim, za, sa),
+            self.at_keyed::<P>(c, d2, d2, zb, sb),
+        );
         kernel::scrambled_pair(t.point_rev(ia), va, t.point_rev(ib), vb)
     }
 
@@ -975,11 +1058,12 @@ impl PixelSampler {
             self.sequence.group_start(d2),
         );
         let (za, zb) = (self.z_base_of_group(ga), self.z_base_of_group(gb));
+        let (sa, sb) = (self.shell_keys_of::<P>(ga), self.shell_keys_of::<P>(gb));
         let c = &self.current;
         let Points::Joint(tables) = self.sequence.points() else {
             return self.two(c, dim, [za, zb]);
         };
-        let (ia, va) = self.at::<P>(c, ga, dim, za);
+        let (ia, va) = self.at_keyed::<P>(c, ga, dim, za, sa);
         let (ib, vb) = if ga == gb {
             // the group's index, the keys of `at` (the pixel's own or the tile's)
             let keys = match zb {
@@ -988,7 +1072,7 @@ impl PixelSampler {
             };
             (ia, DrawKeys::values(&keys, d2))
         } else {
-            self.at::<P>(c, gb, d2, zb)
+            self.at_keyed::<P>(c, gb, d2, zb, sb)
         };
         let (oa, ob) = ((dim - ga) as usize, (d2 - gb) as usize);
         let lookup = crate::digital::lookup;

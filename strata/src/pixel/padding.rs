@@ -100,16 +100,24 @@ fn below(t: u32, m: u32) -> u32 {
     ((t as u64 * m as u64) >> 32) as u32
 }
 
-/// The affine map of the [module docs](self) on the position `x` of a shell or block of
-/// `m + 1 = 2^j` places (`j <= 15`, `top` its `j` top bits), keyed by the hash `t`, in the
-/// bit-reversed domain: the field element `g^((x + r) mod m) + b` (or `b` at `x = m`, whose
-/// `g^x` stands for zero: `live` is 0 there, else `top`). `r` comes from `t` rotated (a
-/// multiply-high, mostly of its bits `16 - j .. 16`), `b` from its top `j` bits: disjoint bits.
+/// The parameters of the affine map of a shell or block of `m + 1 = 2^j` places (`j <= 15`,
+/// `top` its `j` top bits) keyed by the hash `t`, in one word: `r` in `[0, m)` in the low 16
+/// bits, drawn from `t` rotated (a multiply-high, mostly of its bits `16 - j .. 16`), and `b`,
+/// the top `j` bits of `t`, in place (bits `32 - j ..`, above `r`'s: `rb & top` is `b`).
 #[inline(always)]
-fn affine(t: u32, x: u32, m: u32, live: u32, top: u32) -> u32 {
-    let e = x + below(t.rotate_left(16), m);
+fn affine_keys(t: u32, m: u32, top: u32) -> u32 {
+    (t & top) | below(t.rotate_left(16), m)
+}
+
+/// The affine map of the [module docs](self) with the parameters `rb` ([`affine_keys`]) on the
+/// position `x` of a shell or block of `m + 1 = 2^j` places, in the bit-reversed domain: the
+/// field element `g^((x + r) mod m) + b` (or `b` at `x = m`, whose `g^x` stands for zero:
+/// `live` is 0 there, else `top`).
+#[inline(always)]
+fn affine(rb: u32, x: u32, m: u32, live: u32, top: u32) -> u32 {
+    let e = x + (rb & 0xffff);
     let e = if e >= m { e - m } else { e };
-    ((EXP[((m + e) & 0xffff) as usize] as u32) << 16 & live) ^ (t & top)
+    ((EXP[((m + e) & 0xffff) as usize] as u32) << 16 & live) ^ (rb & top)
 }
 
 /// The draw's nonlinear reordering of its shell or block after the affine map, in the
@@ -138,7 +146,9 @@ const SHELL: u32 = crate::hash::GOLDEN_GAMMA_32;
 
 /// What the shell padding needs of a sample index, computed once per pixel sample (every draw
 /// of the sample reorders the same shell): [`Shell::map_rev`] is then a hash, a table lookup
-/// and two multiplies per draw.
+/// and a round of the Owen hash per draw. The hash's part ([`Shell::keys`]) depends on the
+/// pixel, the shell and the draw only, so the samples of one shell of a pixel may share it
+/// ([`Shell::mixed`]): the sampler keeps it per draw while the pixel and the shell stay.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Shell {
     /// The pixel's padding key, mixed with the shell.
@@ -180,16 +190,42 @@ impl Shell {
     /// shell mapped by the draw's map.
     #[inline(always)]
     pub(crate) fn map_rev(&self, dim: u32, key: u32) -> u32 {
-        let t = hash32(dim, self.salt);
         if self.nested {
-            return self.nested_rev(t);
+            return self.nested_rev(hash32(dim, self.salt));
         }
+        self.mixed(self.keys(dim), key)
+    }
+
+    /// The parameters of the affine map of the draw at `dim` on this shell (below `2^16`: not
+    /// [`nested`](Self::nested)), the same for every sample of the shell in the pixel.
+    #[inline(always)]
+    pub(crate) fn keys(&self, dim: u32) -> u32 {
+        affine_keys(hash32(dim, self.salt), self.m, self.top)
+    }
+
+    /// [`map_rev`](Self::map_rev) from the draw's [`keys`](Self::keys) (below `2^16`).
+    #[inline(always)]
+    pub(crate) fn mixed(&self, keys: u32, key: u32) -> u32 {
         self.marker
             | mix(
-                affine(t, self.x, self.m, self.live, self.top),
+                affine(keys, self.x, self.m, self.live, self.top),
                 self.top,
                 key,
             )
+    }
+
+    /// Whether the shell is past the tables (from `2^16` on), where the draws' maps are nested
+    /// scrambles.
+    #[inline(always)]
+    pub(crate) fn nested(&self) -> bool {
+        self.nested
+    }
+
+    /// Whether `other` is a shell of the same size (with the same pixel's key: the same
+    /// [`keys`](Self::keys) for every draw).
+    #[inline(always)]
+    pub(crate) fn same_size(&self, other: &Shell) -> bool {
+        self.m == other.m
     }
 
     /// [`map_rev`](Self::map_rev) without the mix (the affine map alone), for the Z-ordered
@@ -199,11 +235,16 @@ impl Shell {
     /// pixel under the image's shared value scramble (a red error).
     #[inline(always)]
     pub(crate) fn affine_rev(&self, dim: u32) -> u32 {
-        let t = hash32(dim, self.salt);
         if self.nested {
-            return self.nested_rev(t);
+            return self.nested_rev(hash32(dim, self.salt));
         }
-        self.marker | affine(t, self.x, self.m, self.live, self.top)
+        self.affine_keyed(self.keys(dim))
+    }
+
+    /// [`affine_rev`](Self::affine_rev) from the draw's [`keys`](Self::keys) (below `2^16`).
+    #[inline(always)]
+    pub(crate) fn affine_keyed(&self, keys: u32) -> u32 {
+        self.marker | affine(keys, self.x, self.m, self.live, self.top)
     }
 
     /// Shells from `2^16` on: the position nested-scrambled (the reversed domain's Owen hash
@@ -233,7 +274,12 @@ pub(crate) fn uniform_rev(index: u32, bits: u32, key: u32, dim: u32, mix_key: u3
     let top = !(u32::MAX >> bits);
     let t = hash32(dim, hash32(index >> bits, key ^ BLOCK ^ bits));
     let live = if x == m { 0 } else { top };
-    (index & !m).reverse_bits() | mix(affine(t, x, m, live, top), top, mix_key)
+    (index & !m).reverse_bits()
+        | mix(
+            affine(affine_keys(t, m, top), x, m, live, top),
+            top,
+            mix_key,
+        )
 }
 
 #[cfg(test)]

@@ -423,33 +423,43 @@ fn four_dimensions_at_once_are_two_draws_of_two() {
 
 #[test]
 fn stateful_draws_equal_the_stateless_ones_across_pixels_samples_and_dims() {
-    // the Z-ordered sequences cache a pixel's place per draw below dimension 64: the cache
-    // must follow pixel changes, and draws past 64 dimensions, get_4d and get_1d must agree
+    // the sampler caches per draw below dimension 64 a Z-ordered pixel's place and the shells'
+    // keys, and per row the pixel keys' first half: the caches must follow changes of pixel,
+    // row, shell and epoch (and hold within one: samples 5 and 6 share a shell, pixels 3 and 8
+    // a row), and draws past 64 dimensions, get_4d and get_1d must agree
     for seq in all() {
         let mut s = PixelSampler::new(seq.clone(), 16, strata::Seed(11)).unwrap();
+        // the stateless draws of a sampler that starts no sample (they would read `s`'s own
+        // pixel state, cache and all, where it has the pixel)
+        let r = s.clone();
         for (pixel, index) in [
             ([3, 4], 0u64),
             ([3, 4], 5),
+            ([3, 4], 6),
+            ([9, 1], 6),
             ([9, 1], 5),
             ([3, 4], 15),
             ([3, 4], 16),
+            ([8, 4], 17),
+            ([8, 4], (1 << 32) + 17),
+            ([8, 4], 18),
         ] {
             s.start_pixel_sample(pixel, index, 0);
             let mut dim = 0;
             while dim < 80 {
                 let a = s.get_2d();
-                assert_eq!(a, s.sample_2d(pixel, index, dim), "{} 2d {dim}", seq.name());
+                assert_eq!(a, r.sample_2d(pixel, index, dim), "{} 2d {dim}", seq.name());
                 let q = s.get_4d();
                 assert_eq!(
                     q,
-                    s.sample_4d(pixel, index, dim + 2),
+                    r.sample_4d(pixel, index, dim + 2),
                     "{} 4d {dim}",
                     seq.name()
                 );
                 let x = s.get_1d();
                 assert_eq!(
                     x,
-                    s.sample_1d(pixel, index, dim + 6),
+                    r.sample_1d(pixel, index, dim + 6),
                     "{} 1d {dim}",
                     seq.name()
                 );
