@@ -386,6 +386,52 @@ enum Route {
     Generic,
 }
 
+/// A word per draw for dimensions below 64, computed on first use and kept until
+/// [`clear`](Self::clear) (what a pixel's samples, or a shell's, share).
+#[derive(Clone, Debug)]
+struct PerDraw {
+    words: [u32; 64],
+    /// The dimensions whose word is valid, a bit each.
+    valid: u64,
+}
+
+impl PerDraw {
+    /// Nothing kept yet.
+    fn new() -> Self {
+        PerDraw {
+            words: [0; 64],
+            valid: 0,
+        }
+    }
+
+    /// The word of `dim`: kept below 64, else `f()` each time.
+    #[inline(always)]
+    fn get(&mut self, dim: u32, f: impl FnOnce() -> u32) -> u32 {
+        if dim >= 64 {
+            return f();
+        }
+        let bit = 1u64 << dim;
+        if self.valid & bit == 0 {
+            self.words[dim as usize] = f();
+            self.valid |= bit;
+        }
+        self.words[dim as usize]
+    }
+
+    /// Forgets every word.
+    #[inline(always)]
+    fn clear(&mut self) {
+        self.valid = 0;
+    }
+}
+
+/// `z 2^bits` (modulo `2^32`), bit-reversed, for the place `z` of pixel `zp` in the draw whose
+/// group starts at `g`.
+#[inline(always)]
+fn z_base_of(zp: &ZPixel, g: u32, bits: u32) -> u32 {
+    kernel::z_place(zp, g).reverse_bits() >> bits
+}
+
 /// The paddings as numbers, the const parameter of the draws (each compiled on its own).
 const SHELLS: u8 = 0;
 /// See [`SHELLS`].
@@ -420,14 +466,11 @@ pub struct PixelSampler {
     /// The default padding's sequences take paths of their own ([`Route`]).
     route: Route,
     /// The current pixel's place per draw for dimensions below 64 (a pixel's samples share
-    /// them), as the start of its block of global indices (`z 2^bits`), bit-reversed, valid
-    /// where `z_valid` has the dimension's bit.
-    z_bases: [u32; 64],
-    z_valid: u64,
+    /// them), as the start of its block of global indices (`z 2^bits`), bit-reversed.
+    z_bases: PerDraw,
     /// The current shell's [`Shell::keys`] per draw for dimensions below 64 (the samples of one
-    /// shell of a pixel share them), valid where `shell_valid` has the dimension's bit.
-    shell_keys: [u32; 64],
-    shell_valid: u64,
+    /// shell of a pixel share them).
+    shell_keys: PerDraw,
     /// The row part of the last pixel's keys ([`kernel::row_keys`]): the row `y`, the epoch
     /// and the words (a renderer's next pixel is mostly in the same row).
     row: (u32, u32, [u32; 4]),
@@ -485,10 +528,8 @@ impl PixelSampler {
             padding: Padding::Shells,
             pairs,
             route: Route::Generic,
-            z_bases: [0; 64],
-            z_valid: 0,
-            shell_keys: [0; 64],
-            shell_valid: 0,
+            z_bases: PerDraw::new(),
+            shell_keys: PerDraw::new(),
             row: (0, 0, kernel::row_keys(&key, 0)),
             next_pair: [0.0; 2],
             next: 0,
@@ -620,12 +661,12 @@ impl PixelSampler {
             }
             let own = kernel::pixel_keys_in_row(&self.row.2, pixel[0]);
             self.pixel = self.pixel_state_with(pixel, epoch, own);
-            self.z_valid = 0;
-            self.shell_valid = 0;
+            self.z_bases.clear();
+            self.shell_keys.clear();
         }
         let sample = self.sample_state(&self.pixel, index as u32);
         if !sample.shell.same_size(&self.current.shell) {
-            self.shell_valid = 0;
+            self.shell_keys.clear();
         }
         self.current = sample;
         self.next = 0;
@@ -894,29 +935,19 @@ impl PixelSampler {
     #[inline(always)]
     fn z_base_of_group(&mut self, g: u32) -> Option<u32> {
         let zp = self.current.z?;
-        if g >= 64 {
-            return Some(self.z_base_of(&zp, g));
-        }
-        let bit = 1u64 << g;
-        if self.z_valid & bit == 0 {
-            self.z_bases[g as usize] = self.z_base_of(&zp, g);
-            self.z_valid |= bit;
-        }
-        Some(self.z_bases[g as usize])
+        let bits = self.spp.z_bits();
+        Some(self.z_bases.get(g, || z_base_of(&zp, g, bits)))
     }
 
     /// [`z_base_cached`](Self::z_base_cached) without the cache.
     #[inline(always)]
     fn z_base(&self, c: &SampleState, dim: u32) -> Option<u32> {
         let zp = c.z?;
-        Some(self.z_base_of(&zp, self.sequence.group_start(dim)))
-    }
-
-    /// `z 2^bits` (modulo `2^32`), bit-reversed, for the place `z` of pixel `zp` in the draw
-    /// whose group starts at `g`.
-    #[inline(always)]
-    fn z_base_of(&self, zp: &ZPixel, g: u32) -> u32 {
-        kernel::z_place(zp, g).reverse_bits() >> self.spp.z_bits()
+        Some(z_base_of(
+            &zp,
+            self.sequence.group_start(dim),
+            self.spp.z_bits(),
+        ))
     }
 
     /// The keys of the tile of the Z-ordered sequences' global sequence where the current
@@ -1023,15 +1054,8 @@ impl PixelSampler {
         if P != SHELLS_CACHED {
             return 0;
         }
-        if g >= 64 {
-            return self.current.shell.keys(g);
-        }
-        let bit = 1u64 << g;
-        if self.shell_valid & bit == 0 {
-            self.shell_keys[g as usize] = self.current.shell.keys(g);
-            self.shell_valid |= bit;
-        }
-        self.shell_keys[g as usize]
+        let shell = self.current.shell;
+        self.shell_keys.get(g, || shell.keys(g))
     }
 
     /// [`two`](Self::two) for a Z-ordered digital sequence under the padding `P`, inside the
