@@ -23,8 +23,9 @@ const BUILTIN_TABLE: &str = "strata/src/pixel/bluenoise/sobol_128.rs";
 const ABOUT: &str = "bntable: the table of the progressive blue-noise sequence sobolbn (per \
 pixel of a side x side torus, an Owen scramble key and a rank that XORs the sample index), \
 optimised so that the error of neighbouring pixels cancels at every count 1, 2, ..., 2^levels \
-(strata_lab::samplers::bntable: OpenQMC's keys-then-ranks method, then a polish over every \
-count), written as a Rust table under a header naming the options, the command and the run time, \
+(strata_lab::samplers::bntable: 4 x 4 blocks of pixels sharing their scramble's leading digits, \
+whose ranks XOR patterns that make the block's samples together a net at every count, arranged \
+by OpenQMC's keys-then-ranks method, then a polish over every count), written as a Rust table under a header naming the options, the command and the run time, \
 with the low-band share of the error per count. The renderer's crate reads its built-in table \
 (strata::pixel::BlueNoiseTable::builtin) from the default output.";
 

@@ -39,6 +39,8 @@ pub(crate) mod streams {
     pub(crate) const BNTABLE: [u64; 2] = [0x0b70, 0x0b71];
     /// The test integrands of a table's figures.
     pub(crate) const BNTABLE_TESTS: [u64; 2] = [0x0b72, 0x0b73];
+    /// The random entries a table's figures compare it with.
+    pub(crate) const BNTABLE_RANDOM: [u64; 2] = [0x0b74, 0x0b75];
 }
 
 /// PCG32 seeded from two streams of `key` (state and increment).

@@ -5,37 +5,56 @@
 //! built-in table is [`optimise`]`(&`[`BUILTIN`]`)`, written into
 //! `strata/src/pixel/bluenoise/sobol_128.rs` by the `bntable` program.
 //!
-//! The method is OpenQMC's (Framestore, `src/tools/lib/optimise.cpp`, after Heitz, Belcour et
-//! al. 2019 and Belcour and Heitz 2021), rewritten over this crate's draws:
+//! **The structure.** The tile is cut into 4 x 4 blocks. The sixteen pixels of a block share
+//! the bits of their key that scramble the leading `levels + 4` digits (the rest of the key is
+//! the pixel's own), and each XORs the block's base rank with a pattern, a sum of the
+//! [`GENERATORS`] chosen by its place in the block and the block's layout. So at every count `2^k` the union of a
+//! block's (or of a 2 x 2 sub-block's) first `2^k` samples per pixel is the scrambled Sobol'
+//! points at a subspace of indices: a net of 16 (or 4) times as many points, with the small
+//! t-values the generators were searched for, while each pixel's own samples stay the aligned
+//! blocks of its sequence (nets) at every count. It is the Z order of Ahmed and Wonka ("Screen-
+//! Space Blue-Noise Diffusion of Monte Carlo Sampling Error via Hierarchical Ordering of
+//! Pixels", SIGGRAPH Asia 2020; pbrt-v4's `ZSobolSampler`) for two levels, made progressive:
+//! that order makes the union a net at the one count it is told; a rank XOR by a fixed pattern
+//! cannot make it an aligned block at every count (the block of one count holds the first
+//! sample of the others), so the generators are the subspaces that come closest.
 //!
-//! 1. **Keys.** Random keys (ranks random above their low `levels` bits, 0 below) are permuted
-//!    over the tile so that the errors of the *whole* count, `2^levels` samples, are blue.
-//! 2. **Ranks, from the top down.** At each count `2^l` below it, every pixel chooses which half
-//!    of its `2^(l+1)` samples comes first (bit `l` of its rank): the sets of the larger counts
-//!    stay, the error at `2^l` becomes blue.
-//! 3. **Every count at once** (our step): each pixel's rank (which of its blocks comes first at
-//!    every count) is chosen anew against its neighbours, sweep after sweep, then whole entries
-//!    are swapped between pixels (the *polish*), against the errors of every count, each count
-//!    weighted by the inverse of its mean squared error.
+//! **The arrangement** (OpenQMC's method, Framestore, `src/tools/lib/optimise.cpp`, after
+//! Heitz, Belcour et al. 2019 and Belcour and Heitz 2021, rewritten over whole blocks):
+//!
+//! 1. **Keys.** Blocks of random keys and base ranks (random above their low `levels` bits, 0
+//!    below) are permuted over the tile so that the errors of the *whole* count, `2^levels`
+//!    samples, are blue.
+//! 2. **Ranks, from the top down.** At each count `2^l` below it, every block chooses which half
+//!    of its pixels' `2^(l+1)` samples comes first (bit `l` of its base rank): the sets of the
+//!    larger counts stay, the error at `2^l` becomes blue.
+//! 3. **Every count at once** (our step): each block's base rank's low bits, then its layout
+//!    (which pixel holds which pattern: 576 maps that keep the sub-blocks'
+//!    and the block's unions, 32 of them tried per block and sweep) are chosen anew against its
+//!    neighbours, sweep after sweep, then whole blocks are swapped (the *polish*), against the
+//!    errors of every count, each count weighted by the inverse of its mean squared error.
 //!
 //! "Blue" is measured by the energy `sum_p sum_q w(p - q) <e_p, e_q>`: `e_p` the pixel's errors
 //! over a set of test integrands of the draw's 2D domain, `w` a Gaussian of 2.1 pixels over a
-//! 13 x 13 window (0 at the centre); low energy means neighbouring errors of opposite signs,
-//! little power at low frequencies. The integrands: edges of random position and orientation
+//! 13 x 13 window (0 at the centre), six times as heavy on the pixel's row and column; low
+//! energy means neighbouring errors of opposite signs, little power at low frequencies. The
+//! row and the column weigh more because an edge of the image along a row meets the same
+//! integrand in every pixel of that row alone: a tile whose error is blue as a whole can still
+//! have rows of one sign (the blocks' fixed layout did, at 4 samples), and then the edge's error
+//! is red. The integrands: edges of random position and orientation
 //! (two in five, as OpenQMC's oriented Heavisides), steps along the first coordinate (three in
 //! ten: a renderer's 1D draws, a light or a lobe choice, read the first coordinate), along the
 //! second (one in ten), Gaussian bumps of random centre and width (the rest), each seen through
 //! a random digital shift, as the draws see them (each draw XORs its values with a shift per
 //! seed and dimension). The figures are over another draw of the same kinds (held out). Each
-//! step makes single moves (swaps, rank choices), the energy's change computed from a
+//! step makes moves of whole blocks (swaps, rank choices), the energy's change computed from a
 //! low-passed field of the errors that each accepted move updates (as the lab's tile study
 //! does).
 //!
-//! What it reaches, and what it cannot: a pixel's sets at the counts are blocks of its own
-//! scrambled sequence, independent of its neighbours', so the arrangement chooses among them
-//! but cannot make a neighbourhood's union a finer net as a Z order told the count does: the
-//! low-band share falls most at 1 and 2 samples and less at each larger count (the table's
-//! header has the figures).
+//! **The limit.** Past `2^12` samples two pixels of a block can draw the same block of indices
+//! (their points then agree in the leading `levels + 4` digits and differ below them), and
+//! past `2^(levels + 2)` samples the unions are nets only down to those digits: the table's
+//! arrangement fades out there, as the optimiser's counts end.
 
 use std::fmt::Write as _;
 
@@ -84,7 +103,7 @@ pub struct Table {
     /// `(key, rank)` row-major, as [`BlueNoiseTable::new`] takes them.
     pub entries: Vec<[u32; 2]>,
     /// Per count `2^l`, `l = 0..=levels`: the low-band share of the error image over the tile
-    /// (held-out integrands, mean over them) of the random start and of the table.
+    /// (held-out integrands, mean over them) of random entries and of the table.
     pub lowband: Vec<LevelFigures>,
 }
 
@@ -93,7 +112,7 @@ pub struct Table {
 pub struct LevelFigures {
     /// Samples per pixel.
     pub count: u32,
-    /// The random entries before the optimisation.
+    /// Random entries (distinct random keys, random ranks): white noise.
     pub random: f64,
     /// The table.
     pub table: f64,
@@ -260,6 +279,8 @@ fn entry_errors(key: u32, rank: u32, tests: &[Shifted], levels: u32, out: &mut [
 const RADIUS: i32 = 6;
 /// The Gaussian's standard deviation, pixels.
 const SIGMA: f64 = 2.1;
+/// The extra weight of the pairs of one row or one column (times the Gaussian).
+const LINE: f64 = 5.0;
 
 /// The errors of every pixel of the tile (`f` features each) and their low-passed field
 /// `s_p = sum_{q != p} w(p - q) e_q`.
@@ -284,7 +305,11 @@ impl Field {
                 if dx == 0 && dy == 0 {
                     continue;
                 }
-                let w = (-((dx * dx + dy * dy) as f64) / (2.0 * SIGMA * SIGMA)).exp() as f32;
+                let g = |d2: i32| (-(d2 as f64) / (2.0 * SIGMA * SIGMA)).exp();
+                // pixels on one row or column weigh more: an edge of the image along a row
+                // meets one integrand in every pixel of it, and its error is that row's alone
+                let line = if dx == 0 || dy == 0 { LINE } else { 0.0 };
+                let w = (g(dx * dx + dy * dy) * (1.0 + line)) as f32;
                 offsets.push((dx, dy, w));
                 weights[((dy + RADIUS) as usize) * width + (dx + RADIUS) as usize] = w;
             }
@@ -335,25 +360,7 @@ impl Field {
         p * self.f..(p + 1) * self.f
     }
 
-    /// The energy's change if pixels `a` and `b` swapped their errors.
-    fn swap_delta(&self, a: usize, b: usize) -> f64 {
-        let (ra, rb) = (self.row(a), self.row(b));
-        let (ea, eb, sa, sb) = (
-            &self.e[ra.clone()],
-            &self.e[rb.clone()],
-            &self.s[ra],
-            &self.s[rb],
-        );
-        let (mut dot, mut dd) = (0.0f64, 0.0f64);
-        for j in 0..self.f {
-            let d = (eb[j] - ea[j]) as f64;
-            dot += d * (sa[j] - sb[j]) as f64;
-            dd += d * d;
-        }
-        2.0 * dot - 2.0 * self.weight(a, b) as f64 * dd
-    }
-
-    /// Adds `sign * d` to pixel `p`'s errors' contribution to its neighbours' fields.
+    /// Adds `d` to pixel `p`'s errors' contribution to its neighbours' fields.
     fn spread(&mut self, p: usize, d: &[f32]) {
         for k in 0..self.offsets.len() {
             let (dx, dy, w) = self.offsets[k];
@@ -365,25 +372,45 @@ impl Field {
         }
     }
 
-    fn swap(&mut self, a: usize, b: usize) {
-        let d: Vec<f32> = (0..self.f)
-            .map(|j| self.e[b * self.f + j] - self.e[a * self.f + j])
-            .collect();
-        self.spread(a, &d);
-        let minus: Vec<f32> = d.iter().map(|x| -x).collect();
-        self.spread(b, &minus);
-        for j in 0..self.f {
-            self.e.swap(a * self.f + j, b * self.f + j);
+    /// The energy's change if the distinct pixels `pix` took the errors `new` (`f` each, in
+    /// the order of `pix`); `d` is scratch.
+    fn set_delta(&self, pix: &[usize], new: &[f32], d: &mut Vec<f32>) -> f64 {
+        let f = self.f;
+        d.clear();
+        let mut total = 0.0f64;
+        for (i, &p) in pix.iter().enumerate() {
+            let (e, s, n) = (
+                &self.e[self.row(p)],
+                &self.s[self.row(p)],
+                &new[i * f..][..f],
+            );
+            let mut dot = 0.0f64;
+            for j in 0..f {
+                let dj = n[j] - e[j];
+                d.push(dj);
+                dot += dj as f64 * s[j] as f64;
+            }
+            total += 2.0 * dot;
         }
+        for i in 0..pix.len() {
+            for i2 in i + 1..pix.len() {
+                let w = self.weight(pix[i], pix[i2]);
+                if w != 0.0 {
+                    let (a, b) = (&d[i * f..][..f], &d[i2 * f..][..f]);
+                    let dot: f64 = a.iter().zip(b).map(|(x, y)| *x as f64 * *y as f64).sum();
+                    total += 2.0 * w as f64 * dot;
+                }
+            }
+        }
+        total
     }
 
-    /// The energy's change if pixel `a`'s errors became `new`.
-    fn replace_delta(&self, a: usize, new: &[f32]) -> f64 {
-        let r = self.row(a);
-        let (ea, sa) = (&self.e[r.clone()], &self.s[r]);
-        (0..self.f)
-            .map(|j| 2.0 * (new[j] - ea[j]) as f64 * sa[j] as f64)
-            .sum()
+    /// Gives the pixels `pix` the errors `new` (as [`set_delta`](Self::set_delta) takes them).
+    fn set_replace(&mut self, pix: &[usize], new: &[f32]) {
+        let f = self.f;
+        for (i, &p) in pix.iter().enumerate() {
+            self.replace(p, &new[i * f..][..f]);
+        }
     }
 
     fn replace(&mut self, a: usize, new: &[f32]) {
@@ -403,31 +430,167 @@ fn torus(side: usize, p: usize, dx: i32, dy: i32) -> usize {
     (((y + dy) & m) as usize) * side + ((x + dx) & m) as usize
 }
 
-/// Anneals swaps of `field`'s pixels (`moves` proposals, most within 4 pixels), swapping
-/// `entries` alike.
-fn anneal_swaps(field: &mut Field, entries: &mut [[u32; 2]], moves: u64, rng: &mut Pcg32) {
-    let side = field.side;
-    let n = side * side;
+/// The generators of the ranks' patterns, two per level of a block's hierarchy: the pixel at
+/// `(x, y)` of a 4 x 4 block XORs the block's base rank with `a` if `x & 1`, `b` if `y & 1`,
+/// `c` if `x & 2`, `d` if `y & 2`. With the same scramble, the union of the first `2^k` samples
+/// of a 2 x 2 sub-block is the Sobol' points at the indices `span(e_0, ..., e_(k-1), a, b)`
+/// (shifted): a (0, k+2, 2)-net at 1 to 8 samples, a (1, k+2, 2)-net at 16, (2, k+2, 2) at 32
+/// and (0, k+2, 2) at 64, and the pair has the least sum of t-values over `k = 0..=8` of the
+/// `3 * 2^15` pairs whose bits `k` and `k + 1` are independent at every `k` below 15 (an
+/// exhaustive search). The union of the whole block's is `span(e_0, ..., e_(k-1), a, b, c, d)`,
+/// with t-values 0, 0, 0, 1, 1, 1, 1 at 1 to 64 samples, and bits `k` to `k + 3` of the four are
+/// independent at every `k` below 13: of the 18,160 pairs `(c, d)` with that property among
+/// 2 x 10^8 random ones, the three with the least sum of t-values over `k = 0..=8` were
+/// measured, as arranged at random, and this one's low band was the lowest from 2 to 16
+/// samples. So up to `2^12` samples the sixteen pixels draw sixteen
+/// different blocks of their sequence, whose union is stratified along the first coordinate
+/// into 16 times as many intervals.
+pub const GENERATORS: [u32; 4] = [0x6aab, 0xd556, 0xadd8, 0x311f];
+
+/// The side of a block: its pixels share the scramble of the leading digits.
+const BLOCK: usize = 4;
+
+/// The pattern of the pixel at `(x, y)` of a block (see [`GENERATORS`]).
+fn pattern(x: usize, y: usize) -> u32 {
+    let bit = |v: usize, k: usize| if v >> k & 1 == 1 { u32::MAX } else { 0 };
+    (GENERATORS[0] & bit(x, 0))
+        ^ (GENERATORS[1] & bit(y, 0))
+        ^ (GENERATORS[2] & bit(x, 1))
+        ^ (GENERATORS[3] & bit(y, 1))
+}
+
+/// The number of layouts of a block (see `layout_pattern`).
+const LAYOUTS: u16 = 6 * 6 * 16;
+/// The layouts step 3 tries per block and sweep.
+const LAYOUT_TRIES: u32 = 32;
+
+/// The pattern of the pixel at `(x, y)` of a block under layout `layout`: the place XOR-ed
+/// with `(u, v)`, then each level's two bits (`x & 1, y & 1` and `x >> 1, y >> 1`) mapped by
+/// one of the six invertible 2 x 2 matrices over GF(2) (`m0`, `m1`). Every layout gives each
+/// 2 x 2 sub-block the same four patterns up to a common XOR (so its union stays the same
+/// net) and the block its sixteen; they differ in which patterns neighbours on a row or a
+/// column hold.
+fn layout_pattern(layout: u16, x: usize, y: usize) -> u32 {
+    const GL2: [[u8; 4]; 6] = [
+        [1, 0, 0, 1],
+        [0, 1, 1, 0],
+        [1, 1, 0, 1],
+        [1, 0, 1, 1],
+        [0, 1, 1, 1],
+        [1, 1, 1, 0],
+    ];
+    let (m0, m1, uv) = (layout % 6, layout / 6 % 6, layout / 36);
+    let (x, y) = (x ^ (uv & 3) as usize, y ^ (uv >> 2) as usize);
+    let map = |m: u16, a: usize, b: usize| {
+        let g = GL2[m as usize];
+        (
+            (g[0] as usize & a) ^ (g[1] as usize & b),
+            (g[2] as usize & a) ^ (g[3] as usize & b),
+        )
+    };
+    let (x0, y0) = map(m0, x & 1, y & 1);
+    let (x1, y1) = map(m1, x >> 1, y >> 1);
+    pattern(x0 | x1 << 1, y0 | y1 << 1)
+}
+
+/// The blocks' state: per 4 x 4 block of the tile a shared key, a base rank and a layout; per
+/// pixel the bits of its key the block does not share.
+struct Blocks {
+    side: usize,
+    key: Vec<u32>,
+    base: Vec<u32>,
+    layout: Vec<u16>,
+    deep: Vec<u32>,
+    shared: u32,
+}
+
+/// The pixels of a block.
+const PIXELS: usize = BLOCK * BLOCK;
+
+impl Blocks {
+    /// The pixels of block `b`, row-major within it.
+    fn pixels(&self, b: usize) -> [usize; PIXELS] {
+        Blocks::pixels_of(self.side, b)
+    }
+
+    /// The pixels of block `b` of a tile of side `side`, row-major within it.
+    fn pixels_of(side: usize, b: usize) -> [usize; PIXELS] {
+        let per_row = side / BLOCK;
+        let (bx, by) = (b % per_row, b / per_row);
+        core::array::from_fn(|j| (BLOCK * by + j / BLOCK) * side + BLOCK * bx + j % BLOCK)
+    }
+
+    /// The entry of the `j`-th pixel of block `b` with base rank `base` and layout `layout`.
+    fn entry(&self, b: usize, j: usize, base: u32, layout: u16) -> [u32; 2] {
+        let p = self.pixels(b)[j];
+        [
+            (self.key[b] & self.shared) | self.deep[p],
+            base ^ layout_pattern(layout, j % BLOCK, j / BLOCK),
+        ]
+    }
+
+    fn entries(&self) -> Vec<[u32; 2]> {
+        let mut out = vec![[0u32; 2]; self.side * self.side];
+        for b in 0..self.key.len() {
+            for (j, p) in self.pixels(b).into_iter().enumerate() {
+                out[p] = self.entry(b, j, self.base[b], self.layout[b]);
+            }
+        }
+        out
+    }
+
+    /// Swaps what blocks `a` and `b` hold (their pixels' deep bits too).
+    fn swap(&mut self, a: usize, b: usize) {
+        self.key.swap(a, b);
+        self.base.swap(a, b);
+        self.layout.swap(a, b);
+        let (pa, pb) = (self.pixels(a), self.pixels(b));
+        for j in 0..PIXELS {
+            self.deep.swap(pa[j], pb[j]);
+        }
+    }
+}
+
+/// Anneals swaps of whole blocks (`moves` proposals, most within 4 blocks) in `field`, a field
+/// over the pixels, swapping `blocks` alike.
+fn anneal_block_swaps(field: &mut Field, blocks: &mut Blocks, moves: u64, rng: &mut Pcg32) {
+    let half = blocks.side / BLOCK;
+    let nb = half * half;
+    let f = field.f;
     let propose = |rng: &mut Pcg32| {
-        let a = below(rng, n);
+        let a = below(rng, nb);
         let b = if below(rng, 5) < 4 {
             let (dx, dy) = (below(rng, 9) as i32 - 4, below(rng, 9) as i32 - 4);
-            torus(side, a, dx, dy)
+            torus(half, a, dx, dy)
         } else {
-            below(rng, n)
+            below(rng, nb)
         };
         (a, b)
+    };
+    let mut new = vec![0.0f32; 2 * PIXELS * f];
+    let mut d = Vec::with_capacity(2 * PIXELS * f);
+    let mut delta_of = |field: &Field, blocks: &Blocks, a: usize, b: usize, new: &mut [f32]| {
+        let (pa, pb) = (blocks.pixels(a), blocks.pixels(b));
+        let mut pix = [0usize; 2 * PIXELS];
+        for j in 0..PIXELS {
+            pix[j] = pa[j];
+            pix[PIXELS + j] = pb[j];
+            new[j * f..][..f].copy_from_slice(&field.e[field.row(pb[j])]);
+            new[(PIXELS + j) * f..][..f].copy_from_slice(&field.e[field.row(pa[j])]);
+        }
+        (pix, field.set_delta(&pix, new, &mut d))
     };
     // the temperature: from a twentieth of the mean change of a proposal down to a thousandth
     // of that
     let sample = 2000;
-    let mean = (0..sample)
-        .map(|_| {
-            let (a, b) = propose(rng);
-            field.swap_delta(a, b).abs()
-        })
-        .sum::<f64>()
-        / sample as f64;
+    let mut mean = 0.0;
+    for _ in 0..sample {
+        let (a, b) = propose(rng);
+        if a != b {
+            mean += delta_of(field, blocks, a, b, &mut new).1.abs();
+        }
+    }
+    mean /= sample as f64;
     let (t0, t1) = (0.05 * mean, 0.05e-3 * mean);
     for it in 0..moves {
         let (a, b) = propose(rng);
@@ -435,10 +598,10 @@ fn anneal_swaps(field: &mut Field, entries: &mut [[u32; 2]], moves: u64, rng: &m
             continue;
         }
         let t = t0 * (t1 / t0).powf(it as f64 / moves as f64);
-        let delta = field.swap_delta(a, b);
+        let (pix, delta) = delta_of(field, blocks, a, b, &mut new);
         if delta < 0.0 || uniform(rng) < (-delta / t).exp() {
-            field.swap(a, b);
-            entries.swap(a, b);
+            field.set_replace(&pix, &new);
+            blocks.swap(a, b);
         }
     }
 }
@@ -493,64 +656,76 @@ pub fn optimise(o: &TableOptions) -> Result<Table> {
     let tests: Vec<Shifted> = (0..o.integrands).map(|_| Shifted::draw(&mut rng)).collect();
     let held_out: Vec<Shifted> = (0..HELD_OUT).map(|_| Shifted::draw(&mut rng)).collect();
     let k = tests.len();
-    // random keys; ranks random above the arranged bits, 0 below
+    let nb = n / PIXELS;
+    let mask = (1u32 << levels) - 1;
+    // per block a key, distinct, of which the pixels share the bits that scramble the digits
+    // of the arranged counts' unions (the bits below `16 + levels + 2`: see `SHARED_DIGITS`);
+    // base ranks random above the arranged bits, 0 below
+    let shared = ((1u64 << (16 + levels + 4)) - 1) as u32;
     let high = MAX_RANK >> levels;
-    // distinct keys, so that no two entries are alike
-    let mut keys = std::collections::HashSet::with_capacity(n);
-    let mut entries: Vec<[u32; 2]> = Vec::with_capacity(n);
-    while entries.len() < n {
-        let key = rng.next_u32();
-        let rank = ((rng.next_u32() as u64 * high as u64) >> 32) as u32 * (1 << levels);
-        if keys.insert(key) {
-            entries.push([key, rank]);
+    let mut seen = std::collections::HashSet::with_capacity(nb);
+    let mut key = Vec::with_capacity(nb);
+    while key.len() < nb {
+        let kk = rng.next_u32() & shared;
+        if seen.insert(kk) {
+            key.push(kk);
         }
     }
-    drop(keys);
-    let start = entries.clone();
-    let all_errors = |entries: &[[u32; 2]], tests: &[Shifted]| {
-        let f = (levels as usize + 1) * tests.len();
-        let mut e = vec![0.0f32; entries.len() * f];
-        for (p, out) in e.chunks_mut(f).enumerate() {
-            entry_errors(entries[p][0], entries[p][1], tests, levels, out);
+    drop(seen);
+    let base = (0..nb)
+        .map(|_| ((rng.next_u32() as u64 * high as u64) >> 32) as u32 * (1 << levels))
+        .collect();
+    // the pixels' own bits, distinct within each block (so that two pixels of a block never
+    // draw the same samples)
+    let mut deep = vec![0u32; n];
+    for b in 0..nb {
+        let pixels = Blocks::pixels_of(side, b);
+        for (j, &p) in pixels.iter().enumerate() {
+            deep[p] = loop {
+                let d = rng.next_u32() & !shared;
+                if pixels[..j].iter().all(|&q| deep[q] != d) {
+                    break d;
+                }
+            };
+        }
+    }
+    let mut blocks = Blocks {
+        side,
+        key,
+        base,
+        layout: (0..nb)
+            .map(|_| below(&mut rng, LAYOUTS as usize) as u16)
+            .collect(),
+        deep,
+        shared,
+    };
+    let errors_at = |entries: &[[u32; 2]], l: u32, flip: u32| -> Vec<f32> {
+        let mut out = vec![0.0f32; (l as usize + 1) * k];
+        let mut e = Vec::with_capacity(entries.len() * k);
+        for &[key, rank] in entries {
+            entry_errors(key, rank ^ flip, &tests, l, &mut out);
+            e.extend_from_slice(&out[l as usize * k..]);
         }
         e
     };
-    let level_of = |all: &[f32], l: usize, kk: usize| -> Vec<f32> {
-        let f = (levels as usize + 1) * kk;
-        all.chunks(f)
-            .flat_map(|row| row[l * kk..(l + 1) * kk].iter().copied())
-            .collect()
-    };
-    let moves = o.effort as u64 * n as u64;
+    let moves = o.effort as u64 * nb as u64;
 
-    // 1. keys: the whole count's errors blue
+    // 1. blocks: the whole count's errors blue
     {
-        let top = level_of(&all_errors(&entries, &tests), levels as usize, k);
-        let mut field = Field::new(side, k, top);
-        anneal_swaps(&mut field, &mut entries, moves, &mut rng);
+        let mut field = Field::new(side, k, errors_at(&blocks.entries(), levels, 0));
+        anneal_block_swaps(&mut field, &mut blocks, moves, &mut rng);
     }
 
-    // 2. ranks, from the top down: bit l chooses the half of the 2^(l+1) samples that comes
-    // first
+    // 2. base ranks, from the top down: bit l chooses the half of each pixel's 2^(l+1) samples
+    // that comes first, for the four pixels of a block at once
+    let mut new = vec![0.0f32; PIXELS * k];
+    let mut scratch = Vec::new();
     for l in (0..levels).rev() {
-        let mut hold = vec![0.0f32; (levels as usize + 1) * k];
-        let mut flip = hold.clone();
-        let mut e_hold = Vec::with_capacity(n * k);
-        let mut e_flip = Vec::with_capacity(n * k);
-        for &[key, rank] in &entries {
-            entry_errors(key, rank, &tests, l + 1, &mut hold[..(l as usize + 2) * k]);
-            entry_errors(
-                key,
-                rank ^ (1 << l),
-                &tests,
-                l + 1,
-                &mut flip[..(l as usize + 2) * k],
-            );
-            e_hold.extend_from_slice(&hold[l as usize * k..(l as usize + 1) * k]);
-            e_flip.extend_from_slice(&flip[l as usize * k..(l as usize + 1) * k]);
-        }
+        let entries = blocks.entries();
+        let e_hold = errors_at(&entries, l, 0);
+        let e_flip = errors_at(&entries, l, 1 << l);
         let mut field = Field::new(side, k, e_hold.clone());
-        let mut flipped = vec![false; n];
+        let mut flipped = vec![false; nb];
         let sweeps = (o.effort / 10).max(4);
         for s in 0..sweeps {
             // anneal for the first half of the sweeps, then descend
@@ -561,16 +736,19 @@ pub fn optimise(o: &TableOptions) -> Result<Table> {
             };
             let scale = field_scale(&field);
             let mut changed = false;
-            for _ in 0..n {
-                let p = below(&mut rng, n);
-                let other = if flipped[p] { &e_hold } else { &e_flip };
-                let new = &other[p * k..(p + 1) * k];
-                let delta = field.replace_delta(p, new);
+            for _ in 0..nb {
+                let b = below(&mut rng, nb);
+                let other = if flipped[b] { &e_hold } else { &e_flip };
+                let pix = blocks.pixels(b);
+                for (j, &p) in pix.iter().enumerate() {
+                    new[j * k..][..k].copy_from_slice(&other[p * k..][..k]);
+                }
+                let delta = field.set_delta(&pix, &new, &mut scratch);
                 if delta < 0.0
                     || (t > 0.0 && uniform(&mut rng) < (-delta / (0.05 * t * scale)).exp())
                 {
-                    field.replace(p, new);
-                    flipped[p] = !flipped[p];
+                    field.set_replace(&pix, &new);
+                    flipped[b] = !flipped[b];
                     changed = true;
                 }
             }
@@ -578,19 +756,22 @@ pub fn optimise(o: &TableOptions) -> Result<Table> {
                 break;
             }
         }
-        for (e, f) in entries.iter_mut().zip(&flipped) {
+        for (base, f) in blocks.base.iter_mut().zip(&flipped) {
             if *f {
-                e[1] ^= 1 << l;
+                *base ^= 1 << l;
             }
         }
     }
 
     // 3. every count at once, each weighted by the inverse of its mean squared error: each
-    // pixel's rank (its low `levels` bits: which of its blocks comes first at every count)
-    // chosen anew against its neighbours, sweep after sweep; then, if asked, whole entries
-    // swapped between pixels
+    // block's base rank's low `levels` bits (which of its pixels' blocks comes first at every
+    // count), then the order of its patterns over its pixels, chosen anew against its
+    // neighbours, sweep after sweep; then, if asked, whole blocks swapped
     let f = (levels as usize + 1) * k;
-    let mut all = all_errors(&entries, &tests);
+    let mut all = vec![0.0f32; n * f];
+    for (p, &[key, rank]) in blocks.entries().iter().enumerate() {
+        entry_errors(key, rank, &tests, levels, &mut all[p * f..][..f]);
+    }
     let scales: Vec<f32> = (0..=levels as usize)
         .map(|l| {
             let ms: f64 = all
@@ -611,36 +792,94 @@ pub fn optimise(o: &TableOptions) -> Result<Table> {
     }
     let mut field = Field::new(side, f, all);
     let sweeps = (o.effort / 20).max(2);
-    let mut candidate = vec![0.0f32; f];
+    let mut candidate = vec![0.0f32; PIXELS * f];
+    let mut best_new = vec![0.0f32; PIXELS * f];
+    let scale_row = |row: &mut [f32]| {
+        for (l, s) in scales.iter().enumerate() {
+            for x in &mut row[l * k..(l + 1) * k] {
+                *x *= s;
+            }
+        }
+    };
     for _ in 0..sweeps {
         let mut changed = 0;
-        for _ in 0..n {
-            let p = below(&mut rng, n);
-            let [key, rank] = entries[p];
-            let sums = block_sums(key, rank & !((1 << levels) - 1), &tests, levels);
-            let mut best = (0.0f64, rank);
-            for low in 0..1u32 << levels {
-                let r = (rank & !((1 << levels) - 1)) | low;
-                if r == rank {
+        for _ in 0..nb {
+            let b = below(&mut rng, nb);
+            let pix = blocks.pixels(b);
+            let (base, layout) = (blocks.base[b], blocks.layout[b]);
+            // the base rank's low bits: the tree of block sums of every pixel
+            let sums: Vec<Vec<f64>> = (0..PIXELS)
+                .map(|j| {
+                    let [key, rank] = blocks.entry(b, j, base, layout);
+                    block_sums(key, rank & !mask, &tests, levels)
+                })
+                .collect();
+            let mut best = (0.0f64, base & mask);
+            for low in 0..=mask {
+                if low == base & mask {
                     continue;
                 }
-                rank_features(&sums, &tests, levels, low, &scales, &mut candidate);
-                let delta = field.replace_delta(p, &candidate);
+                for (j, sums) in sums.iter().enumerate() {
+                    let rank_low = (low ^ layout_pattern(layout, j % BLOCK, j / BLOCK)) & mask;
+                    let out = &mut candidate[j * f..][..f];
+                    rank_features(sums, &tests, levels, rank_low, &scales, out);
+                }
+                let delta = field.set_delta(&pix, &candidate, &mut scratch);
                 if delta < best.0 {
-                    best = (delta, r);
+                    best = (delta, low);
+                    best_new.copy_from_slice(&candidate);
                 }
             }
-            if best.1 != rank {
-                rank_features(
-                    &sums,
-                    &tests,
-                    levels,
-                    best.1 & ((1 << levels) - 1),
-                    &scales,
-                    &mut candidate,
-                );
-                field.replace(p, &candidate);
-                entries[p][1] = best.1;
+            if best.0 < 0.0 {
+                field.set_replace(&pix, &best_new);
+                blocks.base[b] = (base & !mask) | best.1;
+                changed += 1;
+            }
+            // the layout: the sums of each of the sixteen patterns under the first pixel's
+            // key (the pixels' keys differ in digits past those the errors see), some layouts
+            // tried, the best one's errors computed exactly
+            let base = blocks.base[b];
+            let key0 = blocks.entry(b, 0, base, layout)[0];
+            let patterns: Vec<u32> = (0..PIXELS)
+                .map(|j| layout_pattern(0, j % BLOCK, j / BLOCK))
+                .collect();
+            let pattern_sums: Vec<Vec<f64>> = patterns
+                .iter()
+                .map(|&pat| block_sums(key0, (base ^ pat) & !mask, &tests, levels))
+                .collect();
+            let mut best = (0.0f64, layout);
+            for _ in 0..LAYOUT_TRIES {
+                let l = below(&mut rng, LAYOUTS as usize) as u16;
+                if l == layout {
+                    continue;
+                }
+                for j in 0..PIXELS {
+                    let pat = layout_pattern(l, j % BLOCK, j / BLOCK);
+                    let q = patterns.iter().position(|&p| p == pat).unwrap_or(0);
+                    let out = &mut candidate[j * f..][..f];
+                    rank_features(
+                        &pattern_sums[q],
+                        &tests,
+                        levels,
+                        (base ^ pat) & mask,
+                        &scales,
+                        out,
+                    );
+                }
+                let delta = field.set_delta(&pix, &candidate, &mut scratch);
+                if delta < best.0 {
+                    best = (delta, l);
+                }
+            }
+            if best.0 < 0.0 {
+                for j in 0..PIXELS {
+                    let [key, rank] = blocks.entry(b, j, base, best.1);
+                    let out = &mut candidate[j * f..][..f];
+                    entry_errors(key, rank, &tests, levels, out);
+                    scale_row(out);
+                }
+                field.set_replace(&pix, &candidate);
+                blocks.layout[b] = best.1;
                 changed += 1;
             }
         }
@@ -649,13 +888,14 @@ pub fn optimise(o: &TableOptions) -> Result<Table> {
         }
     }
     if o.polish {
-        anneal_swaps(&mut field, &mut entries, moves, &mut rng);
+        anneal_block_swaps(&mut field, &mut blocks, moves, &mut rng);
     }
 
     drop(field);
+    let entries = blocks.entries();
     // a table the renderer's crate takes (the keys are distinct)
     BlueNoiseTable::new(o.side, &entries)?;
-    let lowband = figures(o.side, levels, &held_out, &start, &entries)?;
+    let lowband = figures(o.side, levels, &held_out, &random_entries(o), &entries)?;
     Ok(Table {
         options: *o,
         entries,
@@ -713,15 +953,33 @@ fn field_scale(field: &Field) -> f64 {
     mean_sq * field.offsets.len() as f64 * field.f as f64 / 10.0
 }
 
-/// The low-band shares per count of the start and of the table, over `tests`.
+/// Entries with distinct random keys and random ranks (white noise), drawn by `o.seed`.
+fn random_entries(o: &TableOptions) -> Vec<[u32; 2]> {
+    let mut rng = pcg(o.seed.0, streams::BNTABLE_RANDOM);
+    let n = (o.side * o.side) as usize;
+    let mut keys = std::collections::HashSet::with_capacity(n);
+    let mut out = Vec::with_capacity(n);
+    while out.len() < n {
+        let key = rng.next_u32();
+        if keys.insert(key) {
+            out.push([
+                key,
+                ((rng.next_u32() as u64 * MAX_RANK as u64) >> 32) as u32,
+            ]);
+        }
+    }
+    out
+}
+
+/// The low-band shares per count of random entries and of the table, over `tests`.
 fn figures(
     side: u32,
     levels: u32,
     tests: &[Shifted],
-    start: &[[u32; 2]],
+    random: &[[u32; 2]],
     table: &[[u32; 2]],
 ) -> Result<Vec<LevelFigures>> {
-    let a = lowband_per_count(side, levels, tests, start)?;
+    let a = lowband_per_count(side, levels, tests, random)?;
     let b = lowband_per_count(side, levels, tests, table)?;
     Ok((0..=levels)
         .map(|l| LevelFigures {
@@ -847,24 +1105,181 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_small_table_is_bluer_than_its_random_start_at_every_count() {
-        let o = TableOptions {
+    /// A small table: side 32, counts 1 to 8.
+    fn small() -> TableOptions {
+        TableOptions {
             side: 32,
             levels: 3,
             integrands: 16,
             effort: 40,
             polish: true,
             seed: Seed(3),
-        };
+        }
+    }
+
+    #[test]
+    fn a_small_table_is_much_bluer_than_random_entries_at_every_count() {
+        let o = small();
         let t = optimise(&o).unwrap();
         BlueNoiseTable::new(32, &t.entries).unwrap();
-        // much bluer at the smallest counts, bluer at every count
         for f in &t.lowband {
-            let bound = if f.count <= 2 { 0.6 } else { 0.9 };
-            assert!(f.table < bound * f.random, "{f:?}");
+            assert!(f.table < 0.5 * f.random, "{f:?}");
         }
         assert_eq!(optimise(&o).unwrap(), t, "deterministic");
+    }
+
+    /// Whether `points` (`2^m` of them) are a (t, m, 2)-net: every elementary interval of area
+    /// `2^(t - m)` holds `2^t` points.
+    fn is_net(points: &[[u32; 2]], t: u32) -> bool {
+        let m = points.len().trailing_zeros();
+        let q = m - t;
+        (0..=q).all(|d1| {
+            let d2 = q - d1;
+            let mut cells = vec![0u32; 1 << q];
+            for p in points {
+                let (x, y) = (p[0].checked_shr(32 - d1), p[1].checked_shr(32 - d2));
+                cells[((x.unwrap_or(0) << d2) | y.unwrap_or(0)) as usize] += 1;
+            }
+            cells.iter().all(|&c| c == 1 << t)
+        })
+    }
+
+    #[test]
+    fn the_union_of_a_block_s_samples_is_the_net_its_generators_promise_at_every_count() {
+        // the first 2^k samples of every 2 x 2 sub-block: (0, k+2, 2)-nets at 1 to 8 samples;
+        // of every 4 x 4 block: (t, k+4, 2) with t = 0, 0, 0, 1 at 1 to 8 samples; and along
+        // the first coordinate, one point per interval of 2^-(k+4)
+        let o = small();
+        let t = optimise(&o).unwrap();
+        let side = o.side as usize;
+        let union = |x0: usize, y0: usize, w: usize, k: u32| -> Vec<[u32; 2]> {
+            let mut out = Vec::new();
+            for y in y0..y0 + w {
+                for x in x0..x0 + w {
+                    let [key, rank] = t.entries[y * side + x];
+                    for i in 0..1u32 << k {
+                        out.push(BlueNoiseTable::point_u32(i, rank, key));
+                    }
+                }
+            }
+            out
+        };
+        let mut checked = 0;
+        for k in 0..=o.levels {
+            for by in (0..side).step_by(4) {
+                for bx in (0..side).step_by(4) {
+                    let mut keys: Vec<u32> = (0..16)
+                        .map(|j| t.entries[(by + j / 4) * side + bx + j % 4][0])
+                        .collect();
+                    keys.sort_unstable();
+                    keys.dedup();
+                    assert_eq!(keys.len(), 16, "block ({bx}, {by}): two pixels share a key");
+                    let whole = union(bx, by, 4, k);
+                    let tv = [0, 0, 0, 1][k as usize];
+                    assert!(
+                        is_net(&whole, tv),
+                        "block ({bx}, {by}) at 2^{k}: not a t = {tv} net"
+                    );
+                    let mut xs: Vec<u32> = whole.iter().map(|p| p[0] >> (32 - (k + 4))).collect();
+                    xs.sort_unstable();
+                    xs.dedup();
+                    assert_eq!(xs.len(), whole.len(), "block ({bx}, {by}) at 2^{k}: x");
+                    for (dx, dy) in [(0, 0), (2, 0), (0, 2), (2, 2)] {
+                        let sub = union(bx + dx, by + dy, 2, k);
+                        assert!(
+                            is_net(&sub, 0),
+                            "sub-block ({}, {}) at 2^{k}",
+                            bx + dx,
+                            by + dy
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 4 * 64 * 4);
+    }
+
+    /// The low-band share (below 1/8 cycle per pixel, white: 0.25) of the errors along the
+    /// rows (`along_rows`) or the columns of the tile `entries` at `n` samples, for steps along
+    /// coordinate `axis` seen through random digital shifts, mean over 16 steps and every line.
+    fn line_lowband(
+        entries: &[[u32; 2]],
+        side: usize,
+        n: u32,
+        along_rows: bool,
+        axis: usize,
+    ) -> f64 {
+        let mut rng = pcg(9, streams::BNTABLE_TESTS);
+        let (mut low, mut all) = (0.0, 0.0);
+        for _ in 0..16 {
+            let (t, shift) = (rng.next_u32(), rng.next_u32());
+            let errors: Vec<f64> = entries
+                .iter()
+                .map(|&[key, rank]| {
+                    let inside = (0..n)
+                        .filter(|&i| BlueNoiseTable::point_u32(i, rank, key)[axis] ^ shift < t)
+                        .count();
+                    inside as f64 / n as f64 - t as f64 / 4_294_967_296.0
+                })
+                .collect();
+            for line in 0..side {
+                let at = |i: usize| {
+                    if along_rows {
+                        errors[line * side + i]
+                    } else {
+                        errors[i * side + line]
+                    }
+                };
+                for f in 1..side {
+                    let (mut re, mut im) = (0.0, 0.0);
+                    for i in 0..side {
+                        let a = 2.0 * std::f64::consts::PI * (f * i) as f64 / side as f64;
+                        re += at(i) * a.cos();
+                        im += at(i) * a.sin();
+                    }
+                    let power = re * re + im * im;
+                    all += power;
+                    if f.min(side - f) * 8 <= side {
+                        low += power;
+                    }
+                }
+            }
+        }
+        low / all
+    }
+
+    #[test]
+    fn a_small_table_is_blue_along_its_rows_and_its_columns() {
+        // an edge of the image along a row meets the same step in every pixel of it: the
+        // error along the row alone must be blue, not only the tile's (a layout that gives the
+        // neighbours on a row patterns whose sets share their strata makes it red)
+        let o = small();
+        let t = optimise(&o).unwrap();
+        let random = random_entries(&o);
+        for n in [1, 2, 4, 8] {
+            for along_rows in [true, false] {
+                for axis in 0..2 {
+                    let table = line_lowband(&t.entries, 32, n, along_rows, axis);
+                    let white = line_lowband(&random, 32, n, along_rows, axis);
+                    assert!(
+                        table < 0.85 * white,
+                        "{n} spp, rows {along_rows}, axis {axis}: {table:.3} against {white:.3}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_net_checker_refuses_a_set_that_is_not_one() {
+        // the first four Sobol' points are a (0,2,2)-net; the four of one column are not
+        let good: Vec<[u32; 2]> = (0..4).map(|i| BlueNoiseTable::point_u32(i, 0, 0)).collect();
+        assert!(is_net(&good, 0));
+        let bad: Vec<[u32; 2]> = (0..4)
+            .map(|i| BlueNoiseTable::point_u32(4 * i, 0, 0))
+            .collect();
+        assert!(!is_net(&bad, 0));
     }
 
     #[test]

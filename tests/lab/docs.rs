@@ -597,8 +597,8 @@ fn the_renderer_crate_ships_its_own_readme() {
 #[test]
 fn sobolbn_draws_are_blue_at_small_counts_under_both_prefix_keeping_paddings() {
     // the sampler's own draws (not the table's entries): steps along each coordinate, the
-    // error image over 128 x 128 pixels, its low-band share against sobol's (white) at 1 and 4
-    // samples, for a draw at dimension 0 and one at 6, under the shell and the nested padding
+    // error image over 128 x 128 pixels, its low-band share against sobol's (white) at 1, 4 and
+    // 16 samples, for a draw at dimension 0 and one at 6, under the shell and the nested padding
     use strata::pixel::{Padding, PixelSampler, Sequence};
     let lowband = |seq: Sequence, padding: Padding, n: u32, dim: u32| -> f64 {
         let s = PixelSampler::new(seq, n, strata::Seed(11))
@@ -625,7 +625,8 @@ fn sobolbn_draws_are_blue_at_small_counts_under_both_prefix_keeping_paddings() {
     };
     for padding in [Padding::Shells, Padding::Nested] {
         for dim in [0, 6] {
-            for (n, bound) in [(1, 0.6), (4, 0.85)] {
+            // measured 0.18-0.19, 0.20-0.21 and 0.26-0.28 with the built-in table
+            for (n, bound) in [(1, 0.3), (4, 0.35), (16, 0.45)] {
                 let bn = lowband(Sequence::sobolbn(), padding, n, dim);
                 let white = lowband(Sequence::sobol(), padding, n, dim);
                 assert!(

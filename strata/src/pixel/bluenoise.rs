@@ -11,7 +11,14 @@
 //! torus per draw): sample `i` of a pixel is the Owen-scrambled Sobol' point at `i ^ rank`, so
 //! its first `2^m` samples are an aligned block of its scrambled sequence, a (0,m,2)-net, for
 //! every `m`. The table is this crate's own, made by the lab's `bntable` program (its header
-//! names the command, the seed and the run time).
+//! names the command, the seed and the run time). The built-in table adds a structure of its
+//! own: the sixteen pixels of each aligned 4 x 4 block of the tile share the leading digits of
+//! their scramble (the low 26 bits of the key) and XOR a block's rank with fixed patterns, so
+//! that at every count the union of the block's samples (and of each 2 x 2 sub-block's) is
+//! itself a net of 16 (4) times as many points, as a Z order told the count makes it
+//! (Ahmed and Wonka 2020; pbrt-v4's `ZSobolSampler`), without being told the count. The lab's
+//! `strata_lab::samplers::bntable` has the patterns, their t-values and the search that found
+//! them.
 //!
 //! # One draw
 //!
@@ -38,7 +45,10 @@
 //! its copy `W` pixels away draw alike up to their padding. The table orders the first
 //! `2^16` samples (ranks below `2^16`); past them, and at counts above those the table was
 //! optimised for (its header says), a pixel's samples are still its scrambled sequence's
-//! aligned blocks, nets as `sobol`'s, with no blue-noise arrangement between pixels.
+//! aligned blocks, nets as `sobol`'s, with no blue-noise arrangement between pixels. In the
+//! built-in table, past `2^12` samples two pixels of a 4 x 4 block can draw the same block of
+//! indices, whose points then agree in their first 10 binary digits (the scramble the block
+//! shares) and differ below them: their errors are alike (correlated, not equal) there.
 
 use alloc::sync::Arc;
 use core::ops::Deref;
