@@ -1,8 +1,8 @@
 //! The tables of the progressive blue-noise sequences (`sobolbn`): per pixel of a toroidal
 //! tile, a *key* (the Owen scramble of the pixel's copy of the sequence) and a *rank* (an XOR
 //! of its sample index), arranged offline so that neighbouring pixels' errors cancel at the
-//! power-of-two counts the table was made for, without knowing the count: most at 1 and 2
-//! samples, less at each larger count (the table's header has its figures).
+//! power-of-two counts the table was made for, without knowing the count (the table's header
+//! has its figures).
 //!
 //! The scheme is Heitz, Belcour, Ostromoukhov, Coeurjolly and Iehl's ("A Low-Discrepancy
 //! Sampler that Distributes Monte Carlo Errors as a Blue Noise in Screen Space", SIGGRAPH Talks

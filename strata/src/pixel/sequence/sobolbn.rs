@@ -1,8 +1,10 @@
 //! `sobolbn`: as `sobol`, but each pixel reads its copy of the sequence through an entry of a
 //! toroidal table (an Owen scramble key and an XOR of the sample index), arranged offline so
 //! that the error is blue noise in screen space at the power-of-two counts its table was made
-//! for (1 to 64 samples, most at 1 and 2), without knowing the count: for viewports and
-//! adaptive samplers (Heitz et al. 2019; made progressive as OpenQMC's `SobolBnSampler`). Each
+//! for (1 to 64 samples, the built-in table about alike at each), without knowing the count:
+//! for viewports and adaptive samplers (Heitz et al. 2019; made progressive as OpenQMC's
+//! `SobolBnSampler`; the built-in table's 4 x 4 blocks draw nets together, as Ahmed and
+//! Wonka's Z order told the count makes them). Each
 //! draw reads the table shifted anew, so every draw is blue; see [`super::super::bluenoise`]
 //! for the draw and its limits.
 
@@ -18,9 +20,9 @@ pub(crate) const ROW: Row = Row {
     spp: SppUse::Ignored,
     round: power_of_two,
     promise: "as `sobol`; pixels through a table arranged so that the error is blue noise at 1 \
-              to 64 samples, most at 1 and 2 (progressive)",
+              to 64 samples (progressive)",
     strata: |_, n| StrataGrid::net(n, true),
-    source: "Heitz et al. 2019, OpenQMC",
+    source: "Heitz et al. 2019, OpenQMC; Ahmed, Wonka 2020",
 };
 
 impl Sequence {
