@@ -430,21 +430,22 @@ fn torus(side: usize, p: usize, dx: i32, dy: i32) -> usize {
     (((y + dy) & m) as usize) * side + ((x + dx) & m) as usize
 }
 
-/// The generators of the ranks' patterns, two per level of a block's hierarchy: the pixel at
-/// `(x, y)` of a 4 x 4 block XORs the block's base rank with `a` if `x & 1`, `b` if `y & 1`,
-/// `c` if `x & 2`, `d` if `y & 2`. With the same scramble, the union of the first `2^k` samples
-/// of a 2 x 2 sub-block is the Sobol' points at the indices `span(e_0, ..., e_(k-1), a, b)`
-/// (shifted): a (0, k+2, 2)-net at 1 to 8 samples, a (1, k+2, 2)-net at 16, (2, k+2, 2) at 32
-/// and (0, k+2, 2) at 64, and the pair has the least sum of t-values over `k = 0..=8` of the
-/// `3 * 2^15` pairs whose bits `k` and `k + 1` are independent at every `k` below 15 (an
-/// exhaustive search). The union of the whole block's is `span(e_0, ..., e_(k-1), a, b, c, d)`,
-/// with t-values 0, 0, 0, 1, 1, 1, 1 at 1 to 64 samples, and bits `k` to `k + 3` of the four are
-/// independent at every `k` below 13: of the 18,160 pairs `(c, d)` with that property among
-/// 2 x 10^8 random ones, the three with the least sum of t-values over `k = 0..=8` were
-/// measured, as arranged at random, and this one's low band was the lowest from 2 to 16
-/// samples. So up to `2^12` samples the sixteen pixels draw sixteen
-/// different blocks of their sequence, whose union is stratified along the first coordinate
-/// into 16 times as many intervals.
+/// The generators of the ranks' patterns, two per level of a block's hierarchy: under the
+/// identity layout, the pixel at `(x, y)` of a 4 x 4 block XORs the block's base rank with `a`
+/// if `x & 1`, `b` if `y & 1`, `c` if `x & 2`, `d` if `y & 2` (a block's layout permutes the
+/// places, keeping the sub-blocks). With the same scramble, the union of the first `2^k`
+/// samples of a 2 x 2 sub-block is the Sobol' points at the indices `span(e_0, ..., e_(k-1), a,
+/// b)` (shifted): a (t, k+2, 2)-net with t = 0, 0, 0, 0, 1, 2, 0 at 1 to 64 samples; of the
+/// `3 * 2^15` pairs whose bits `k` and `k + 1` are independent at every `k` below 15, the pair
+/// is one of those with the least sum of t-values over `k = 0..=8` (an exhaustive search). The
+/// whole block's union is `span(e_0, ..., e_(k-1), a, b, c, d)`, with t = 0, 0, 0, 1, 1, 1, 1,
+/// and bits `k` to `k + 3` of the four are independent at every `k` below 13: of the 18,160
+/// pairs `(c, d)` with that property among `2 * 10^8` random ones, the three with the least sum
+/// of t-values at 1 to 64 samples were arranged at random over a 64 x 64 tile, and this one's
+/// low band was the lowest from 2 to 16 samples (8 draws of 64 test integrands). So up to
+/// `2^12` samples the sixteen pixels draw sixteen different blocks of their sequence, whose
+/// union is stratified along the first coordinate into 16 times as many intervals (test
+/// `the_generators_make_the_nets_they_promise`).
 pub const GENERATORS: [u32; 4] = [0x6aab, 0xd556, 0xadd8, 0x311f];
 
 /// The side of a block: its pixels share the scramble of the leading digits.
@@ -1269,6 +1270,54 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_generators_make_the_nets_they_promise() {
+        let [a, b, c, d] = GENERATORS;
+        let union = |k: u32, gens: &[u32]| -> Vec<[u32; 2]> {
+            let mut out = Vec::new();
+            for m in 0..1u32 << gens.len() {
+                let offset = (0..gens.len())
+                    .filter(|&g| m >> g & 1 == 1)
+                    .fold(0, |acc, g| acc ^ gens[g]);
+                for i in 0..1u32 << k {
+                    out.push(BlueNoiseTable::point_u32(i, offset, 0x2545_f491));
+                }
+            }
+            out
+        };
+        for (k, (t2, t4)) in [(0, 0), (0, 0), (0, 0), (0, 1), (1, 1), (2, 1), (0, 1)]
+            .into_iter()
+            .enumerate()
+        {
+            let k = k as u32;
+            assert!(is_net(&union(k, &[a, b]), t2), "sub-block at 2^{k}");
+            assert!(
+                t2 == 0 || !is_net(&union(k, &[a, b]), t2 - 1),
+                "sub-block's t at 2^{k}"
+            );
+            assert!(is_net(&union(k, &[a, b, c, d]), t4), "block at 2^{k}");
+            assert!(
+                t4 == 0 || !is_net(&union(k, &[a, b, c, d]), t4 - 1),
+                "block's t at 2^{k}"
+            );
+        }
+        let independent = |gens: &[u32], k: u32| {
+            let w = gens.len() as u32;
+            // the span of the generators' bits k..k+w has 2^w elements
+            let mut seen = std::collections::HashSet::new();
+            for m in 0..1u32 << w {
+                let v = (0..w as usize)
+                    .filter(|&g| m >> g & 1 == 1)
+                    .fold(0, |acc, g| acc ^ gens[g]);
+                seen.insert((v >> k) & ((1 << w) - 1));
+            }
+            seen.len() == 1 << w
+        };
+        assert!((0..15).all(|k| independent(&[a, b], k)));
+        assert!((0..13).all(|k| independent(&[a, b, c, d], k)));
+        assert!(!independent(&[a, b, c, d], 13), "16 bits hold no more");
     }
 
     #[test]
