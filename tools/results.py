@@ -64,7 +64,7 @@ LAYOUT = [
                "--samplers", "sobol,zsobol,zjoint,pbrt-zsobol,pbrt-zsobol-seeded",
                "--interactions", "--out", "{out}", "--markdown", "{md}"], True),
         # zsobol against pbrt's ZSobol, its pixel order fixed (pbrt's) and drawn per seed
-        (["render-cornell-direct-1,2,4-zsobol"],
+        (["render-cornell-direct-1,2,4"],
          EX + ["render", "--", "--scene", "cornell-direct", "--seeds", "64", "--spp", "1,2,4",
                "--samplers", "sobol,zsobol,zjoint,pbrt-zsobol,pbrt-zsobol-seeded", "--out",
                "{out}", "--markdown", "{md}"], True),
