@@ -3,6 +3,7 @@
 //! keeps its promises at every count, a Z-ordered one is told `MAX` and cut short.
 
 use glam::Vec3;
+use strata_lab::analysis::study;
 use strata_lab::io;
 use strata_lab::spectrum;
 
@@ -68,7 +69,7 @@ pub fn table(
     let sobol = rows
         .iter()
         .find(|r| r.0 == "sobol")
-        .map(|r| (r.1.lowband, r.3));
+        .map(|r| (r.1.lowband, r.3, r.1.lowbands.clone()));
     let mut csv = String::from(
         "sampler,max_spp,lowband,masked_rmse,masked_blur2_rmse,masked_lowband,\
          masked_scaled_lowband\n",
@@ -81,20 +82,27 @@ pub fn table(
          2 and low-band share, the low-band share of the error scaled by the root of each \
          pixel's count (the arrangement alone, the low counts' larger errors not dominating), \
          and the ratios of the two shares to `sobol`'s with the same counts (below 1: \
-         bluer).\n\n\
+         bluer), the first with its standard error over the seeds (s.e.). {share}\n\n\
          | sampler | masked rmse | masked blur2_rmse | masked lowband | scaled lowband | ratio to \
-         sobol | scaled ratio to sobol |\n\
-         |---|---|---|---|---|---|---|\n",
+         sobol | scaled ratio to sobol | s.e. |\n\
+         |---|---|---|---|---|---|---|---|\n",
         args.seeds,
         cell = crate::trace::COUNT_CELL,
+        share = count_shares(args, max),
     );
     for (name, m, lowband, scaled) in &rows {
         let ratio = |a: f64, b: f64| format!("{:.3}", a / b);
-        let (r, rs) = sobol.map_or(("-".into(), "-".into()), |(s, ss)| {
-            (ratio(m.lowband, s), ratio(*scaled, ss))
-        });
+        let (r, rs, se) =
+            sobol
+                .as_ref()
+                .map_or(("-".into(), "-".into(), "-".into()), |(s, ss, lowbands)| {
+                    let se = study::ratio_of_means(&m.lowbands, lowbands)
+                        .filter(|_| name != "sobol")
+                        .map_or("-".to_string(), |(_, e)| format!("{e:.3}"));
+                    (ratio(m.lowband, *s), ratio(*scaled, *ss), se)
+                });
         out.push_str(&format!(
-            "| {name} | {:.5} | {:.5} | {:.4} | {scaled:.4} | {r} | {rs} |\n",
+            "| {name} | {:.5} | {:.5} | {:.4} | {scaled:.4} | {r} | {rs} | {se} |\n",
             m.rmse, m.blur2, m.lowband
         ));
         csv.push_str(&format!(
@@ -104,4 +112,53 @@ pub fn table(
     }
     io::write_text(args.out.join("adaptive.csv"), &csv)?;
     Ok(out)
+}
+
+/// Where the adaptive image's error is: over the seeds' count fields, the share of the pixels,
+/// and of the error's power if a pixel's error variance is `1 / n` at count `n`, at counts up
+/// to 4, 8, 16 and 32 (a sentence for the table's caption).
+fn count_shares(args: &Args, max: u32) -> String {
+    let (w, h) = args.size;
+    let bounds = [4u32, 8, 16, 32];
+    let (mut pixels, mut power) = ([0f64; 4], [0f64; 4]);
+    let (mut all_pixels, mut all_power) = (0f64, 0f64);
+    for k in 0..args.seeds as u64 {
+        let counts = Counts::Adaptive {
+            max,
+            key: strata::hash::stream_seed(STOPS, args.seed.wrapping_add(k)),
+        };
+        for y in 0..h {
+            for x in 0..w {
+                let n = counts.at(x, y);
+                all_pixels += 1.0;
+                all_power += 1.0 / n as f64;
+                for (j, &b) in bounds.iter().enumerate() {
+                    if n <= b {
+                        pixels[j] += 1.0;
+                        power[j] += 1.0 / n as f64;
+                    }
+                }
+            }
+        }
+    }
+    let list: Vec<String> = bounds
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| **b < max)
+        .map(|(j, b)| {
+            format!(
+                "{:.1}% and {:.1}% up to {b}",
+                100.0 * pixels[j] / all_pixels,
+                100.0 * power[j] / all_power
+            )
+        })
+        .collect();
+    if list.is_empty() {
+        return String::new();
+    }
+    format!(
+        "The counts' shares of the pixels and of the error's power (a pixel's error variance \
+         taken as 1/n at count n): {}.",
+        list.join(", ")
+    )
 }

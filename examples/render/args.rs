@@ -87,11 +87,11 @@ struct Cli {
     #[arg(long, value_name = "S", default_value_t = 1,
           value_parser = common::whole::<u64>("--seed", 0, u64::MAX))]
     seed: u64,
-    /// renders per sampler and count, seeds S to S+K-1, 1 to 64: rmse and rel_rmse are over
-    /// all of them (the root of the mean squared error), ms is the mean time; the pictures
-    /// show seed S
+    /// renders per sampler and count, seeds S to S+K-1, 1 to 1024: rmse and rel_rmse are over
+    /// all of them (the root of the mean squared error), ms is the mean time, s.e. the
+    /// standard error of a ratio over them; the pictures show seed S
     #[arg(long, value_name = "K", default_value_t = 4,
-          value_parser = common::whole::<u32>("--seeds", 1, 64))]
+          value_parser = common::whole::<u32>("--seeds", 1, 1024))]
     seeds: u32,
     /// output directory
     #[arg(long, value_name = "DIR", default_value = "out/render")]

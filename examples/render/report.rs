@@ -61,8 +61,10 @@ pub fn ratios(rows: &[Row]) -> Option<String> {
     (others && rows.iter().any(|r| r.name == BASELINE)).then_some(())?;
     let mut t = format!(
         "Ratios to `{BASELINE}` at the same count, same run (below 1: better; the low-band \
-         share below 1 is bluer).\n\n| sampler | spp | rmse | masked rmse | lowband | masked \
-         lowband | interaction lowband |\n|---|---|---|---|---|---|---|\n"
+         share below 1 is bluer); s.e.: the masked low band's ratio's standard error over the \
+         seeds (delta method, the same seeds paired).\n\n| sampler | spp | rmse | masked rmse \
+         | lowband | masked lowband | interaction lowband | s.e. |\n\
+         |---|---|---|---|---|---|---|---|\n"
     );
     let ratio = |a: f64, b: f64| {
         if b > 0.0 && a.is_finite() {
@@ -77,8 +79,10 @@ pub fn ratios(rows: &[Row]) -> Option<String> {
             (Some([_, mine]), Some([_, theirs])) => ratio(mine.lowband, theirs.lowband),
             _ => "-".to_string(),
         };
+        let se = study::ratio_of_means(&r.masked.lowbands, &b.masked.lowbands)
+            .map_or("-".to_string(), |(_, e)| format!("{e:.3}"));
         t.push_str(&format!(
-            "| {} | {} | {} | {} | {} | {} | {interaction} |\n",
+            "| {} | {} | {} | {} | {} | {} | {interaction} | {se} |\n",
             r.name,
             r.spp,
             ratio(r.rmse, b.rmse),

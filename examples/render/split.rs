@@ -39,6 +39,9 @@ pub struct Masked {
     pub blur1: f64,
     pub blur2: f64,
     pub lowband: f64,
+    /// Each seed's low-band share, in the order of the seeds (for the standard error of a
+    /// ratio, `analysis::fit::ratio_of_means`).
+    pub lowbands: Vec<f64>,
 }
 
 impl Masked {
@@ -47,6 +50,7 @@ impl Masked {
         self.blur1 += m.blur1_rmse.powi(2) / seeds;
         self.blur2 += m.blur2_rmse.powi(2) / seeds;
         self.lowband += m.lowband / seeds;
+        self.lowbands.push(m.lowband);
     }
 
     /// The means over the seeds: the roots of the mean squares.
@@ -56,6 +60,7 @@ impl Masked {
             blur1: self.blur1.sqrt(),
             blur2: self.blur2.sqrt(),
             lowband: self.lowband,
+            lowbands: self.lowbands.clone(),
         }
     }
 }

@@ -16,7 +16,7 @@ use super::Integrand;
 use super::fit::variance;
 pub use super::fit::{
     BOOTSTRAP, MAX_PROJECTED_COUNT, bootstrap_interval, count_to_reach, fit_slope, pareto_front,
-    power_law_at,
+    power_law_at, ratio_of_means,
 };
 use super::fourier::{integrand_power, predicted_variance};
 use crate::registry::{CountRule, Entry, Params};

@@ -54,6 +54,9 @@
 //! `pixel::warp` (mappings of 2D draws onto discs and spheres, which need `sin`, `cos`, `sqrt`
 //! and `ln`) and the run-time choice of AVX2 in `SobolNd::fill`; nothing else changes with it: no
 //! item changes its type or value (a test compares what a caller can name with and without it).
+//! The `portable` feature builds the SIMD lanes as plain arrays and drops the AVX2 path (no
+//! `core::arch` intrinsics, for Miri or an unusual target): the same items and the same values,
+//! slower draws.
 //!
 //! ## Values
 //!

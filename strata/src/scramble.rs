@@ -33,8 +33,8 @@
 //! (so that one `pmuludq` multiplies both, where SSE2 has no 32-bit lane multiply), and `X4`,
 //! four lanes with the multiply built from two `pmuludq`. Every lane type computes exactly the
 //! bits of the scalar code (tested); the SIMD types fall back to the portable arrays off x86-64
-//! and when the crate is built with `--cfg strata_portable`, which `.ci/run` uses to check the
-//! golden digests without SIMD.
+//! and with the `portable` feature, which `.ci/run` uses to check the golden digests without
+//! SIMD.
 //!
 //! Everything here is 32-bit integer arithmetic (wrapping multiplies and adds, shifts, XOR),
 //! the arithmetic a GPU runs: the WGSL shader ([`crate::pixel::WGSL`]) writes the same
@@ -242,14 +242,14 @@ fn unit<const N: usize>(v: [u32; N]) -> [f32; N] {
     v.map(crate::float::unit_f32_from_u32)
 }
 
-#[cfg(all(target_arch = "x86_64", not(strata_portable)))]
+#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
 pub(crate) use sse2::{X2, X4};
 
-#[cfg(not(all(target_arch = "x86_64", not(strata_portable))))]
+#[cfg(not(all(target_arch = "x86_64", not(feature = "portable"))))]
 pub(crate) use portable::{X2, X4};
 
 /// The portable lane types: arrays, lane by lane.
-#[cfg(not(all(target_arch = "x86_64", not(strata_portable))))]
+#[cfg(not(all(target_arch = "x86_64", not(feature = "portable"))))]
 mod portable {
     use super::{Lanes, unit};
 
@@ -321,13 +321,13 @@ mod portable {
     }
 }
 
-#[cfg(not(all(target_arch = "x86_64", not(strata_portable))))]
+#[cfg(not(all(target_arch = "x86_64", not(feature = "portable"))))]
 pub(crate) use portable::join;
-#[cfg(all(target_arch = "x86_64", not(strata_portable)))]
+#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
 pub(crate) use sse2::join;
 
 /// The SSE2 lane types (SSE2 is part of the x86-64 baseline, so no run-time detection).
-#[cfg(all(target_arch = "x86_64", not(strata_portable)))]
+#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
 mod sse2 {
     use core::arch::x86_64::*;
 

@@ -396,10 +396,26 @@ fn render_adaptive_stops_each_pixel_at_its_own_count_for_every_sampler() {
         ],
     );
     assert_eq!(code, 0, "{err}");
-    // a row per sampler, with the ratio to sobol's low band (1 for sobol itself)
+    // a row per sampler, with the ratio to sobol's low band (1 for sobol itself) and its
+    // standard error over the two seeds (none for sobol itself)
     let rows = printed_table(&out, "| sampler | masked rmse | masked blur2_rmse");
     assert_eq!(rows.len(), 3, "{out}");
-    assert!(rows[0].starts_with("| sobol |") && rows[0].ends_with("| 1.000 | 1.000 |"));
+    assert!(rows[0].starts_with("| sobol |") && rows[0].ends_with("| 1.000 | 1.000 | - |"));
+    for row in &rows[1..] {
+        let se: f64 = row
+            .trim_end_matches(" |")
+            .rsplit("| ")
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(se > 0.0 && se.is_finite(), "{row}");
+    }
+    // where the error is: the counts' shares, up to 4 (below the largest count, 8)
+    assert!(
+        out.contains("of the error's power") && out.contains("up to 4."),
+        "{out}"
+    );
     let csv = std::fs::read_to_string(dir.join("adaptive.csv")).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(

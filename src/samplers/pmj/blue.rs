@@ -28,7 +28,7 @@
 //!   points into their new cells. It is stored by columns (padded with wrapped copies), so the
 //!   cells a point's kernel reaches are runs of 4 consecutive cells in 3 to 6 consecutive
 //!   columns, evaluated in four `f32` lanes (SSE2 on x86-64; the same operations in the same
-//!   order elsewhere and under `--cfg strata_portable`, so the same bits);
+//!   order elsewhere and with the `portable` feature, so the same bits);
 //! * deeper flags (finer than the optimised count) are random, flipped by the crate's nested
 //!   hash ([`owen_scramble`]), so the sequence continues past `2^m` as an Owen-scrambled
 //!   (0,2)-sequence.
@@ -381,7 +381,7 @@ impl Kernel {
     /// and the y coordinates `stride` later.
     ///
     /// Evaluated in `f32` lanes, one per cell of a run, in a fixed order.
-    #[cfg(not(all(target_arch = "x86_64", not(strata_portable))))]
+    #[cfg(not(all(target_arch = "x86_64", not(feature = "portable"))))]
     #[inline(always)]
     fn add<const AX: usize>(
         &self,
@@ -418,7 +418,7 @@ impl Kernel {
 
     /// [`add`](Kernel::add) in SSE2 (part of the x86-64 baseline): the same operations in
     /// the same order, so the same values.
-    #[cfg(all(target_arch = "x86_64", not(strata_portable)))]
+    #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
     #[inline(always)]
     fn add<const AX: usize>(
         &self,

@@ -324,7 +324,7 @@ impl Rows<'_> {
     ///
     /// # Safety
     /// The CPU must support AVX2.
-    #[cfg(all(feature = "std", target_arch = "x86_64", not(strata_portable)))]
+    #[cfg(all(feature = "std", target_arch = "x86_64", not(feature = "portable")))]
     #[target_feature(enable = "avx2")]
     unsafe fn fill_avx2(&self, start: u32, out: &mut [f32]) {
         let d = self.seeds.len();
@@ -574,7 +574,7 @@ impl SamplerNd for SobolNd {
             };
             let block = &mut out[done * d..(done + count as usize) * d];
             done += count as usize;
-            #[cfg(all(feature = "std", target_arch = "x86_64", not(strata_portable)))]
+            #[cfg(all(feature = "std", target_arch = "x86_64", not(feature = "portable")))]
             if std::is_x86_feature_detected!("avx2") {
                 // SAFETY: the CPU has AVX2, checked just above.
                 unsafe { rows.fill_avx2(start as u32, block) };
