@@ -28,7 +28,7 @@
 //!   points into their new cells. It is stored by columns (padded with wrapped copies), so the
 //!   cells a point's kernel reaches are runs of 4 consecutive cells in 3 to 6 consecutive
 //!   columns, evaluated in four `f32` lanes (SSE2 on x86-64; the same operations in the same
-//!   order elsewhere and with the `portable` feature, so the same bits);
+//!   order elsewhere, so the same bits: a test compares both);
 //! * deeper flags (finer than the optimised count) are random, flipped by the crate's nested
 //!   hash ([`owen_scramble`]), so the sequence continues past `2^m` as an Owen-scrambled
 //!   (0,2)-sequence.
@@ -380,10 +380,29 @@ impl Kernel {
     /// node, to the lanes `acc`: run `c` is the `LANES` x coordinates at `runs[2 c stride..]`
     /// and the y coordinates `stride` later.
     ///
-    /// Evaluated in `f32` lanes, one per cell of a run, in a fixed order.
-    #[cfg(not(all(target_arch = "x86_64", not(feature = "portable"))))]
+    /// Evaluated in `f32` lanes, one per cell of a run, in a fixed order: in SSE2 on x86-64
+    /// ([`add_sse2`](Kernel::add_sse2)), in plain arrays elsewhere
+    /// ([`add_portable`](Kernel::add_portable)), the same bits (tested).
     #[inline(always)]
     fn add<const AX: usize>(
+        &self,
+        runs: &[u32],
+        columns: usize,
+        stride: usize,
+        weight: f32,
+        acc: &mut [f32; LANES],
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        self.add_sse2::<AX>(runs, columns, stride, weight, acc);
+        #[cfg(not(target_arch = "x86_64"))]
+        self.add_portable::<AX>(runs, columns, stride, weight, acc);
+    }
+
+    /// [`add`](Kernel::add) in plain arrays, lane by lane (also built on x86-64 for the test
+    /// that both ways give the same bits).
+    #[cfg(any(test, not(target_arch = "x86_64")))]
+    #[inline(always)]
+    fn add_portable<const AX: usize>(
         &self,
         runs: &[u32],
         columns: usize,
@@ -417,10 +436,10 @@ impl Kernel {
     }
 
     /// [`add`](Kernel::add) in SSE2 (part of the x86-64 baseline): the same operations in
-    /// the same order, so the same values.
-    #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
+    /// the same order as [`add_portable`](Kernel::add_portable), so the same values.
+    #[cfg(target_arch = "x86_64")]
     #[inline(always)]
-    fn add<const AX: usize>(
+    fn add_sse2<const AX: usize>(
         &self,
         runs: &[u32],
         columns: usize,
@@ -615,6 +634,39 @@ mod tests {
             (0..256).map(|i| b.sample_u32(i)).collect::<Vec<_>>()
         );
         assert!(Pmj02Bn::new(256, MAX_SWEEPS + 1, Seed(1)).is_err());
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn the_kernel_gives_the_same_bits_in_sse2_and_in_plain_arrays() {
+        let word = |i: u64| strata::hash::hash_u64(i, 0x6b65_726e) as u32;
+        let (columns, stride) = (6, 16);
+        let runs: Vec<u32> = (0..(2 * (columns - 1) * stride + stride + LANES) as u64)
+            .map(|i| {
+                // coordinates near the kernel's point, so that most lanes fall inside it
+                let near = word(i) >> 4;
+                if i % 3 == 0 { word(i) } else { near }
+            })
+            .collect();
+        let mut inside = 0;
+        for case in 0..200u64 {
+            let kernel = Kernel {
+                q: [word(1000 + case) >> 4, word(2000 + case) >> 4],
+                node: word(3000 + case) & 0xf000_0000,
+                mask: 0xf000_0000,
+                inv_cutoff2: 1.0 / (word(4000 + case) >> 2) as f32 / (1u64 << 31) as f32,
+            };
+            let weight = 0.25 + (case as f32) / 64.0;
+            let (mut a, mut b) = ([0.125f32; LANES], [0.125f32; LANES]);
+            kernel.add_sse2::<0>(&runs, columns, stride, weight, &mut a);
+            kernel.add_portable::<0>(&runs, columns, stride, weight, &mut b);
+            kernel.add_sse2::<1>(&runs, columns, stride, weight, &mut a);
+            kernel.add_portable::<1>(&runs, columns, stride, weight, &mut b);
+            assert_eq!(a.map(f32::to_bits), b.map(f32::to_bits), "case {case}");
+            inside += a.iter().filter(|v| **v != 0.125).count();
+        }
+        // the kernel was evaluated inside its cutoff, not only outside it
+        assert!(inside > 200, "{inside}");
     }
 
     #[test]
