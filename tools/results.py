@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Regenerates docs/results.md, the measured figures, from the current code: one command.
 
-    python3 tools/results.py             # every section (about 25 minutes on 2 cores)
+    python3 tools/results.py             # every section (about 40 minutes on 2 cores)
     python3 tools/results.py --quick     # the sections that take under two minutes each
     python3 tools/results.py NAME...     # these sections (see --list)
     python3 tools/results.py --list      # the sections, their commands, which are expensive

@@ -7,8 +7,8 @@
 //! below). A refactor must leave every digest as it is; a deliberate change of values is
 //! announced in `CHANGELOG.md` under "value-breaking" (the section of the crate that owns the
 //! sampler) and blessed with `STRATA_BLESS=1 cargo test -p strata-lab --test lab golden`. CI
-//! also runs this test with the renderer's crate's SIMD lane types compiled out (`--features
-//! strata/portable`), so the same digests hold without SIMD.
+//! also runs this test with the renderer's crate's SIMD lane types compiled out (its `portable`
+//! feature), so the same digests hold without SIMD.
 
 use std::path::Path;
 

@@ -12,7 +12,7 @@
 //! every digest as it is; a deliberate change of values is announced in `CHANGELOG.md` under
 //! "value-breaking" and blessed with `STRATA_BLESS=1 cargo test -p strata-sampling --test
 //! strata golden`. CI also runs this test with the SIMD lane types compiled out
-//! (`--features portable`), so the same digests hold without SIMD.
+//! (the `portable` feature), so the same digests hold without SIMD.
 
 use std::path::Path;
 
